@@ -1,0 +1,137 @@
+#pragma once
+// The Block interface: what every element of a diagram declares and computes.
+//
+// A block is a *description* plus pure run-time functions. In its constructor
+// it declares, once:
+//   - input and output ports (name, width),
+//   - direct feedthrough: which outputs depend on which inputs at the same
+//     instant (default: every input feeds every output, the safe choice),
+//   - the number of continuous states (integrated by the solver),
+//   - the number of discrete states (modes, held samples; changed only in
+//     event and sample handlers),
+//   - zero-crossing functions with the direction that triggers them,
+//   - its sample time (continuous, or periodic with an offset).
+// At run time every method is const and works on a BlockContext, the block's
+// view into the diagram's Context (time, signals, states). All values live in
+// the Context, so one built diagram can be run again from scratch.
+//
+// Outputs are computed per port (DoCalcOutput(port, ...)) so the scheduler can
+// order ports, not blocks: a mechanism whose positions do not depend on its
+// force inputs may feed those positions back into the same mechanism without
+// forming an algebraic loop.
+//
+// Run-time methods must not allocate, parse text or look names up; do that in
+// the constructor. They report bad numbers by throwing SimulationError, which
+// the simulator turns into a failed (or retried) step.
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "blocks/block_context.h"
+
+namespace mechflow::blocks {
+
+struct PortSpec {
+  std::string name;
+  int width = 1;
+};
+
+// Which sign change of a zero-crossing function is an event.
+enum class CrossingDirection { kRising, kFalling, kEither };
+
+// Continuous (period 0) or periodic: hits at offset + k * period, k = 0, 1, ...
+struct SampleTime {
+  double period = 0.0;  // [s]
+  double offset = 0.0;  // [s]
+  bool is_periodic() const { return period > 0.0; }
+};
+
+class Block {
+ public:
+  Block(std::string type, std::string name);
+  virtual ~Block() = default;
+  Block(const Block&) = delete;
+  Block& operator=(const Block&) = delete;
+
+  const std::string& type() const { return type_; }
+  const std::string& name() const { return name_; }
+
+  // --- declared structure -------------------------------------------------
+  int num_inputs() const { return static_cast<int>(inputs_.size()); }
+  int num_outputs() const { return static_cast<int>(outputs_.size()); }
+  const PortSpec& input_port(int i) const { return inputs_.at(i); }
+  const PortSpec& output_port(int i) const { return outputs_.at(i); }
+  // Index of the named port, or -1.
+  int FindInput(std::string_view port_name) const;
+  int FindOutput(std::string_view port_name) const;
+  // True when output `out` depends on input `in` at the same instant.
+  bool HasFeedthrough(int in, int out) const;
+
+  int num_states() const { return static_cast<int>(state_names_.size()); }
+  const std::string& state_name(int i) const { return state_names_.at(i); }
+  int num_discrete_states() const { return num_discrete_; }
+  int num_zero_crossings() const { return static_cast<int>(crossings_.size()); }
+  CrossingDirection crossing_direction(int i) const { return crossings_.at(i); }
+  const SampleTime& sample_time() const { return sample_time_; }
+
+  // --- run time ------------------------------------------------------------
+  // Sets initial continuous and discrete states (inputs are not yet valid).
+  void Initialize(const BlockContext& ctx) const { DoInitialize(ctx); }
+  // Computes output port `port` from time, states and (feedthrough) inputs.
+  void CalcOutput(int port, const BlockContext& ctx) const { DoCalcOutput(port, ctx); }
+  // Writes the time derivative of the continuous states.
+  void CalcDerivatives(const BlockContext& ctx) const { DoCalcDerivatives(ctx); }
+  // Writes the zero-crossing function values.
+  void CalcZeroCrossings(const BlockContext& ctx) const { DoCalcZeroCrossings(ctx); }
+  // Zero-crossing `index` fired (direction +1 rising, -1 falling). The block
+  // may change its discrete and continuous states; inputs and outputs hold
+  // the values just before the event.
+  void OnZeroCrossing(int index, int direction, const BlockContext& ctx) const {
+    DoZeroCrossing(index, direction, ctx);
+  }
+  // Periodic blocks: called at each sample hit with inputs valid.
+  void OnSampleHit(const BlockContext& ctx) const { DoSampleHit(ctx); }
+  // After initialisation and after every event: make modes agree with the
+  // current inputs and states (e.g. a saturation whose input jumped).
+  // Returns true when a mode changed, so outputs must be recomputed.
+  bool UpdateModes(const BlockContext& ctx) const { return DoUpdateModes(ctx); }
+
+ protected:
+  // Declarations, for constructors only. Return the new port's index.
+  int DeclareInputPort(std::string port_name, int width = 1);
+  int DeclareOutputPort(std::string port_name, int width = 1);
+  // Marks output `out` as (not) depending on input `in` at the same instant.
+  void SetFeedthrough(int in, int out, bool direct);
+  // Marks every output as depending on no input (pure state/time outputs).
+  void DeclareNoFeedthrough();
+  // Declares `n` more continuous states named `<prefix>[i]` (or `prefix` if n == 1).
+  void DeclareContinuousStates(int n, const std::string& prefix = "x");
+  void DeclareDiscreteStates(int n) { num_discrete_ += n; }
+  int DeclareZeroCrossing(CrossingDirection direction);
+  void DeclarePeriodicSampleTime(double period, double offset);
+
+  virtual void DoInitialize(const BlockContext&) const {}
+  virtual void DoCalcOutput(int port, const BlockContext& ctx) const = 0;
+  virtual void DoCalcDerivatives(const BlockContext&) const {}
+  virtual void DoCalcZeroCrossings(const BlockContext&) const {}
+  virtual void DoZeroCrossing(int, int, const BlockContext&) const {}
+  virtual void DoSampleHit(const BlockContext&) const {}
+  virtual bool DoUpdateModes(const BlockContext&) const { return false; }
+
+ private:
+  std::string type_;
+  std::string name_;
+  std::vector<PortSpec> inputs_;
+  std::vector<PortSpec> outputs_;
+  // explicit (in, out) pairs without feedthrough; everything else feeds through
+  std::vector<std::pair<int, int>> no_feedthrough_;
+  bool no_feedthrough_at_all_ = false;
+  std::vector<std::string> state_names_;
+  int num_discrete_ = 0;
+  std::vector<CrossingDirection> crossings_;
+  SampleTime sample_time_;
+};
+
+}  // namespace mechflow::blocks

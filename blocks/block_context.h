@@ -1,0 +1,83 @@
+#pragma once
+// BlockContext: one block's view of the diagram's run-time values.
+//
+// It is a pair of pointers (the diagram Context and the block's layout), built
+// on the stack for each call: no allocation, no lookup. Spans point straight
+// into the Context's packed arrays.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace mechflow::blocks {
+
+// Where one block's values sit in the Context's packed arrays. Filled once by
+// the diagram builder.
+struct BlockLayout {
+  std::vector<int> input_offset;   // per input port: offset of its driving signal
+  std::vector<int> input_width;
+  std::vector<int> output_offset;  // per output port: offset in Context::signals
+  std::vector<int> output_width;
+  int first_state = 0;             // into the continuous state vector
+  int num_states = 0;
+  int first_discrete = 0;          // into Context::discrete
+  int num_discrete = 0;
+  int first_crossing = 0;          // into the zero-crossing vector
+  int num_crossings = 0;
+};
+
+// All run-time values of a diagram. Owned by the simulator; the continuous
+// state, its derivative and the zero-crossing values are pointers because they
+// live in SUNDIALS vectors during a solver call.
+struct Context {
+  double time = 0.0;
+  std::vector<double> signals;   // every output port, packed
+  std::vector<double> discrete;  // modes and held samples
+  double* x = nullptr;           // continuous state
+  double* xdot = nullptr;        // its derivative (valid in CalcDerivatives)
+  double* crossings = nullptr;   // zero-crossing values (valid in CalcZeroCrossings)
+  // Incremented whenever time or state may have changed, so a block may cache
+  // work shared between its output ports (e.g. mechanism kinematics).
+  std::uint64_t evaluation = 0;
+};
+
+class BlockContext {
+ public:
+  BlockContext(Context* ctx, const BlockLayout* layout) : ctx_(ctx), layout_(layout) {}
+
+  double time() const { return ctx_->time; }
+  std::uint64_t evaluation() const { return ctx_->evaluation; }
+
+  std::span<const double> input(int port) const {
+    return {ctx_->signals.data() + layout_->input_offset[port],
+            static_cast<std::size_t>(layout_->input_width[port])};
+  }
+  double input_scalar(int port) const { return ctx_->signals[layout_->input_offset[port]]; }
+  std::span<double> output(int port) const {
+    return {ctx_->signals.data() + layout_->output_offset[port],
+            static_cast<std::size_t>(layout_->output_width[port])};
+  }
+  // Continuous states. Blocks change them only in Initialize and event handlers.
+  std::span<double> state() const {
+    return {ctx_->x + layout_->first_state, static_cast<std::size_t>(layout_->num_states)};
+  }
+  std::span<double> derivative() const {
+    return {ctx_->xdot + layout_->first_state, static_cast<std::size_t>(layout_->num_states)};
+  }
+  // Discrete states (modes, held samples). Changed only in Initialize, event,
+  // sample-hit and UpdateModes handlers.
+  std::span<double> discrete() const {
+    return {ctx_->discrete.data() + layout_->first_discrete,
+            static_cast<std::size_t>(layout_->num_discrete)};
+  }
+  std::span<double> zero_crossings() const {
+    return {ctx_->crossings + layout_->first_crossing,
+            static_cast<std::size_t>(layout_->num_crossings)};
+  }
+
+ private:
+  Context* ctx_;
+  const BlockLayout* layout_;
+};
+
+}  // namespace mechflow::blocks

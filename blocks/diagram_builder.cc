@@ -1,0 +1,315 @@
+#include "blocks/diagram_builder.h"
+
+#include <algorithm>
+#include <functional>
+#include <map>
+
+#include "blocks/suggest.h"
+#include "mech/errors.h"
+
+namespace mechflow::blocks {
+namespace {
+
+std::string Where(const std::string& origin) { return origin.empty() ? "" : origin + ": "; }
+
+std::string PortName(const Block& b, const PortSpec& p) { return b.name() + "." + p.name; }
+
+std::vector<std::string> PortNames(const Block& b, bool outputs) {
+  std::vector<std::string> names;
+  const int n = outputs ? b.num_outputs() : b.num_inputs();
+  for (int i = 0; i < n; ++i) names.push_back((outputs ? b.output_port(i) : b.input_port(i)).name);
+  return names;
+}
+
+// Splits "block.port" at the last dot ("block" alone gives an empty port).
+std::pair<std::string_view, std::string_view> SplitReference(std::string_view ref) {
+  const auto dot = ref.rfind('.');
+  if (dot == std::string_view::npos) return {ref, {}};
+  return {ref.substr(0, dot), ref.substr(dot + 1)};
+}
+
+}  // namespace
+
+int Diagram::FindBlock(std::string_view name) const {
+  for (int i = 0; i < num_blocks(); ++i)
+    if (blocks_[i]->name() == name) return i;
+  return -1;
+}
+
+SignalRef Diagram::ResolveSignal(std::string_view reference) const {
+  const auto [block_name, port_name] = SplitReference(reference);
+  const int b = FindBlock(block_name);
+  if (b < 0) {
+    std::vector<std::string> names;
+    for (const auto& blk : blocks_) names.push_back(blk->name());
+    throw InputError("signal '" + std::string(reference) + "': no block named '" +
+                     std::string(block_name) + "'" + DidYouMean(block_name, names));
+  }
+  const Block& blk = *blocks_[b];
+  int port = -1;
+  if (port_name.empty()) {
+    if (blk.num_outputs() != 1)
+      throw InputError("signal '" + std::string(reference) + "': block '" + blk.name() + "' has " +
+                       std::to_string(blk.num_outputs()) + " outputs; name one of: " +
+                       JoinNames(PortNames(blk, true)));
+    port = 0;
+  } else {
+    port = blk.FindOutput(port_name);
+    if (port < 0)
+      throw InputError("signal '" + std::string(reference) + "': block '" + blk.name() +
+                       "' has no output '" + std::string(port_name) + "'" +
+                       DidYouMean(port_name, PortNames(blk, true)) +
+                       "; its outputs: " + JoinNames(PortNames(blk, true)));
+  }
+  return {PortName(blk, blk.output_port(port)), layouts_[b].output_offset[port],
+          layouts_[b].output_width[port]};
+}
+
+DiagramBuilder::DiagramBuilder() : diagram_(new Diagram) {}
+DiagramBuilder::~DiagramBuilder() = default;
+
+void DiagramBuilder::ThrowIfBuilt(const char* what) const {
+  if (!diagram_) throw std::logic_error(std::string("DiagramBuilder::") + what + " after Build()");
+}
+
+Block& DiagramBuilder::AddBlock(std::unique_ptr<Block> block, std::string origin) {
+  ThrowIfBuilt("AddBlock");
+  const int existing = diagram_->FindBlock(block->name());
+  if (existing >= 0) {
+    const std::string& first = diagram_->origins_[existing];
+    throw InputError(Where(origin) + "block name '" + block->name() + "' is used twice" +
+                     (first.empty() ? "" : " (first at " + first + ")"));
+  }
+  if (block->name().empty() || block->name().find('.') != std::string::npos)
+    throw InputError(Where(origin) + "block name '" + block->name() +
+                     "' must be non-empty and contain no '.'");
+  diagram_->blocks_.push_back(std::move(block));
+  diagram_->origins_.push_back(std::move(origin));
+  return *diagram_->blocks_.back();
+}
+
+void DiagramBuilder::Connect(std::string_view from, std::string_view to, std::string origin) {
+  ThrowIfBuilt("Connect");
+  pending_.push_back({std::string(from), std::string(to), std::move(origin)});
+}
+
+Connection DiagramBuilder::Resolve(const PendingConnection& c) const {
+  const Diagram& d = *diagram_;
+  const std::string what =
+      Where(c.origin) + "connection from '" + c.from + "' to '" + c.to + "': ";
+  std::vector<std::string> block_names;
+  for (const auto& b : d.blocks_) block_names.push_back(b->name());
+
+  auto find_port = [&](const std::string& ref, bool output, int* block, int* port) {
+    const auto [block_name, port_name] = SplitReference(ref);
+    const char* side = output ? "output" : "input";
+    *block = d.FindBlock(block_name);
+    if (*block < 0)
+      throw InputError(what + "there is no block named '" + std::string(block_name) + "'" +
+                       DidYouMean(block_name, block_names));
+    const Block& b = *d.blocks_[*block];
+    const auto names = PortNames(b, output);
+    const int count = output ? b.num_outputs() : b.num_inputs();
+    if (port_name.empty()) {
+      if (count != 1)
+        throw InputError(what + "block '" + b.name() + "' (" + b.type() + ") has " +
+                         std::to_string(count) + " " + side + "s; write '" + b.name() +
+                         ".PORT' with PORT one of: " + (names.empty() ? "(none)" : JoinNames(names)));
+      *port = 0;
+      return;
+    }
+    *port = output ? b.FindOutput(port_name) : b.FindInput(port_name);
+    if (*port < 0)
+      throw InputError(what + "block '" + b.name() + "' (" + b.type() + ") has no " + side +
+                       " port '" + std::string(port_name) + "'" + DidYouMean(port_name, names) +
+                       "; its " + side + "s: " + (names.empty() ? "(none)" : JoinNames(names)));
+  };
+
+  Connection r;
+  find_port(c.from, true, &r.from_block, &r.from_port);
+  find_port(c.to, false, &r.to_block, &r.to_port);
+  const Block& a = *d.blocks_[r.from_block];
+  const Block& b = *d.blocks_[r.to_block];
+  const int wa = a.output_port(r.from_port).width, wb = b.input_port(r.to_port).width;
+  if (wa != wb)
+    throw InputError(what + "width mismatch: output " + PortName(a, a.output_port(r.from_port)) +
+                     " has width " + std::to_string(wa) + ", input " +
+                     PortName(b, b.input_port(r.to_port)) + " has width " + std::to_string(wb));
+  return r;
+}
+
+void DiagramBuilder::CheckInputs(const std::vector<Connection>& resolved) const {
+  const Diagram& d = *diagram_;
+  // driver of each input, to find inputs driven twice and inputs not driven
+  std::map<std::pair<int, int>, size_t> driver;
+  for (size_t i = 0; i < resolved.size(); ++i) {
+    const Connection& c = resolved[i];
+    const auto key = std::make_pair(c.to_block, c.to_port);
+    const auto [it, fresh] = driver.emplace(key, i);
+    if (!fresh) {
+      const Connection& first = resolved[it->second];
+      const Block& to = *d.blocks_[c.to_block];
+      const Block& a = *d.blocks_[first.from_block];
+      const Block& b = *d.blocks_[c.from_block];
+      throw InputError(Where(pending_[i].origin) + "input " + PortName(to, to.input_port(c.to_port)) +
+                       " is driven twice: by " + PortName(a, a.output_port(first.from_port)) +
+                       (pending_[it->second].origin.empty() ? "" : " (" + pending_[it->second].origin + ")") +
+                       " and by " + PortName(b, b.output_port(c.from_port)) +
+                       "; use a sum block to add signals");
+    }
+  }
+  for (int bi = 0; bi < d.num_blocks(); ++bi) {
+    const Block& b = *d.blocks_[bi];
+    for (int p = 0; p < b.num_inputs(); ++p)
+      if (!driver.count({bi, p}))
+        throw InputError(Where(d.origins_[bi]) + "input " + PortName(b, b.input_port(p)) +
+                         " is not connected: connect an output to it (e.g. <connect from=\"...\" to=\"" +
+                         PortName(b, b.input_port(p)) + "\"/>)");
+  }
+}
+
+void DiagramBuilder::LayOut(Diagram* d, const std::vector<Connection>& resolved) const {
+  d->layouts_.resize(d->blocks_.size());
+  for (int bi = 0; bi < d->num_blocks(); ++bi) {
+    const Block& b = *d->blocks_[bi];
+    BlockLayout& l = d->layouts_[bi];
+    for (int p = 0; p < b.num_outputs(); ++p) {
+      l.output_offset.push_back(d->num_signals_);
+      l.output_width.push_back(b.output_port(p).width);
+      d->num_signals_ += b.output_port(p).width;
+    }
+    l.input_offset.assign(b.num_inputs(), 0);
+    l.input_width.assign(b.num_inputs(), 0);
+    l.first_state = d->num_states_;
+    l.num_states = b.num_states();
+    d->num_states_ += b.num_states();
+    l.first_discrete = d->num_discrete_;
+    l.num_discrete = b.num_discrete_states();
+    d->num_discrete_ += b.num_discrete_states();
+    l.first_crossing = d->num_crossings_;
+    l.num_crossings = b.num_zero_crossings();
+    d->num_crossings_ += b.num_zero_crossings();
+    if (b.num_states() > 0) d->stateful_.push_back(bi);
+    if (b.num_zero_crossings() > 0) d->crossing_.push_back(bi);
+    if (b.sample_time().is_periodic()) d->periodic_.push_back(bi);
+  }
+  for (const Connection& c : resolved) {
+    BlockLayout& l = d->layouts_[c.to_block];
+    l.input_offset[c.to_port] = d->layouts_[c.from_block].output_offset[c.from_port];
+    l.input_width[c.to_port] = d->layouts_[c.from_block].output_width[c.from_port];
+  }
+  d->connections_ = resolved;
+}
+
+// Orders output ports so that every port is computed after the ports it
+// depends on directly. Nodes are output ports; an edge runs from output A.o to
+// output B.p when A.o drives an input of B that feeds B.p directly. Tarjan's
+// algorithm yields the strongly connected components sinks-first; any
+// component with more than one node, or a node with an edge to itself, is an
+// algebraic loop.
+void DiagramBuilder::Schedule(Diagram* d) const {
+  std::vector<int> first_node(d->num_blocks() + 1, 0);
+  for (int b = 0; b < d->num_blocks(); ++b) first_node[b + 1] = first_node[b] + d->blocks_[b]->num_outputs();
+  const int n = first_node.back();
+  std::vector<OutputNode> nodes(n);
+  for (int b = 0; b < d->num_blocks(); ++b)
+    for (int p = 0; p < d->blocks_[b]->num_outputs(); ++p) nodes[first_node[b] + p] = {b, p};
+
+  // edges[u] = list of (v, connection index): v depends directly on u
+  std::vector<std::vector<std::pair<int, int>>> edges(n);
+  for (size_t ci = 0; ci < d->connections_.size(); ++ci) {
+    const Connection& c = d->connections_[ci];
+    const Block& to = *d->blocks_[c.to_block];
+    for (int p = 0; p < to.num_outputs(); ++p)
+      if (to.HasFeedthrough(c.to_port, p))
+        edges[first_node[c.from_block] + c.from_port].push_back({first_node[c.to_block] + p, int(ci)});
+  }
+
+  std::vector<int> index(n, -1), low(n, 0), stack, component(n, -1);
+  std::vector<bool> on_stack(n, false);
+  std::vector<std::vector<int>> components;  // sinks first
+  int counter = 0;
+  std::function<void(int)> visit = [&](int u) {
+    index[u] = low[u] = counter++;
+    stack.push_back(u);
+    on_stack[u] = true;
+    for (const auto& [v, ci] : edges[u]) {
+      if (index[v] < 0) {
+        visit(v);
+        low[u] = std::min(low[u], low[v]);
+      } else if (on_stack[v]) {
+        low[u] = std::min(low[u], index[v]);
+      }
+    }
+    if (low[u] == index[u]) {
+      std::vector<int> comp;
+      int v;
+      do {
+        v = stack.back();
+        stack.pop_back();
+        on_stack[v] = false;
+        component[v] = static_cast<int>(components.size());
+        comp.push_back(v);
+      } while (v != u);
+      components.push_back(comp);
+    }
+  };
+  for (int u = 0; u < n; ++u)
+    if (index[u] < 0) visit(u);
+
+  for (const auto& comp : components) {
+    const int u = comp.front();
+    bool self_loop = false;
+    for (const auto& e : edges[u]) self_loop |= e.first == u;
+    if (comp.size() == 1 && !self_loop) continue;
+    // walk one cycle inside the component, starting from u
+    std::vector<std::pair<int, int>> path;  // (connection, node it reaches)
+    std::vector<bool> seen(n, false);
+    int cur = u;
+    std::vector<int> visited;
+    while (!seen[cur]) {
+      seen[cur] = true;
+      visited.push_back(cur);
+      for (const auto& [v, ci] : edges[cur])
+        if (component[v] == component[u]) {
+          path.push_back({ci, v});
+          cur = v;
+          break;
+        }
+    }
+    // cur is the first node met twice: drop the lead-in before it
+    const auto lead_in = std::find(visited.begin(), visited.end(), cur) - visited.begin();
+    path.erase(path.begin(), path.begin() + lead_in);
+    std::string hops;
+    for (const auto& [ci, reached] : path) {
+      const Connection& c = d->connections_[ci];
+      const Block& a = *d->blocks_[c.from_block];
+      const Block& b = *d->blocks_[c.to_block];
+      hops += "\n  " + PortName(a, a.output_port(c.from_port)) + " -> " +
+              PortName(b, b.input_port(c.to_port)) + " (feeds " +
+              PortName(b, b.output_port(nodes[reached].port)) + " directly)" +
+              (pending_[ci].origin.empty() ? "" : " at " + pending_[ci].origin);
+    }
+    const Block& first = *d->blocks_[nodes[cur].block];
+    throw InputError(Where(d->origins_[nodes[cur].block]) + "algebraic loop through " +
+                     PortName(first, first.output_port(nodes[cur].port)) + ":" + hops +
+                     "\nBreak it with a block that has state (integrator, first-order lag) or check "
+                     "the feedthrough of the blocks involved.");
+  }
+  // Tarjan emits sinks first: reverse for evaluation order
+  for (auto it = components.rbegin(); it != components.rend(); ++it)
+    d->schedule_.push_back(nodes[it->front()]);
+}
+
+std::unique_ptr<Diagram> DiagramBuilder::Build() {
+  ThrowIfBuilt("Build");
+  std::vector<Connection> resolved;
+  for (const auto& c : pending_) resolved.push_back(Resolve(c));
+  CheckInputs(resolved);
+  LayOut(diagram_.get(), resolved);
+  Schedule(diagram_.get());
+  pending_.clear();
+  return std::move(diagram_);
+}
+
+}  // namespace mechflow::blocks

@@ -1,0 +1,38 @@
+#pragma once
+// Results: the logged signals on the output grid, one row per output time.
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace mechflow::blocks {
+
+class Results {
+ public:
+  // Column 0 is always "time".
+  explicit Results(std::vector<std::string> signal_columns);
+
+  const std::vector<std::string>& columns() const { return columns_; }
+  int num_columns() const { return static_cast<int>(columns_.size()); }
+  int num_rows() const { return static_cast<int>(values_.size() / columns_.size()); }
+  double at(int row, int column) const { return values_[row * columns_.size() + column]; }
+  // Index of the named column, or -1.
+  int FindColumn(const std::string& name) const;
+  // All values of one column.
+  std::vector<double> Column(int column) const;
+
+  void Reserve(int rows) { values_.reserve(rows * columns_.size()); }
+  // Appends a row: `values` holds num_columns() numbers, time first.
+  void AddRow(const double* values);
+
+  // CSV with a header line; full double precision.
+  void WriteCsv(std::ostream& out) const;
+  // Writes to `path`; throws std::runtime_error when the file cannot be written.
+  void WriteCsv(const std::string& path) const;
+
+ private:
+  std::vector<std::string> columns_;
+  std::vector<double> values_;
+};
+
+}  // namespace mechflow::blocks

@@ -1,0 +1,321 @@
+#include "blocks/simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <cvode/cvode_ls.h>
+
+#include "blocks/evaluation.h"
+#include "blocks/sundials.h"
+#include "mech/errors.h"
+
+namespace mechflow::blocks {
+
+using sundials::Check;
+
+std::string SolverOptions::Problem() const {
+  if (!std::isfinite(t_start)) return "t_start must be a finite number";
+  if (!(t_end > t_start)) return "t_end must be greater than t_start (" + std::to_string(t_start) + ")";
+  if (!(rtol > 0.0)) return "rtol must be > 0";
+  if (!(atol > 0.0)) return "atol must be > 0";
+  if (!(max_step >= 0.0)) return "max_step must be >= 0 (0 means no limit)";
+  if (!(initial_step >= 0.0)) return "initial_step must be >= 0 (0 means automatic)";
+  if (max_steps < 1) return "max_steps must be >= 1";
+  if (!(output_interval >= 0.0)) return "output interval must be >= 0";
+  return "";
+}
+
+// The SUNDIALS objects of one run; y is the solver's state vector.
+struct Simulator::Solver {
+  explicit Solver(sunindextype n) : y(n, ctx), linear(y, ctx), cvode(ctx) {}
+  sundials::Context ctx;
+  sundials::Vector y;
+  sundials::DenseSolver linear;
+  sundials::Cvode cvode;
+};
+
+namespace {
+
+std::vector<std::string> ColumnNames(const std::vector<SignalRef>& logged) {
+  std::vector<std::string> names;
+  for (const auto& s : logged) {
+    if (s.width == 1) {
+      names.push_back(s.name);
+    } else {
+      for (int i = 0; i < s.width; ++i) names.push_back(s.name + "[" + std::to_string(i) + "]");
+    }
+  }
+  return names;
+}
+
+}  // namespace
+
+Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<SignalRef> logged)
+    : diagram_(diagram),
+      options_(options),
+      logged_(std::move(logged)),
+      results_(ColumnNames(logged_)) {
+  const std::string problem = options_.Problem();
+  if (!problem.empty()) throw InputError("solver settings: " + problem);
+  if (options_.output_interval == 0.0) options_.output_interval = (options_.t_end - options_.t_start) / 1000.0;
+  ctx_.signals.assign(diagram_.num_signals(), 0.0);
+  ctx_.discrete.assign(diagram_.num_discrete_states(), 0.0);
+  row_.resize(results_.num_columns());
+  for (const int b : diagram_.crossing_blocks())
+    for (int i = 0; i < diagram_.layout(b).num_crossings; ++i) crossing_owner_.push_back(b);
+  roots_found_.assign(diagram_.num_zero_crossings(), 0);
+  next_hit_.assign(diagram_.periodic_blocks().size(), 0);
+}
+
+Simulator::~Simulator() = default;
+
+void Simulator::EvaluateAt(double t, double* x) {
+  ctx_.time = t;
+  ctx_.x = x;
+  ++ctx_.evaluation;
+  EvaluateOutputs(diagram_, &ctx_);
+}
+
+void Simulator::Record(double t, double* x) {
+  EvaluateAt(t, x);
+  row_[0] = t;
+  int column = 1;
+  for (const SignalRef& s : logged_)
+    for (int i = 0; i < s.width; ++i) row_[column++] = ctx_.signals[s.offset + i];
+  results_.AddRow(row_.data());
+}
+
+int Simulator::Rhs(double t, N_Vector y, N_Vector ydot, void* user) {
+  auto* self = static_cast<Simulator*>(user);
+  const Diagram& d = self->diagram_;
+  double* xdot = N_VGetArrayPointer(ydot);
+  try {
+    Context& ctx = self->ctx_;
+    ctx.time = t;
+    ctx.x = N_VGetArrayPointer(y);
+    ctx.xdot = xdot;
+    ++ctx.evaluation;
+    EvaluateOutputs(d, &ctx);
+    EvaluateDerivatives(d, &ctx);
+  } catch (const std::exception& e) {
+    self->callback_failure_ = e.what();
+    return -1;
+  }
+  if (d.num_states() == 0) xdot[0] = 0.0;  // the placeholder state of a stateless diagram
+  for (int i = 0; i < d.num_states(); ++i) {
+    if (!std::isfinite(xdot[i])) {
+      // recoverable: CVODE retries with a smaller step, and fails if it persists
+      self->callback_failure_ = "derivative of a continuous state is not finite at t = " +
+                                std::to_string(t);
+      return 1;
+    }
+  }
+  return 0;
+}
+
+int Simulator::Roots(double t, N_Vector y, double* g, void* user) {
+  auto* self = static_cast<Simulator*>(user);
+  try {
+    Context& ctx = self->ctx_;
+    ctx.time = t;
+    ctx.x = N_VGetArrayPointer(y);
+    ctx.crossings = g;
+    ++ctx.evaluation;
+    EvaluateOutputs(self->diagram_, &ctx);
+    EvaluateZeroCrossings(self->diagram_, &ctx);
+  } catch (const std::exception& e) {
+    self->callback_failure_ = e.what();
+    return -1;
+  }
+  return 0;
+}
+
+void Simulator::ErrorHandler(int, const char*, const char* function, char* msg, void* user) {
+  auto* self = static_cast<Simulator*>(user);
+  self->solver_message_ = std::string(function) + ": " + msg;
+}
+
+double Simulator::NextSampleHit() const {
+  double next = std::numeric_limits<double>::infinity();
+  const auto& periodic = diagram_.periodic_blocks();
+  for (size_t i = 0; i < periodic.size(); ++i) {
+    const SampleTime& st = diagram_.block(periodic[i]).sample_time();
+    next = std::min(next, st.offset + next_hit_[i] * st.period);
+  }
+  return next;
+}
+
+void Simulator::HandleSampleHits(double t) {
+  const auto& periodic = diagram_.periodic_blocks();
+  EvaluateAt(t, ctx_.x);
+  for (size_t i = 0; i < periodic.size(); ++i) {
+    const SampleTime& st = diagram_.block(periodic[i]).sample_time();
+    // the same formula that produced the stop time, so equality is exact
+    if (st.offset + next_hit_[i] * st.period != t) continue;
+    diagram_.block(periodic[i]).OnSampleHit(BlockContext(&ctx_, &diagram_.layout(periodic[i])));
+    ++next_hit_[i];
+    ++stats_.sample_hits;
+  }
+}
+
+void Simulator::HandleCrossings(double t) {
+  Check(CVodeGetRootInfo(solver_->cvode.get(), roots_found_.data()), "CVodeGetRootInfo");
+  EvaluateAt(t, ctx_.x);
+  for (int i = 0; i < diagram_.num_zero_crossings(); ++i) {
+    if (roots_found_[i] == 0) continue;
+    const int b = crossing_owner_[i];
+    const int local = i - diagram_.layout(b).first_crossing;
+    diagram_.block(b).OnZeroCrossing(local, roots_found_[i], BlockContext(&ctx_, &diagram_.layout(b)));
+    ++stats_.events;
+  }
+}
+
+void Simulator::AccumulateStats() {
+  void* mem = solver_->cvode.get();
+  long v = 0;
+  auto add = [&](int flag, long* total) {
+    if (flag >= 0) *total += v;
+  };
+  add(CVodeGetNumSteps(mem, &v), &stats_.steps);
+  add(CVodeGetNumRhsEvals(mem, &v), &stats_.rhs_evals);
+  add(CVodeGetNumLinRhsEvals(mem, &v), &stats_.jac_rhs_evals);
+  add(CVodeGetNumJacEvals(mem, &v), &stats_.jac_evals);
+  add(CVodeGetNumNonlinSolvIters(mem, &v), &stats_.newton_iters);
+  add(CVodeGetNumNonlinSolvConvFails(mem, &v), &stats_.newton_failures);
+  add(CVodeGetNumErrTestFails(mem, &v), &stats_.error_test_failures);
+  add(CVodeGetNumGEvals(mem, &v), &stats_.root_evals);
+}
+
+void Simulator::Reinitialize(double t) {
+  if (!SettleModes(diagram_, &ctx_))
+    throw SimulationError("modes did not settle at t = " + std::to_string(t) +
+                          " (blocks keep switching each other's modes)");
+  AccumulateStats();
+  Check(CVodeReInit(solver_->cvode.get(), t, solver_->y.get()), "CVodeReInit");
+  ++stats_.reinits;
+}
+
+RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
+  const double t0 = options_.t_start, t_end = options_.t_end;
+  const sunindextype n = std::max(1, diagram_.num_states());
+  solver_ = std::make_unique<Solver>(n);
+  double* y = solver_->y.data();
+  std::fill(y, y + n, 0.0);
+  void* mem = solver_->cvode.get();
+  results_ = Results(ColumnNames(logged_));
+  const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
+  results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
+
+  // initial state, modes and the sample hits due at t_start
+  ctx_.time = t0;
+  ctx_.x = y;
+  InitializeStates(diagram_, &ctx_);
+  const auto& periodic = diagram_.periodic_blocks();
+  for (size_t i = 0; i < periodic.size(); ++i) {
+    const SampleTime& st = diagram_.block(periodic[i]).sample_time();
+    next_hit_[i] = static_cast<long>(std::max(0.0, std::ceil((t0 - st.offset) / st.period)));
+  }
+  RunOutcome outcome;
+  try {
+    if (!SettleModes(diagram_, &ctx_)) throw SimulationError("modes did not settle at t_start");
+    if (NextSampleHit() == t0) HandleSampleHits(t0);
+    SettleModes(diagram_, &ctx_);
+
+    Check(CVodeInit(mem, &Simulator::Rhs, t0, solver_->y.get()), "CVodeInit");
+    Check(CVodeSetUserData(mem, this), "CVodeSetUserData");
+    Check(CVodeSetErrHandlerFn(mem, &Simulator::ErrorHandler, this), "CVodeSetErrHandlerFn");
+    Check(CVodeSStolerances(mem, options_.rtol, options_.atol), "CVodeSStolerances");
+    Check(CVodeSetLinearSolver(mem, solver_->linear.solver(), solver_->linear.matrix()),
+          "CVodeSetLinearSolver");
+    Check(CVodeSetMaxNumSteps(mem, options_.max_steps), "CVodeSetMaxNumSteps");
+    if (options_.max_step > 0.0) Check(CVodeSetMaxStep(mem, options_.max_step), "CVodeSetMaxStep");
+    if (options_.initial_step > 0.0) Check(CVodeSetInitStep(mem, options_.initial_step), "CVodeSetInitStep");
+    if (diagram_.num_zero_crossings() > 0) {
+      Check(CVodeRootInit(mem, diagram_.num_zero_crossings(), &Simulator::Roots), "CVodeRootInit");
+      std::vector<int> directions;
+      for (const int b : diagram_.crossing_blocks())
+        for (int i = 0; i < diagram_.block(b).num_zero_crossings(); ++i) {
+          const CrossingDirection dir = diagram_.block(b).crossing_direction(i);
+          directions.push_back(dir == CrossingDirection::kRising ? 1 : dir == CrossingDirection::kFalling ? -1 : 0);
+        }
+      Check(CVodeSetRootDirection(mem, directions.data()), "CVodeSetRootDirection");
+      Check(CVodeSetNoInactiveRootWarn(mem), "CVodeSetNoInactiveRootWarn");
+    }
+
+    Record(t0, y);
+    if (progress) progress(t0);
+    std::vector<double> interpolated(n);
+    N_Vector yout = N_VMake_Serial(n, interpolated.data(), solver_->ctx.get());
+    struct Release {
+      N_Vector v;
+      ~Release() { N_VDestroy(v); }
+    } release{yout};
+
+    long next_output = 1;
+    double t = t0;
+    // output times are computed from an integer index: no drift over long runs
+    auto output_time = [&](long k) { return std::min(t0 + k * options_.output_interval, t_end); };
+    while (t < t_end) {
+      const double stop = std::min(NextSampleHit(), t_end);
+      const double t_out = std::min(output_time(next_output), stop);
+      if (t_out <= t) {  // an output time that coincides with the last event
+        Record(t, y);
+        ++next_output;
+        continue;
+      }
+      Check(CVodeSetStopTime(mem, stop), "CVodeSetStopTime");
+      double t_ret = t;
+      const int flag = CVode(mem, t_out, yout, &t_ret, CV_NORMAL);
+      if (flag < 0) {
+        // keep what was reached: the state at the last successful step
+        double t_last = t;
+        CVodeGetCurrentTime(mem, &t_last);
+        if (t_last > t && CVodeGetDky(mem, t_last, 0, yout) == CV_SUCCESS) {
+          Record(t_last, interpolated.data());
+          t = t_last;
+        }
+        outcome.ok = false;
+        outcome.t_reached = t;
+        outcome.failure = sundials::CvodeFlagName(flag);
+        if (!callback_failure_.empty()) outcome.failure += ": " + callback_failure_;
+        else if (!solver_message_.empty()) outcome.failure += ": " + solver_message_;
+        break;
+      }
+      if (flag == CV_ROOT_RETURN) {
+        // an event: continue from the located instant with the new modes
+        std::copy(interpolated.begin(), interpolated.end(), y);
+        t = t_ret;
+        ctx_.x = y;
+        HandleCrossings(t);
+        Reinitialize(t);
+        continue;
+      }
+      if (t_ret >= t_out) {
+        // reached an output time (with interpolation, the solver may be ahead)
+        Record(t_ret, interpolated.data());
+        if (progress) progress(t_ret);
+        ++next_output;
+      }
+      if (flag == CV_TSTOP_RETURN || t_ret >= stop) {
+        std::copy(interpolated.begin(), interpolated.end(), y);
+        t = t_ret;
+        ctx_.x = y;
+        if (t >= t_end) break;
+        HandleSampleHits(t);
+        Reinitialize(t);
+        continue;
+      }
+      t = std::max(t, t_ret);
+    }
+    if (outcome.ok) outcome.t_reached = t_end;
+  } catch (const std::exception& e) {
+    outcome.ok = false;
+    outcome.t_reached = ctx_.time;
+    outcome.failure = e.what();
+  }
+  AccumulateStats();
+  return outcome;
+}
+
+}  // namespace mechflow::blocks

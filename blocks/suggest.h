@@ -1,0 +1,23 @@
+#pragma once
+// "Did you mean ...?" for names a user typed.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mechflow::blocks {
+
+// Levenshtein edit distance, case-insensitive.
+int EditDistance(std::string_view a, std::string_view b);
+
+// The candidate closest to `name`, or "" when none is close enough to be a
+// plausible typo (distance more than a third of the longer name, at least 2).
+std::string ClosestName(std::string_view name, const std::vector<std::string>& candidates);
+
+// " (did you mean 'x'?)" or "" — ready to append to a message.
+std::string DidYouMean(std::string_view name, const std::vector<std::string>& candidates);
+
+// "a, b, c" for listing what is valid.
+std::string JoinNames(const std::vector<std::string>& names);
+
+}  // namespace mechflow::blocks

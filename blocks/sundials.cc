@@ -1,0 +1,49 @@
+#include "blocks/sundials.h"
+
+#include <cstdlib>
+#include <stdexcept>
+
+namespace mechflow::blocks::sundials {
+
+std::string CvodeFlagName(int flag) {
+  char* name = CVodeGetReturnFlagName(flag);  // malloc'ed by CVODE
+  std::string out = name ? name : "unknown flag " + std::to_string(flag);
+  std::free(name);
+  return out;
+}
+
+void Check(int flag, const char* function) {
+  if (flag < 0) throw std::runtime_error(std::string(function) + " failed: " + CvodeFlagName(flag));
+}
+
+Context::Context() {
+  if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNContext_Create failed");
+}
+Context::~Context() { SUNContext_Free(&ctx_); }
+
+Vector::Vector(sunindextype n, const Context& ctx) : v_(N_VNew_Serial(n, ctx.get())) {
+  if (!v_) throw std::runtime_error("N_VNew_Serial failed");
+}
+Vector::~Vector() { N_VDestroy(v_); }
+
+DenseSolver::DenseSolver(const Vector& y, const Context& ctx) {
+  const sunindextype n = N_VGetLength(y.get());
+  a_ = SUNDenseMatrix(n, n, ctx.get());
+  if (!a_) throw std::runtime_error("SUNDenseMatrix failed");
+  ls_ = SUNLinSol_Dense(y.get(), a_, ctx.get());
+  if (!ls_) {
+    SUNMatDestroy(a_);
+    throw std::runtime_error("SUNLinSol_Dense failed");
+  }
+}
+DenseSolver::~DenseSolver() {
+  SUNLinSolFree(ls_);
+  SUNMatDestroy(a_);
+}
+
+Cvode::Cvode(const Context& ctx) : mem_(CVodeCreate(CV_BDF, ctx.get())) {
+  if (!mem_) throw std::runtime_error("CVodeCreate failed");
+}
+Cvode::~Cvode() { CVodeFree(&mem_); }
+
+}  // namespace mechflow::blocks::sundials

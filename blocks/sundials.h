@@ -1,0 +1,75 @@
+#pragma once
+// Thin RAII owners for the SUNDIALS objects the simulator uses, and one
+// helper that turns a failed call into an exception naming the call and its
+// flag. Written against SUNDIALS 6.x (Debian 12 ships 6.4.1).
+
+#include <string>
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+namespace mechflow::blocks::sundials {
+
+// Throws std::runtime_error("CVodeInit failed: CV_ILL_INPUT") when flag < 0.
+void Check(int flag, const char* function);
+
+// The symbolic name of a CVODE return flag ("CV_TOO_MUCH_WORK").
+std::string CvodeFlagName(int flag);
+
+class Context {
+ public:
+  Context();
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+  SUNContext get() const { return ctx_; }
+
+ private:
+  SUNContext ctx_ = nullptr;
+};
+
+class Vector {
+ public:
+  Vector(sunindextype n, const Context& ctx);
+  ~Vector();
+  Vector(const Vector&) = delete;
+  Vector& operator=(const Vector&) = delete;
+  N_Vector get() const { return v_; }
+  double* data() const { return N_VGetArrayPointer(v_); }
+
+ private:
+  N_Vector v_ = nullptr;
+};
+
+// Dense matrix plus dense direct linear solver for Newton's method.
+class DenseSolver {
+ public:
+  DenseSolver(const Vector& y, const Context& ctx);
+  ~DenseSolver();
+  DenseSolver(const DenseSolver&) = delete;
+  DenseSolver& operator=(const DenseSolver&) = delete;
+  SUNMatrix matrix() const { return a_; }
+  SUNLinearSolver solver() const { return ls_; }
+
+ private:
+  SUNMatrix a_ = nullptr;
+  SUNLinearSolver ls_ = nullptr;
+};
+
+// CVODE integrator memory (BDF).
+class Cvode {
+ public:
+  explicit Cvode(const Context& ctx);
+  ~Cvode();
+  Cvode(const Cvode&) = delete;
+  Cvode& operator=(const Cvode&) = delete;
+  void* get() const { return mem_; }
+
+ private:
+  void* mem_ = nullptr;
+};
+
+}  // namespace mechflow::blocks::sundials

@@ -1,0 +1,6 @@
+# Every test executable, one line each: mechflow_test(name label sources...).
+include(tests/blocks/tests.cmake)
+include(tests/scripting/tests.cmake)
+include(tests/diagrams/tests.cmake)
+include(tests/regression/tests.cmake)
+include(tests/cli/tests.cmake)
