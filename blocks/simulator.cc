@@ -167,6 +167,7 @@ void Simulator::HandleCrossings(double t) {
     const int b = crossing_owner_[i];
     const int local = i - diagram_.layout(b).first_crossing;
     diagram_.block(b).OnZeroCrossing(local, roots_found_[i], BlockContext(&ctx_, &diagram_.layout(b)));
+    events_.push_back({t, b, local, roots_found_[i]});
     ++stats_.events;
   }
 }
@@ -204,6 +205,8 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   std::fill(y, y + n, 0.0);
   void* mem = solver_->cvode.get();
   results_ = Results(ColumnNames(logged_));
+  events_.clear();
+  stats_ = SolverStats();
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
 
@@ -272,8 +275,12 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
         double t_last = t;
         CVodeGetCurrentTime(mem, &t_last);
         if (t_last > t && CVodeGetDky(mem, t_last, 0, yout) == CV_SUCCESS) {
-          Record(t_last, interpolated.data());
-          t = t_last;
+          try {
+            Record(t_last, interpolated.data());
+            t = t_last;
+          } catch (const std::exception&) {
+            // the outputs fail there too: the rows up to the last output time stand
+          }
         }
         outcome.ok = false;
         outcome.t_reached = t;

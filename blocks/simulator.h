@@ -63,6 +63,15 @@ struct SolverStats {
   long reinits = 0;
 };
 
+// One handled zero crossing, kept so a user can ask when contacts, impacts or
+// mode switches happened without resampling the output grid.
+struct EventRecord {
+  double time = 0.0;   // [s], located by CVODE's root finding
+  int block = 0;       // index in the diagram
+  int crossing = 0;    // the block's own zero-crossing index
+  int direction = 0;   // +1 rising, -1 falling
+};
+
 struct RunOutcome {
   bool ok = true;
   double t_reached = 0.0;
@@ -81,6 +90,7 @@ class Simulator {
 
   const Results& results() const { return results_; }
   const SolverStats& stats() const { return stats_; }
+  const std::vector<EventRecord>& events() const { return events_; }
   const SolverOptions& options() const { return options_; }
 
  private:
@@ -102,6 +112,7 @@ class Simulator {
   std::vector<SignalRef> logged_;
   Results results_;
   SolverStats stats_;
+  std::vector<EventRecord> events_;
   Context ctx_;
   std::vector<double> row_;
   std::vector<int> crossing_owner_;      // crossing index -> block

@@ -1,0 +1,122 @@
+#include "cli/arguments.h"
+
+#include <algorithm>
+#include <charconv>
+#include <stdexcept>
+
+#include "blocks/suggest.h"
+
+namespace mechflow::cli {
+namespace {
+
+const std::vector<std::string> kCommands = {"run", "check", "graph", "help"};
+
+double ParseNumber(const std::string& text, const std::string& option) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size())
+    throw UsageError(option + ": '" + text + "' is not a number");
+  return value;
+}
+
+}  // namespace
+
+std::string HelpText(const std::string& command) {
+  if (command == "run")
+    return "usage: mechflow run FILE [--set NAME=VALUE]... [--t-end T] [--out DIR] [--unsafe-lua]\n"
+           "\n"
+           "Simulates the diagram FILE and writes its logged signals as CSV (and the plot\n"
+           "named in <output plot=...>) into DIR. Prints solver counters and the range of\n"
+           "every logged signal.\n"
+           "\n"
+           "  --set NAME=VALUE  override an identifier defined by a number (repeatable,\n"
+           "                    applied in order; dependent identifiers follow)\n"
+           "  --t-end T         end time [s], overrides <solver t_end>\n"
+           "  --out DIR         output folder (created if missing; default: current folder)\n"
+           "  --unsafe-lua      give Lua code the io, os and package libraries\n"
+           "\n"
+           "Exit codes: 0 finished, 1 simulation failed (results up to the failure are\n"
+           "written), 2 bad input.\n";
+  if (command == "check")
+    return "usage: mechflow check FILE [--set NAME=VALUE]...\n"
+           "\n"
+           "Reads and builds the diagram without running it, then prints the identifiers,\n"
+           "the evaluation order of output ports, the continuous-state layout, the\n"
+           "zero-crossing functions and the sampled blocks. Exit 0 when the diagram is\n"
+           "valid, 2 otherwise.\n";
+  if (command == "graph")
+    return "usage: mechflow graph FILE [--set NAME=VALUE]...\n"
+           "\n"
+           "Prints the diagram as a Graphviz DOT graph on standard output, e.g.\n"
+           "  mechflow graph d.xml | dot -Tsvg > d.svg\n"
+           "Edges drawn bold carry direct feedthrough (they order the evaluation).\n";
+  return "usage: mechflow COMMAND FILE [options]\n"
+         "\n"
+         "mechflow simulates mechanisms with friction and contact described, with signal\n"
+         "blocks, in an XML diagram (see diagrams/FORMAT.md).\n"
+         "\n"
+         "Commands:\n"
+         "  run     simulate a diagram and write CSV and plot\n"
+         "  check   validate a diagram and print its schedule and state layout\n"
+         "  graph   print the diagram as Graphviz DOT\n"
+         "  help    help on a command: mechflow help run\n"
+         "\n"
+         "Options: --help (also after a command), --version.\n";
+}
+
+Arguments ParseArguments(const std::vector<std::string>& args) {
+  Arguments a;
+  size_t i = 0;
+  if (args.empty()) throw UsageError("no command given");
+  const std::string& first = args[0];
+  if (first == "--help" || first == "-h") {
+    a.help = true;
+    return a;
+  }
+  if (first == "--version") {
+    a.version = true;
+    return a;
+  }
+  if (first == "help") {
+    a.help = true;
+    if (args.size() > 1) a.command = args[1];
+    return a;
+  }
+  if (std::find(kCommands.begin(), kCommands.end(), first) == kCommands.end())
+    throw UsageError("unknown command '" + first + "'" + blocks::DidYouMean(first, kCommands) +
+                     "; commands: run, check, graph, help");
+  a.command = first;
+  for (i = 1; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    auto value = [&](const std::string& option) -> std::string {
+      if (i + 1 >= args.size()) throw UsageError(option + " needs a value");
+      return args[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      a.help = true;
+    } else if (arg == "--set") {
+      const std::string kv = value(arg);
+      const auto eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0) throw UsageError("--set expects NAME=VALUE, got '" + kv + "'");
+      a.overrides.push_back({kv.substr(0, eq), ParseNumber(kv.substr(eq + 1), "--set " + kv.substr(0, eq))});
+    } else if (arg == "--t-end") {
+      a.t_end = ParseNumber(value(arg), arg);
+    } else if (arg == "--out") {
+      a.out_dir = value(arg);
+    } else if (arg == "--unsafe-lua") {
+      a.unsafe_lua = true;
+    } else if (arg.rfind("--", 0) == 0) {
+      throw UsageError("unknown option '" + arg + "'" +
+                       blocks::DidYouMean(arg, {"--set", "--t-end", "--out", "--unsafe-lua", "--help"}) +
+                       "; see mechflow help " + a.command);
+    } else if (a.file.empty()) {
+      a.file = arg;
+    } else {
+      throw UsageError("unexpected argument '" + arg + "' (the diagram file is '" + a.file + "')");
+    }
+  }
+  if (!a.help && a.file.empty()) throw UsageError("mechflow " + a.command + " needs a diagram FILE");
+  return a;
+}
+
+}  // namespace mechflow::cli

@@ -1,0 +1,154 @@
+#include "cli/commands.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/plot.h"
+#include "cli/report.h"
+#include "diagrams/loader.h"
+#include "mech/errors.h"
+
+namespace mechflow::cli {
+namespace {
+
+diagrams::LoadOptions ToLoadOptions(const Arguments& args) {
+  diagrams::LoadOptions o;
+  o.overrides = args.overrides;
+  o.t_end = args.t_end;
+  o.unsafe_lua = args.unsafe_lua;
+  return o;
+}
+
+// A one-line progress display on a terminal: shown only once a run has taken
+// more than a second, refreshed at most ten times a second, erased at the end.
+class Progress {
+ public:
+  Progress(double t_start, double t_end)
+      : t_start_(t_start), t_end_(t_end), enabled_(isatty(STDERR_FILENO)), start_(Clock::now()), last_(start_) {}
+  ~Progress() {
+    if (shown_) std::fprintf(stderr, "\r%*s\r", 70, "");
+  }
+  void operator()(double t) {
+    if (!enabled_) return;
+    const auto now = Clock::now();
+    if (now - start_ < std::chrono::seconds(1) || now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    shown_ = true;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    std::fprintf(stderr, "\r  t = %-12.6g s  %5.1f %%  %8.1f s elapsed ", t,
+                 100.0 * (t - t_start_) / (t_end_ - t_start_), elapsed);
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  double t_start_, t_end_;
+  bool enabled_;
+  bool shown_ = false;
+  Clock::time_point start_, last_;
+};
+
+}  // namespace
+
+int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
+  diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
+  blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
+
+  const auto wall_start = std::chrono::steady_clock::now();
+  blocks::RunOutcome outcome;
+  {
+    Progress progress(loaded.solver.t_start, loaded.solver.t_end);
+    outcome = sim.Run([&](double t) { progress(t); });
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+  out << "mechflow run " << args.file << ": t = " << loaded.solver.t_start << " .. " << loaded.solver.t_end << " s\n";
+  if (outcome.ok) {
+    out << "finished in " << wall << " s of wall time\n";
+  } else {
+    err << "simulation failed at t = " << outcome.t_reached << " s: " << outcome.failure << "\n";
+  }
+  PrintStats(sim.stats(), out);
+
+  // results are written whether or not the run finished
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(args.out_dir, ec);
+  if (ec) {
+    err << "cannot create output folder '" << args.out_dir << "': " << ec.message() << "\n";
+    return 2;
+  }
+  const fs::path csv = fs::absolute(fs::path(args.out_dir) / loaded.csv_file);
+  fs::create_directories(csv.parent_path(), ec);
+  try {
+    sim.results().WriteCsv(csv.string());
+  } catch (const std::exception& e) {
+    err << e.what() << "\n";
+    return 2;
+  }
+  out << "wrote " << csv.string() << " (" << sim.results().num_rows() << " rows)\n";
+  if (!loaded.plot_file.empty()) {
+    const fs::path plot = fs::absolute(fs::path(args.out_dir) / loaded.plot_file);
+    fs::create_directories(plot.parent_path(), ec);
+    const std::string script = GnuplotScript(sim.results(), loaded.groups, loaded.description.name,
+                                             csv.string(), plot.string());
+    const std::string problem = DrawPlot(script, plot.string());
+    if (problem.empty()) {
+      out << "wrote " << plot.string() << "\n";
+    } else {
+      err << "warning: no plot: " << problem << "\n";
+    }
+  }
+  PrintSignalRanges(sim.results(), out);
+  return outcome.ok ? 0 : 1;
+}
+
+int CheckCommand(const Arguments& args, std::ostream& out, std::ostream&) {
+  const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
+  PrintCheck(loaded, out);
+  out << "\n" << args.file << ": ok\n";
+  return 0;
+}
+
+int GraphCommand(const Arguments& args, std::ostream& out, std::ostream&) {
+  const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
+  PrintDot(loaded, out);
+  return 0;
+}
+
+int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  Arguments args;
+  try {
+    args = ParseArguments(argv);
+  } catch (const UsageError& e) {
+    err << "mechflow: " << e.what() << "\n\n" << HelpText("");
+    return 2;
+  }
+  if (args.version) {
+    out << "mechflow 0.1.0\n";
+    return 0;
+  }
+  if (args.help) {
+    out << HelpText(args.command);
+    return 0;
+  }
+  try {
+    if (args.command == "run") return RunCommand(args, out, err);
+    if (args.command == "check") return CheckCommand(args, out, err);
+    if (args.command == "graph") return GraphCommand(args, out, err);
+  } catch (const InputError& e) {
+    err << e.what() << "\n";
+    return 2;
+  } catch (const SimulationError& e) {
+    err << "simulation failed: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    err << "mechflow: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 2;
+}
+
+}  // namespace mechflow::cli

@@ -1,0 +1,82 @@
+#include "cli/plot.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+extern char** environ;
+
+namespace mechflow::cli {
+namespace {
+
+// A gnuplot single-quoted string: only the quote itself needs doubling.
+std::string Quote(const std::string& s) {
+  std::string out = "'";
+  for (const char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+std::string GnuplotScript(const blocks::Results& results, const std::vector<diagrams::PlotGroup>& groups,
+                          const std::string& title, const std::string& csv_path, const std::string& plot_path) {
+  const bool svg = std::filesystem::path(plot_path).extension() == ".svg";
+  const int panels = std::max<int>(1, static_cast<int>(groups.size()));
+  const int height = std::min(4000, 120 + 260 * panels);
+  std::ostringstream s;
+  s << "# drawn by mechflow; edit and run again with: gnuplot " << Quote(plot_path + ".gp") << "\n";
+  s << "set terminal " << (svg ? "svg" : "pngcairo") << " size 1000," << height
+    << " noenhanced font 'sans,10'" << (svg ? " background rgb 'white'" : "") << "\n";
+  s << "set output " << Quote(plot_path) << "\n";
+  s << "set datafile separator ','\n";
+  s << "set grid\nset key outside right top\nset xlabel 'time [s]'\n";
+  s << "set multiplot layout " << panels << ",1 title " << Quote(title) << "\n";
+  for (const auto& g : groups) {
+    s << "set title " << Quote(g.name) << "\n";
+    s << "plot ";
+    for (size_t i = 0; i < g.columns.size(); ++i) {
+      const int c = g.columns[i];
+      s << (i ? ", \\\n     " : "") << (i ? "''" : Quote(csv_path)) << " using 1:" << (c + 1)
+        << " every ::1 with lines lw 1.5 title " << Quote(results.columns()[c]);
+    }
+    s << "\n";
+  }
+  if (groups.empty()) s << "set title 'nothing logged'\nunset key\nplot [0:1] 0 notitle\n";
+  s << "unset multiplot\n";
+  return s.str();
+}
+
+std::string DrawPlot(const std::string& script, const std::string& plot_path) {
+  const std::string script_path = plot_path + ".gp";
+  {
+    std::ofstream out(script_path);
+    if (!out) return "cannot write '" + script_path + "'";
+    out << script;
+  }
+  // no shell: file names from a diagram never reach one
+  std::string program = "gnuplot";
+  std::vector<char*> argv = {program.data(), const_cast<char*>(script_path.c_str()), nullptr};
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int error = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error == ENOENT) return "gnuplot not found (install it: apt-get install gnuplot-nox)";
+  if (error != 0) return std::string("cannot start gnuplot: ") + std::strerror(error);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    return "gnuplot failed on '" + script_path + "' (its messages are above)";
+  return "";
+}
+
+}  // namespace mechflow::cli

@@ -1,0 +1,141 @@
+#include "cli/report.h"
+
+#include <cstdio>
+#include <string>
+
+namespace mechflow::cli {
+namespace {
+
+std::string Format(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+// A DOT string: quotes escaped (labels keep their own escapes such as \\n).
+std::string DotQuote(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// Text inside a record label: the characters that structure a record escaped.
+std::string RecordText(const std::string& s) {
+  std::string out;
+  for (const char c : s) {
+    if (std::string("{}|<>\\ ").find(c) != std::string::npos) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+void PrintStats(const blocks::SolverStats& s, std::ostream& out) {
+  out << "solver: " << s.steps << " steps, " << s.rhs_evals << " RHS evaluations (+" << s.jac_rhs_evals
+      << " for Jacobians), " << s.jac_evals << " Jacobian evaluations\n"
+      << "        " << s.newton_iters << " Newton iterations, " << s.newton_failures << " Newton failures, "
+      << s.error_test_failures << " error-test failures\n"
+      << "        " << s.events << " events, " << s.sample_hits << " sample hits, " << s.reinits
+      << " re-initialisations, " << s.root_evals << " zero-crossing evaluations\n";
+}
+
+void PrintSignalRanges(const blocks::Results& r, std::ostream& out) {
+  if (r.num_rows() == 0 || r.num_columns() < 2) return;
+  size_t width = 6;
+  for (int c = 1; c < r.num_columns(); ++c) width = std::max(width, r.columns()[c].size());
+  out << "signal" << std::string(width - 6, ' ') << "           min    at t [s]            max    at t [s]\n";
+  for (int c = 1; c < r.num_columns(); ++c) {
+    int lo = 0, hi = 0;
+    for (int i = 1; i < r.num_rows(); ++i) {
+      if (r.at(i, c) < r.at(lo, c)) lo = i;
+      if (r.at(i, c) > r.at(hi, c)) hi = i;
+    }
+    out << r.columns()[c] << std::string(width - r.columns()[c].size(), ' ') << Format(" %14.6g", r.at(lo, c))
+        << Format(" %11.6g", r.at(lo, 0)) << Format(" %14.6g", r.at(hi, c)) << Format(" %11.6g", r.at(hi, 0))
+        << "\n";
+  }
+}
+
+void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
+  const blocks::Diagram& d = *loaded.diagram;
+  const scripting::IdentifierTable& ids = *loaded.identifiers;
+  out << "diagram '" << loaded.description.name << "': " << d.num_blocks() << " blocks, "
+      << d.connections().size() << " connections, " << d.num_states() << " continuous states, "
+      << d.num_zero_crossings() << " zero-crossing functions\n";
+  if (ids.size() > 0) {
+    out << "\nidentifiers:\n";
+    for (int i = 0; i < ids.size(); ++i)
+      out << "  " << ids.name(i) << " = " << Format("%.10g", ids.value(i))
+          << (ids.is_expression(i) ? "  (= " + ids.definition(i) + ")" : "")
+          << (ids.unit(i).empty() ? "" : "  [" + ids.unit(i) + "]")
+          << (ids.comment(i).empty() ? "" : "  " + ids.comment(i)) << "\n";
+  }
+  out << "\nevaluation order (output ports):\n";
+  int step = 1;
+  for (const auto& node : d.schedule()) {
+    const blocks::Block& b = d.block(node.block);
+    out << "  " << step++ << ". " << b.name() << "." << b.output_port(node.port).name << "  (" << b.type() << ")\n";
+  }
+  out << "\nalgebraic loops: none\n";
+  out << "\ncontinuous states:\n";
+  if (d.num_states() == 0) out << "  (none)\n";
+  for (const int bi : d.stateful_blocks()) {
+    const blocks::Block& b = d.block(bi);
+    for (int i = 0; i < b.num_states(); ++i)
+      out << "  x[" << d.layout(bi).first_state + i << "]  " << b.name() << "." << b.state_name(i) << "\n";
+  }
+  out << "\nzero-crossing functions:\n";
+  if (d.num_zero_crossings() == 0) out << "  (none)\n";
+  static const char* kDirection[] = {"rising", "falling", "either"};
+  for (const int bi : d.crossing_blocks()) {
+    const blocks::Block& b = d.block(bi);
+    for (int i = 0; i < b.num_zero_crossings(); ++i)
+      out << "  g[" << d.layout(bi).first_crossing + i << "]  " << b.name() << " #" << i << " ("
+          << kDirection[static_cast<int>(b.crossing_direction(i))] << ")\n";
+  }
+  out << "\nsampled blocks:\n";
+  if (d.periodic_blocks().empty()) out << "  (none)\n";
+  for (const int bi : d.periodic_blocks()) {
+    const auto& st = d.block(bi).sample_time();
+    out << "  " << d.block(bi).name() << ": period " << st.period << " s, offset " << st.offset << " s\n";
+  }
+  const auto& s = loaded.solver;
+  out << "\nsolver: CVODE BDF, t = " << s.t_start << " .. " << s.t_end << " s, rtol " << s.rtol << ", atol "
+      << s.atol << ", output every " << s.output_interval << " s\n";
+  out << "logged columns: " << loaded.logged.size() << "\n";
+}
+
+void PrintDot(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
+  const blocks::Diagram& d = *loaded.diagram;
+  out << "digraph " << DotQuote(loaded.description.name) << " {\n"
+      << "  rankdir=LR;\n  node [shape=record, fontname=\"sans\", fontsize=10];\n"
+      << "  edge [fontname=\"sans\", fontsize=9];\n";
+  for (int bi = 0; bi < d.num_blocks(); ++bi) {
+    const blocks::Block& b = d.block(bi);
+    std::string inputs, outputs;
+    for (int p = 0; p < b.num_inputs(); ++p)
+      inputs += (p ? "|" : "") + std::string("<i") + std::to_string(p) + "> " + RecordText(b.input_port(p).name);
+    for (int p = 0; p < b.num_outputs(); ++p)
+      outputs += (p ? "|" : "") + std::string("<o") + std::to_string(p) + "> " + RecordText(b.output_port(p).name);
+    std::string label = "{";
+    if (!inputs.empty()) label += "{" + inputs + "}|";
+    label += RecordText(b.name()) + "\\n(" + RecordText(b.type()) + ")";
+    if (!outputs.empty()) label += "|{" + outputs + "}";
+    label += "}";
+    out << "  b" << bi << " [label=" << DotQuote(label) << "];\n";
+  }
+  for (const auto& c : d.connections()) {
+    const blocks::Block& to = d.block(c.to_block);
+    bool feedthrough = false;
+    for (int p = 0; p < to.num_outputs(); ++p) feedthrough |= to.HasFeedthrough(c.to_port, p);
+    out << "  b" << c.from_block << ":o" << c.from_port << " -> b" << c.to_block << ":i" << c.to_port
+        << (feedthrough ? " [style=bold]" : "") << ";\n";
+  }
+  out << "}\n";
+}
+
+}  // namespace mechflow::cli

@@ -1,0 +1,253 @@
+#include "diagrams/loader.h"
+
+#include <charconv>
+#include <filesystem>
+#include <map>
+
+#include "blocks/block_factory.h"
+#include "blocks/diagram_builder.h"
+#include "blocks/suggest.h"
+#include "diagrams/xml_reader.h"
+#include "mech/errors.h"
+#include "scripting/expression_block.h"
+
+namespace mechflow::diagrams {
+namespace {
+
+std::string Trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return "";
+  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+// Splits at any of `separators`, dropping empty pieces.
+std::vector<std::string> Split(const std::string& s, const char* separators) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start <= s.size()) {
+    const size_t end = s.find_first_of(separators, start);
+    const std::string piece = Trim(s.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (!piece.empty()) out.push_back(piece);
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return out;
+}
+
+// Turns the text of attributes into numbers: a plain number as written, or an
+// expression of the diagram's identifiers.
+class Evaluator {
+ public:
+  Evaluator(scripting::LuaState* lua, const scripting::IdentifierTable* ids) : lua_(lua), ids_(ids) {}
+
+  double Number(const std::string& text, const std::string& what) const {
+    const std::string t = Trim(text);
+    if (t.empty()) throw InputError(what + ": expected a number or an expression, found nothing");
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), value);
+    if (error == std::errc() && end == t.data() + t.size()) return value;
+    return ids_->EvaluateExpression(*lua_, t, what);
+  }
+
+  std::vector<double> Numbers(const std::string& text, const std::string& what) const {
+    std::vector<double> out;
+    for (const auto& item : Split(text, " \t\r\n,")) out.push_back(Number(item, what));
+    if (out.empty()) throw InputError(what + ": expected at least one number");
+    return out;
+  }
+
+  std::vector<std::vector<double>> Table(const std::string& text, const std::string& what) const {
+    std::vector<std::vector<double>> rows;
+    for (const auto& row : Split(text, ";")) rows.push_back(Numbers(row, what + " row " + std::to_string(rows.size() + 1)));
+    if (rows.empty()) throw InputError(what + ": expected rows separated by ';'");
+    return rows;
+  }
+
+ private:
+  scripting::LuaState* lua_;
+  const scripting::IdentifierTable* ids_;
+};
+
+const Attribute* FindAttribute(const std::vector<Attribute>& attributes, const std::string& name) {
+  for (const auto& a : attributes)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+blocks::BlockParams EvaluateParams(const BlockDesc& b, const blocks::BlockType& type, const Evaluator& eval,
+                                   const std::string& folder) {
+  const std::string who = b.loc.str() + ": block '" + b.name + "' (" + b.type + ")";
+  std::vector<std::string> names = {"type", "name"};
+  for (const auto& p : type.params) names.push_back(p.name);
+  for (const auto& a : b.params)
+    if (!type.FindParam(a.name))
+      throw InputError(a.loc.str() + ": block '" + b.name + "' (" + b.type + ") has no parameter '" + a.name + "'" +
+                       blocks::DidYouMean(a.name, names) + "; valid: " + blocks::JoinNames(names));
+
+  blocks::BlockParams params;
+  for (const auto& spec : type.params) {
+    const Attribute* a = FindAttribute(b.params, spec.name);
+    if (!a && spec.required)
+      throw InputError(who + " needs the parameter '" + spec.name + "' (" + spec.doc + ")");
+    if (!a && spec.default_value.empty()) continue;
+    const std::string text = a ? a->value : spec.default_value;
+    const std::string what = (a ? a->loc.str() : b.loc.str()) + ": block '" + b.name + "' parameter '" + spec.name + "'";
+    switch (spec.kind) {
+      case blocks::ParamKind::kNumber:
+        params.SetNumbers(spec.name, {eval.Number(text, what)});
+        break;
+      case blocks::ParamKind::kNumbers:
+        params.SetNumbers(spec.name, eval.Numbers(text, what));
+        break;
+      case blocks::ParamKind::kTable:
+        params.SetTable(spec.name, eval.Table(text, what));
+        break;
+      case blocks::ParamKind::kText:
+        params.SetText(spec.name, text);
+        break;
+      case blocks::ParamKind::kPath: {
+        const std::filesystem::path p = std::filesystem::path(folder) / text;
+        if (!std::filesystem::is_regular_file(p))
+          throw InputError(what + ": file '" + text + "' not found (looked for " + p.lexically_normal().string() + ")");
+        params.SetText(spec.name, p.lexically_normal().string());
+        break;
+      }
+    }
+  }
+  return params;
+}
+
+void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, const LoadOptions& options,
+                        blocks::SolverOptions* solver) {
+  for (const auto& a : d.solver) {
+    const std::string what = a.loc.str() + ": solver setting '" + a.name + "'";
+    const double v = eval.Number(a.value, what);
+    if (a.name == "t_start") solver->t_start = v;
+    else if (a.name == "t_end") solver->t_end = v;
+    else if (a.name == "rtol") solver->rtol = v;
+    else if (a.name == "atol") solver->atol = v;
+    else if (a.name == "max_step") solver->max_step = v;
+    else if (a.name == "initial_step") solver->initial_step = v;
+    else if (a.name == "max_steps") solver->max_steps = static_cast<long>(v);
+  }
+  if (options.t_end) solver->t_end = *options.t_end;
+  if (const Attribute* a = FindAttribute(d.output, "interval"))
+    solver->output_interval = eval.Number(a->value, a->loc.str() + ": output setting 'interval'");
+  const std::string problem = solver->Problem();
+  if (!problem.empty())
+    throw InputError(d.solver_loc.str() + ": " + problem + (options.t_end ? " (t_end given by --t-end)" : ""));
+  if (solver->output_interval > 0.0 && (solver->t_end - solver->t_start) / solver->output_interval > 1e8)
+    throw InputError(d.output_loc.str() + ": output interval gives more than 1e8 rows; choose a larger one");
+}
+
+// Logged signals: <log> elements first, then the inputs of every recorder.
+void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
+  std::map<std::string, int> group_index;
+  std::map<std::string, std::string> column_origin;
+  int column = 1;
+  auto add = [&](blocks::SignalRef s, const std::string& group, const SourceLoc& loc) {
+    if (column_origin.count(s.name))
+      throw InputError(loc.str() + ": a second logged column named '" + s.name + "' (the first is at " +
+                       column_origin[s.name] + "); give one a different label");
+    column_origin[s.name] = loc.str();
+    if (!group_index.count(group)) {
+      group_index[group] = static_cast<int>(out->groups.size());
+      out->groups.push_back({group, {}});
+    }
+    for (int i = 0; i < s.width; ++i) out->groups[group_index[group]].columns.push_back(column++);
+    out->logged.push_back(std::move(s));
+  };
+  for (const auto& log : d.logs) {
+    blocks::SignalRef s;
+    try {
+      s = out->diagram->ResolveSignal(log.signal);
+    } catch (const InputError& e) {
+      throw InputError(log.loc.str() + ": <log>: " + e.what());
+    }
+    const std::string signal_name = s.name;
+    if (!log.label.empty()) s.name = log.label;
+    add(std::move(s), log.group.empty() ? signal_name : log.group, log.loc);
+  }
+  const blocks::Diagram& diagram = *out->diagram;
+  for (int b = 0; b < diagram.num_blocks(); ++b) {
+    if (diagram.block(b).type() != "recorder") continue;
+    for (const auto& c : diagram.connections()) {
+      if (c.to_block != b) continue;
+      const blocks::Block& from = diagram.block(c.from_block);
+      const auto& layout = diagram.layout(c.from_block);
+      blocks::SignalRef s{from.name() + "." + from.output_port(c.from_port).name, layout.output_offset[c.from_port],
+                          layout.output_width[c.from_port]};
+      add(std::move(s), diagram.block(b).name(), d.blocks[b].loc);
+    }
+  }
+}
+
+}  // namespace
+
+void RegisterAllBlocks(blocks::BlockRegistry* registry, scripting::LuaState* lua,
+                       const scripting::IdentifierTable* identifiers) {
+  blocks::RegisterStandardBlocks(registry);
+  scripting::RegisterScriptingBlocks(registry, lua, identifiers);
+}
+
+LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& options) {
+  LoadedDiagram out;
+  out.lua = std::make_unique<scripting::LuaState>(options.unsafe_lua);
+  out.identifiers = std::make_unique<scripting::IdentifierTable>();
+  scripting::IdentifierTable& ids = *out.identifiers;
+
+  // identifiers: definitions, then command-line overrides, then top-to-bottom evaluation
+  for (const auto& id : d.identifiers) ids.Add(id.name, id.value, id.loc.str(), id.comment, id.unit);
+  for (const auto& [name, value] : options.overrides) {
+    try {
+      ids.Override(name, value);
+    } catch (const InputError& e) {
+      throw InputError("--set " + name + ": " + e.what());
+    }
+  }
+  ids.Evaluate(*out.lua);
+  const Evaluator eval(out.lua.get(), out.identifiers.get());
+
+  // blocks and connections
+  blocks::BlockRegistry registry;
+  RegisterAllBlocks(&registry, out.lua.get(), out.identifiers.get());
+  const std::string folder = std::filesystem::path(d.file).parent_path().string();
+  blocks::DiagramBuilder builder;
+  for (const auto& b : d.blocks) {
+    const blocks::BlockType* type = registry.Find(b.type);
+    if (!type)
+      throw InputError(b.loc.str() + ": block '" + b.name + "' has unknown type '" + b.type + "'" +
+                       blocks::DidYouMean(b.type, registry.Names()) + "; known types: " +
+                       blocks::JoinNames(registry.Names()));
+    const blocks::BlockParams params = EvaluateParams(b, *type, eval, folder);
+    std::unique_ptr<blocks::Block> block;
+    try {
+      block = type->create(b.name, params);
+    } catch (const InputError& e) {
+      throw InputError(b.loc.str() + ": block '" + b.name + "' (" + b.type + "): " + e.what());
+    }
+    builder.AddBlock(std::move(block), b.loc.str());
+  }
+  for (const auto& c : d.connections) builder.Connect(c.from, c.to, c.loc.str());
+  out.diagram = builder.Build();
+
+  // solver and output settings
+  BuildSolverOptions(d, eval, options, &out.solver);
+  CollectLoggedSignals(d, &out);
+  const Attribute* csv = FindAttribute(d.output, "csv");
+  out.csv_file = csv && !Trim(csv->value).empty() ? Trim(csv->value) : d.name + ".csv";
+  if (const Attribute* plot = FindAttribute(d.output, "plot")) {
+    out.plot_file = Trim(plot->value);
+    const std::string ext = std::filesystem::path(out.plot_file).extension().string();
+    if (!out.plot_file.empty() && ext != ".png" && ext != ".svg")
+      throw InputError(plot->loc.str() + ": plot file '" + out.plot_file + "' must end in .png or .svg");
+  }
+  out.description = std::move(d);
+  return out;
+}
+
+LoadedDiagram LoadDiagram(const std::string& path, const LoadOptions& options) {
+  return LoadDiagramDescription(ReadDiagramFile(path), options);
+}
+
+}  // namespace mechflow::diagrams

@@ -1,0 +1,173 @@
+#include "diagrams/xml_reader.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <tinyxml2.h>
+
+#include "blocks/suggest.h"
+#include "mech/errors.h"
+
+namespace mechflow::diagrams {
+namespace {
+
+using tinyxml2::XMLAttribute;
+using tinyxml2::XMLElement;
+
+// What one element may contain. `open_attributes`: any further attribute is
+// accepted here and checked later (block parameters depend on the type).
+struct ElementSchema {
+  const char* name;
+  std::vector<std::string> required;
+  std::vector<std::string> optional;
+  std::vector<std::string> children;
+  bool open_attributes = false;
+};
+
+const std::vector<ElementSchema>& Schema() {
+  static const std::vector<ElementSchema> schema = {
+      {"diagram", {}, {"name", "comment"}, {"identifiers", "blocks", "connections", "solver", "output"}},
+      {"identifiers", {}, {}, {"identifier"}},
+      {"identifier", {"name", "value"}, {"comment", "unit"}, {}},
+      {"blocks", {}, {}, {"block"}},
+      {"block", {"type", "name"}, {}, {}, true},
+      {"connections", {}, {}, {"connect"}},
+      {"connect", {"from", "to"}, {}, {}},
+      {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps"}, {}},
+      {"output", {}, {"interval", "csv", "plot"}, {"log"}},
+      {"log", {"signal"}, {"group", "label"}, {}},
+  };
+  return schema;
+}
+
+const ElementSchema& SchemaOf(const std::string& element) {
+  for (const auto& s : Schema())
+    if (element == s.name) return s;
+  throw std::logic_error("no schema for element " + element);
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  SourceLoc Loc(const XMLElement* e) const { return {file_, e->GetLineNum()}; }
+
+  [[noreturn]] void Fail(const XMLElement* e, const std::string& what) const {
+    throw InputError(Loc(e).str() + ": " + what);
+  }
+
+  // Checks the attributes and children of `e` against the schema.
+  void CheckShape(const XMLElement* e) const {
+    const ElementSchema& s = SchemaOf(e->Name());
+    std::vector<std::string> allowed = s.required;
+    allowed.insert(allowed.end(), s.optional.begin(), s.optional.end());
+    for (const XMLAttribute* a = e->FirstAttribute(); a; a = a->Next()) {
+      const std::string name = a->Name();
+      if (s.open_attributes || std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
+      Fail(e, "<" + std::string(e->Name()) + "> has no attribute '" + name + "'" +
+                  blocks::DidYouMean(name, allowed) +
+                  (allowed.empty() ? "; it takes no attributes" : "; valid attributes: " + blocks::JoinNames(allowed)));
+    }
+    for (const auto& r : s.required)
+      if (!e->Attribute(r.c_str()))
+        Fail(e, "<" + std::string(e->Name()) + "> needs the attribute '" + r + "'");
+    for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+      const std::string name = c->Name();
+      if (std::find(s.children.begin(), s.children.end(), name) != s.children.end()) continue;
+      Fail(c, "unknown element <" + name + "> inside <" + e->Name() + ">" + blocks::DidYouMean(name, s.children) +
+                  (s.children.empty() ? "; <" + std::string(e->Name()) + "> has no child elements"
+                                      : "; expected one of: " + blocks::JoinNames(s.children)));
+    }
+  }
+
+  std::string Text(const XMLElement* e, const char* attribute) const {
+    const char* v = e->Attribute(attribute);
+    return v ? v : "";
+  }
+
+  std::vector<Attribute> Attributes(const XMLElement* e, const std::vector<std::string>& skip = {}) const {
+    std::vector<Attribute> out;
+    for (const XMLAttribute* a = e->FirstAttribute(); a; a = a->Next()) {
+      if (std::find(skip.begin(), skip.end(), a->Name()) != skip.end()) continue;
+      out.push_back({a->Name(), a->Value(), {file_, a->GetLineNum()}});
+    }
+    return out;
+  }
+
+  // The single child element `name` of `parent`, or null; a second one is an error.
+  const XMLElement* Single(const XMLElement* parent, const char* name) const {
+    const XMLElement* e = parent->FirstChildElement(name);
+    if (e && e->NextSiblingElement(name))
+      Fail(e->NextSiblingElement(name), "a second <" + std::string(name) + "> element; a diagram has at most one");
+    return e;
+  }
+
+  DiagramDescription Read(const tinyxml2::XMLDocument& doc) const {
+    const XMLElement* root = doc.RootElement();
+    if (!root) throw InputError(file_ + ":1: the file holds no XML element; expected <diagram>");
+    if (std::string(root->Name()) != "diagram")
+      Fail(root, "the top element is <" + std::string(root->Name()) + ">; expected <diagram>");
+    CheckShape(root);
+    DiagramDescription d;
+    d.file = file_;
+    d.name = Text(root, "name");
+    if (d.name.empty()) d.name = std::filesystem::path(file_).stem().string();
+    d.comment = Text(root, "comment");
+
+    for (const XMLElement* group = root->FirstChildElement(); group; group = group->NextSiblingElement()) {
+      CheckShape(group);
+      for (const XMLElement* e = group->FirstChildElement(); e; e = e->NextSiblingElement()) CheckShape(e);
+    }
+    for (const XMLElement* g = root->FirstChildElement("identifiers"); g; g = g->NextSiblingElement("identifiers"))
+      for (const XMLElement* e = g->FirstChildElement("identifier"); e; e = e->NextSiblingElement("identifier"))
+        d.identifiers.push_back({Text(e, "name"), Text(e, "value"), Text(e, "comment"), Text(e, "unit"), Loc(e)});
+    for (const XMLElement* g = root->FirstChildElement("blocks"); g; g = g->NextSiblingElement("blocks"))
+      for (const XMLElement* e = g->FirstChildElement("block"); e; e = e->NextSiblingElement("block"))
+        d.blocks.push_back({Text(e, "type"), Text(e, "name"), Attributes(e, {"type", "name"}), Loc(e)});
+    for (const XMLElement* g = root->FirstChildElement("connections"); g; g = g->NextSiblingElement("connections"))
+      for (const XMLElement* e = g->FirstChildElement("connect"); e; e = e->NextSiblingElement("connect"))
+        d.connections.push_back({Text(e, "from"), Text(e, "to"), Loc(e)});
+    if (const XMLElement* s = Single(root, "solver")) {
+      d.solver = Attributes(s);
+      d.solver_loc = Loc(s);
+    } else {
+      d.solver_loc = Loc(root);
+    }
+    if (const XMLElement* o = Single(root, "output")) {
+      d.output = Attributes(o);
+      d.output_loc = Loc(o);
+      for (const XMLElement* e = o->FirstChildElement("log"); e; e = e->NextSiblingElement("log"))
+        d.logs.push_back({Text(e, "signal"), Text(e, "group"), Text(e, "label"), Loc(e)});
+    } else {
+      d.output_loc = Loc(root);
+    }
+    return d;
+  }
+
+ private:
+  std::string file_;
+};
+
+}  // namespace
+
+DiagramDescription ReadDiagramText(const std::string& text, const std::string& file) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
+    throw InputError(file + ":" + std::to_string(doc.ErrorLineNum()) + ": malformed XML: " +
+                     (doc.ErrorStr() ? doc.ErrorStr() : doc.ErrorName()));
+  }
+  return Reader(file).Read(doc);
+}
+
+DiagramDescription ReadDiagramFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open diagram file '" + path + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ReadDiagramText(text.str(), path);
+}
+
+}  // namespace mechflow::diagrams

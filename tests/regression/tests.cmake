@@ -1,1 +1,2 @@
 # Tests of regression/.
+mechflow_test(examples_test regression tests/regression/examples_test.cc)

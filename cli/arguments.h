@@ -1,0 +1,33 @@
+#pragma once
+// Command-line parsing for `mechflow COMMAND FILE [options]`.
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mechflow::cli {
+
+struct Arguments {
+  std::string command;  // run, check, graph, help
+  std::string file;
+  std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE
+  std::optional<double> t_end;                            // --t-end T
+  std::string out_dir = ".";                              // --out DIR
+  bool unsafe_lua = false;                                // --unsafe-lua
+  bool help = false;                                      // help for `command` (or general)
+  bool version = false;
+};
+
+// Throws UsageError with a message for bad command lines.
+Arguments ParseArguments(const std::vector<std::string>& args);
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Help texts: general (command empty) or per command.
+std::string HelpText(const std::string& command);
+
+}  // namespace mechflow::cli

@@ -1,0 +1,62 @@
+#pragma once
+// DiagramDescription: a diagram file as plain data, before anything is built.
+//
+// The XML reader fills it after checking the file's shape (known elements and
+// attributes only); every item keeps the file:line it came from so that the
+// loader, which evaluates and builds later, can still point at the source.
+
+#include <string>
+#include <vector>
+
+namespace mechflow::diagrams {
+
+struct SourceLoc {
+  std::string file;
+  int line = 0;
+  // "file:line", the prefix of every message about this item.
+  std::string str() const { return file + ":" + std::to_string(line); }
+};
+
+// An attribute as written, with its own location.
+struct Attribute {
+  std::string name;
+  std::string value;
+  SourceLoc loc;
+};
+
+struct IdentifierDesc {
+  std::string name, value, comment, unit;
+  SourceLoc loc;
+};
+
+struct BlockDesc {
+  std::string type, name;
+  std::vector<Attribute> params;  // every attribute except type and name
+  SourceLoc loc;
+};
+
+struct ConnectionDesc {
+  std::string from, to;
+  SourceLoc loc;
+};
+
+struct LogDesc {
+  std::string signal, group, label;
+  SourceLoc loc;
+};
+
+struct DiagramDescription {
+  std::string name;     // <diagram name=...>, default: the file's stem
+  std::string comment;
+  std::string file;     // the path it was read from
+  std::vector<IdentifierDesc> identifiers;
+  std::vector<BlockDesc> blocks;
+  std::vector<ConnectionDesc> connections;
+  std::vector<Attribute> solver;  // attributes of <solver>
+  SourceLoc solver_loc;
+  std::vector<Attribute> output;  // attributes of <output>
+  SourceLoc output_loc;
+  std::vector<LogDesc> logs;
+};
+
+}  // namespace mechflow::diagrams

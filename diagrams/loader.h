@@ -1,0 +1,57 @@
+#pragma once
+// Loader: turns a diagram file into everything a run needs.
+//
+//   read XML (shape checked)  ->  identifiers (overrides applied, evaluated top
+//   to bottom)  ->  blocks (parameters checked against the block type and
+//   evaluated)  ->  connections  ->  Build() (schedule, loops)  ->  solver and
+//   output settings, logged signals.
+//
+// Every error is an InputError naming file:line.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "blocks/diagram.h"
+#include "blocks/simulator.h"
+#include "diagrams/description.h"
+#include "scripting/identifiers.h"
+#include "scripting/lua_state.h"
+
+namespace mechflow::diagrams {
+
+struct LoadOptions {
+  std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE, in order
+  std::optional<double> t_end;                            // --t-end
+  bool unsafe_lua = false;
+};
+
+// Logged columns shown in one plot panel.
+struct PlotGroup {
+  std::string name;
+  std::vector<int> columns;  // indices into the results' columns
+};
+
+struct LoadedDiagram {
+  DiagramDescription description;
+  // declared before the diagram: blocks may hold compiled Lua, so Lua goes last
+  std::unique_ptr<scripting::LuaState> lua;
+  std::unique_ptr<scripting::IdentifierTable> identifiers;
+  std::unique_ptr<blocks::Diagram> diagram;
+  blocks::SolverOptions solver;
+  std::vector<blocks::SignalRef> logged;  // in column order; name = column label
+  std::vector<PlotGroup> groups;
+  std::string csv_file;   // relative to the output folder; never empty
+  std::string plot_file;  // relative to the output folder; empty: no plot
+};
+
+LoadedDiagram LoadDiagram(const std::string& path, const LoadOptions& options = {});
+LoadedDiagram LoadDiagramDescription(DiagramDescription description, const LoadOptions& options = {});
+
+// The registry with every block type a diagram may use.
+void RegisterAllBlocks(blocks::BlockRegistry* registry, scripting::LuaState* lua,
+                       const scripting::IdentifierTable* identifiers);
+
+}  // namespace mechflow::diagrams

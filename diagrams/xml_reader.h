@@ -1,0 +1,22 @@
+#pragma once
+// Reads a diagram XML file into a DiagramDescription.
+//
+// Shape first, values later (as MuJoCo's schema check): every element and
+// attribute is checked against the format (diagrams/FORMAT.md) before any value
+// is kept; an unknown name is an error with the nearest valid name suggested.
+// Block parameters are kept as text here: which ones a block accepts depends
+// on its type, which the loader checks against the block registry.
+// Errors are InputError "file:line: what was found, what was expected".
+
+#include <string>
+
+#include "diagrams/description.h"
+
+namespace mechflow::diagrams {
+
+DiagramDescription ReadDiagramFile(const std::string& path);
+
+// Same, from text in memory; `file` is the name used in messages.
+DiagramDescription ReadDiagramText(const std::string& text, const std::string& file);
+
+}  // namespace mechflow::diagrams
