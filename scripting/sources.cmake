@@ -1,4 +1,7 @@
 # Sources of the scripting layer.
 set(MECHFLOW_SCRIPTING_SOURCES
+  scripting/compiled_expression.cc
+  scripting/expression_block.cc
+  scripting/identifiers.cc
   scripting/lua_state.cc
 )
