@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "blocks/block_factory.h"
 #include "blocks/diagram.h"
 #include "blocks/simulator.h"
 #include "diagrams/description.h"

@@ -20,12 +20,12 @@ std::string Example(const std::string& name) {
   return std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + name;
 }
 
-struct Run {
+struct ExampleRun {
   diagrams::LoadedDiagram loaded;
   std::unique_ptr<blocks::Simulator> sim;
   blocks::RunOutcome outcome;
 
-  explicit Run(const std::string& example, const diagrams::LoadOptions& options = {})
+  explicit ExampleRun(const std::string& example, const diagrams::LoadOptions& options = {})
       : loaded(diagrams::LoadDiagram(Example(example), options)) {
     sim = std::make_unique<blocks::Simulator>(*loaded.diagram, loaded.solver, loaded.logged);
     outcome = sim->Run();
@@ -40,7 +40,7 @@ struct Run {
 
 // x'' = -(c x + d v)/m from x(0) = x0, v(0) = 0: the underdamped closed form.
 TEST(ExamplesTest, DampedOscillatorMatchesClosedForm) {
-  Run run("damped_oscillator_blocks.xml");
+  ExampleRun run("damped_oscillator_blocks.xml");
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
   const double m = 1000, f = 1, beta = 0.1, x0 = 0.5;
   const double c = 4 * kPi * kPi * f * f * m, d = 2 * beta * std::sqrt(m * c);
@@ -60,7 +60,7 @@ TEST(ExamplesTest, DampedOscillatorMatchesClosedForm) {
 
 // Stiff Van der Pol, mu = 1000, over [0, 3000] (about two relaxation periods).
 TEST(ExamplesTest, VanDerPolStiffFinishesInFewSteps) {
-  Run run("van_der_pol_stiff.xml");
+  ExampleRun run("van_der_pol_stiff.xml");
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
   const auto t = run.Column("time"), y1 = run.Column("y1");
   EXPECT_DOUBLE_EQ(t.back(), 3000.0);
@@ -81,7 +81,7 @@ TEST(ExamplesTest, VanDerPolStiffFinishesInFewSteps) {
 // Free fall from h0 with restitution e: impact n happens at
 // t1 = sqrt(2 h0 / g), t(n+1) = t(n) + 2 e^n v1 / g with v1 = g t1.
 TEST(ExamplesTest, BouncingBallImpactTimesMatchClosedForm) {
-  Run run("bouncing_ball_blocks.xml");
+  ExampleRun run("bouncing_ball_blocks.xml");
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
   const double g = 9.81, h0 = 10, e = 0.8;
   const auto& events = run.sim->events();
@@ -105,7 +105,7 @@ TEST(ExamplesTest, BouncingBallImpactTimesMatchClosedForm) {
 TEST(ExamplesTest, StickSlipLimitCycleMatchesCoulombAnalysis) {
   diagrams::LoadOptions options;
   options.t_end = 10.0;
-  Run run("stick_slip_blocks.xml", options);
+  ExampleRun run("stick_slip_blocks.xml", options);
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
   const double m = 1, k = 100, g = 9.81, vb = 0.1, mu_s = 0.6, mu_d = 0.4;
   const double w = std::sqrt(k / m), x_s = mu_s * m * g / k, x_d = mu_d * m * g / k, D = x_s - x_d;

@@ -1,0 +1,71 @@
+#include "blocks/library/discontinuities.h"
+
+namespace mechflow::blocks {
+
+PiecewiseLinearBlock::PiecewiseLinearBlock(const std::string& type, const std::string& name,
+                                           std::vector<double> corners, int width)
+    : Block(type, name), corners_(std::move(corners)) {
+  DeclareInputPort("u", width);
+  DeclareOutputPort("y", width);
+  DeclareDiscreteStates(width);
+  for (int i = 0; i < width * static_cast<int>(corners_.size()); ++i) DeclareZeroCrossing(CrossingDirection::kEither);
+}
+
+int PiecewiseLinearBlock::Classify(double u) const {
+  int mode = 0;
+  while (mode < static_cast<int>(corners_.size()) && u >= corners_[mode]) ++mode;
+  return mode;
+}
+
+void PiecewiseLinearBlock::DoInitialize(const BlockContext& ctx) const {
+  // inputs are not valid yet: start on the middle piece, UpdateModes fixes it
+  for (double& mode : ctx.discrete()) mode = static_cast<double>(corners_.size() / 2);
+}
+
+void PiecewiseLinearBlock::DoCalcOutput(int, const BlockContext& ctx) const {
+  const auto u = ctx.input(0);
+  const auto y = ctx.output(0);
+  const auto modes = ctx.discrete();
+  for (size_t i = 0; i < y.size(); ++i) y[i] = Piece(static_cast<int>(modes[i]), u[i]);
+}
+
+void PiecewiseLinearBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
+  const auto u = ctx.input(0);
+  const auto g = ctx.zero_crossings();
+  const size_t n = corners_.size();
+  for (size_t i = 0; i < u.size(); ++i)
+    for (size_t k = 0; k < n; ++k) g[i * n + k] = u[i] - corners_[k];
+}
+
+void PiecewiseLinearBlock::DoZeroCrossing(int index, int direction, const BlockContext& ctx) const {
+  const int n = static_cast<int>(corners_.size());
+  const int element = index / n, corner = index % n;
+  // rising through corner k enters piece k+1; falling enters piece k
+  ctx.discrete()[element] = direction > 0 ? corner + 1 : corner;
+}
+
+bool PiecewiseLinearBlock::DoUpdateModes(const BlockContext& ctx) const {
+  const auto u = ctx.input(0);
+  const auto modes = ctx.discrete();
+  bool changed = false;
+  for (size_t i = 0; i < u.size(); ++i) {
+    const double mode = Classify(u[i]);
+    changed |= mode != modes[i];
+    modes[i] = mode;
+  }
+  return changed;
+}
+
+AbsBlock::AbsBlock(const std::string& name, int width) : PiecewiseLinearBlock("abs", name, {0.0}, width) {}
+
+SaturationBlock::SaturationBlock(const std::string& name, double lower, double upper, int width)
+    : PiecewiseLinearBlock("saturation", name, {lower, upper}, width), lower_(lower), upper_(upper) {}
+
+double SaturationBlock::Piece(int mode, double u) const { return mode == 0 ? lower_ : mode == 2 ? upper_ : u; }
+
+DeadZoneBlock::DeadZoneBlock(const std::string& name, double start, double end, int width)
+    : PiecewiseLinearBlock("dead_zone", name, {start, end}, width), start_(start), end_(end) {}
+
+double DeadZoneBlock::Piece(int mode, double u) const { return mode == 0 ? u - start_ : mode == 2 ? u - end_ : 0.0; }
+
+}  // namespace mechflow::blocks

@@ -1,0 +1,67 @@
+#pragma once
+// Piecewise-linear maps with corners, each corner an event (as Simulink does):
+//
+//   abs         y = |u|
+//   saturation  y = lower if u < lower, upper if u > upper, u between
+//   dead_zone   y = u - start if u < start, 0 in [start, end], u - end above
+//
+// Every element keeps a mode (which linear piece is active) in a discrete
+// state. Zero crossings of u - corner change the mode at the located instant;
+// inside a step the output follows the frozen mode, so the right-hand side is
+// smooth there. After any event the modes are re-classified from u.
+
+#include "blocks/block.h"
+
+namespace mechflow::blocks {
+
+// y = piece(mode, u) with corners c_0 < c_1 < ...; mode k means u lies between
+// corner k-1 and corner k (mode 0: below every corner).
+class PiecewiseLinearBlock : public Block {
+ public:
+  PiecewiseLinearBlock(const std::string& type, const std::string& name, std::vector<double> corners, int width);
+
+ protected:
+  // The output of element value `u` on piece `mode`.
+  virtual double Piece(int mode, double u) const = 0;
+  void DoInitialize(const BlockContext& ctx) const override;
+  void DoCalcOutput(int port, const BlockContext& ctx) const override;
+  void DoCalcZeroCrossings(const BlockContext& ctx) const override;
+  void DoZeroCrossing(int index, int direction, const BlockContext& ctx) const override;
+  bool DoUpdateModes(const BlockContext& ctx) const override;
+
+ private:
+  int Classify(double u) const;
+  std::vector<double> corners_;
+};
+
+class AbsBlock : public PiecewiseLinearBlock {
+ public:
+  AbsBlock(const std::string& name, int width);
+
+ protected:
+  double Piece(int mode, double u) const override { return mode == 0 ? -u : u; }
+};
+
+class SaturationBlock : public PiecewiseLinearBlock {
+ public:
+  SaturationBlock(const std::string& name, double lower, double upper, int width);
+
+ protected:
+  double Piece(int mode, double u) const override;
+
+ private:
+  double lower_, upper_;
+};
+
+class DeadZoneBlock : public PiecewiseLinearBlock {
+ public:
+  DeadZoneBlock(const std::string& name, double start, double end, int width);
+
+ protected:
+  double Piece(int mode, double u) const override;
+
+ private:
+  double start_, end_;
+};
+
+}  // namespace mechflow::blocks
