@@ -261,7 +261,10 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     auto output_time = [&](long k) { return std::min(t0 + k * options_.output_interval, t_end); };
     while (t < t_end) {
       const double stop = std::min(NextSampleHit(), t_end);
-      const double t_out = std::min(output_time(next_output), stop);
+      double t_out = std::min(output_time(next_output), stop);
+      // an output time that rounding puts a hair before a sample hit is taken
+      // at the hit, so the row shows the values after it (right-continuous)
+      if (stop - t_out <= 1e-12 * std::max(1.0, std::abs(stop))) t_out = stop;
       if (t_out <= t) {  // an output time that coincides with the last event
         Record(t, y);
         ++next_output;
@@ -298,22 +301,22 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
         Reinitialize(t);
         continue;
       }
+      const bool at_stop = flag == CV_TSTOP_RETURN || t_ret >= stop;
+      if (at_stop) std::copy(interpolated.begin(), interpolated.end(), y);
+      if (at_stop && t_ret < t_end) {
+        // a sample hit: update the periodic blocks before the row is taken
+        ctx_.x = y;
+        HandleSampleHits(t_ret);
+        Reinitialize(t_ret);
+      }
       if (t_ret >= t_out) {
         // reached an output time (with interpolation, the solver may be ahead)
-        Record(t_ret, interpolated.data());
+        Record(t_ret, at_stop ? y : interpolated.data());
         if (progress) progress(t_ret);
         ++next_output;
       }
-      if (flag == CV_TSTOP_RETURN || t_ret >= stop) {
-        std::copy(interpolated.begin(), interpolated.end(), y);
-        t = t_ret;
-        ctx_.x = y;
-        if (t >= t_end) break;
-        HandleSampleHits(t);
-        Reinitialize(t);
-        continue;
-      }
       t = std::max(t, t_ret);
+      if (at_stop && t >= t_end) break;
     }
     if (outcome.ok) outcome.t_reached = t_end;
   } catch (const std::exception& e) {

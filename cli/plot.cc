@@ -36,7 +36,8 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
     << " noenhanced font 'sans,10'" << (svg ? " background rgb 'white'" : "") << "\n";
   s << "set output " << Quote(plot_path) << "\n";
   s << "set datafile separator ','\n";
-  s << "set grid\nset key outside right top\nset xlabel 'time [s]'\n";
+  // fixed margins keep the time axes of all panels aligned
+  s << "set grid\nset key outside right top\nset lmargin 12\nset rmargin 22\nset xlabel 'time [s]'\n";
   s << "set multiplot layout " << panels << ",1 title " << Quote(title) << "\n";
   for (const auto& g : groups) {
     s << "set title " << Quote(g.name) << "\n";

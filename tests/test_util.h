@@ -1,0 +1,50 @@
+#pragma once
+// Helpers for tests: load a diagram from inline XML and run it.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "blocks/simulator.h"
+#include "diagrams/loader.h"
+#include "diagrams/xml_reader.h"
+#include "mech/errors.h"
+
+namespace mechflow::testing {
+
+struct XmlRun {
+  diagrams::LoadedDiagram loaded;
+  std::unique_ptr<blocks::Simulator> sim;
+  blocks::RunOutcome outcome;
+
+  std::vector<double> Column(const std::string& name) const {
+    const int c = sim->results().FindColumn(name);
+    if (c < 0) throw std::runtime_error("no column " + name);
+    return sim->results().Column(c);
+  }
+};
+
+// Loads `xml` (named test.xml in messages) and builds it; throws what the loader throws.
+inline diagrams::LoadedDiagram LoadXml(const std::string& xml, const diagrams::LoadOptions& options = {}) {
+  return diagrams::LoadDiagramDescription(diagrams::ReadDiagramText(xml, "test.xml"), options);
+}
+
+inline XmlRun RunXml(const std::string& xml, const diagrams::LoadOptions& options = {}) {
+  XmlRun run{LoadXml(xml, options), nullptr, {}};
+  run.sim = std::make_unique<blocks::Simulator>(*run.loaded.diagram, run.loaded.solver, run.loaded.logged);
+  run.outcome = run.sim->Run();
+  return run;
+}
+
+// The message of the InputError `f` throws, or "" if it throws none.
+template <typename F>
+std::string InputErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace mechflow::testing
