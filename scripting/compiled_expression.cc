@@ -89,7 +89,7 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
   for (const auto& name : arguments_) arguments += (arguments.empty() ? "" : ", ") + name;
   std::string code;
   if (!upvalues.empty()) code += "local " + upvalues + " = ...; ";
-  code += "return function(" + arguments + ") return (" + body + "\n) end";
+  code += "return function(" + arguments + ") return (" + body + ") end";
 
   lua_State* L = lua_.get();
   const int top = lua_gettop(L);

@@ -1,1 +1,2 @@
 # Tests of scripting/.
+mechflow_test(scripting_test unit tests/scripting/scripting_test.cc)
