@@ -1,0 +1,197 @@
+// Reading and loading diagrams: every kind of bad input gives one clear
+// message with file:line, and good input is loaded as written.
+
+#include <cstdio>
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "diagrams/xml_reader.h"
+#include "tests/test_util.h"
+
+namespace mechflow::diagrams {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+using mechflow::testing::InputErrorOf;
+using mechflow::testing::LoadXml;
+
+std::string ErrorOf(const std::string& xml, const LoadOptions& options = {}) {
+  return InputErrorOf([&] { LoadXml(xml, options); });
+}
+
+// A valid two-block diagram: x' = k * x, with `extra` inserted in <blocks>.
+std::string Valid(const std::string& solver = "<solver t_end='1'/>", const std::string& extra = "",
+                  const std::string& more_connections = "") {
+  return "<diagram name='ok'>\n"                                          // 1
+         "<identifiers>\n"                                                // 2
+         "  <identifier name='k' value='-2'/>\n"                          // 3
+         "</identifiers>\n"                                               // 4
+         "<blocks>\n"                                                     // 5
+         "  <block type='integrator' name='x' initial='1'/>\n"            // 6
+         "  <block type='gain' name='g' k='k'/>\n" +                      // 7
+         extra +
+         "</blocks>\n"
+         "<connections>\n"
+         "  <connect from='x.y' to='g.u'/>\n"
+         "  <connect from='g.y' to='x.u'/>\n" +
+         more_connections + "</connections>\n" + solver + "\n</diagram>\n";
+}
+
+TEST(XmlReaderTest, MalformedXmlGivesItsLine) {
+  EXPECT_THAT(ErrorOf("<diagram>\n<blocks>\n<block type='gain' name='g' k='1'>\n</blocks>\n</diagram>"),
+              AllOf(StartsWith("test.xml:"), HasSubstr("malformed XML")));
+  EXPECT_THAT(ErrorOf("<diagram>\n\n<blocks name='a' name='b'/></diagram>"), StartsWith("test.xml:3: malformed XML"));
+}
+
+TEST(XmlReaderTest, UnknownElementsAndAttributesSuggestTheNearestName) {
+  EXPECT_THAT(ErrorOf("<diagram>\n<blokcs/>\n</diagram>"),
+              AllOf(StartsWith("test.xml:2: unknown element <blokcs> inside <diagram> (did you mean 'blocks'?)"),
+                    HasSubstr("expected one of: identifiers, blocks")));
+  EXPECT_THAT(ErrorOf("<diagram>\n<solver t_edn='1'/>\n</diagram>"),
+              StartsWith("test.xml:2: <solver> has no attribute 't_edn' (did you mean 't_end'?)"));
+  EXPECT_THAT(ErrorOf("<diagram><identifiers>\n<identifier name='a' valeu='1'/></identifiers></diagram>"),
+              StartsWith("test.xml:2: <identifier> has no attribute 'valeu' (did you mean 'value'?)"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "  <block type='gain' name='h' kk='1'/>\n")),
+              StartsWith("test.xml:8: block 'h' (gain) has no parameter 'kk' (did you mean 'k'?)"));
+  EXPECT_THAT(ErrorOf("<diagram><connections>\n<connect from='a.y'/></connections></diagram>"),
+              StartsWith("test.xml:2: <connect> needs the attribute 'to'"));
+  EXPECT_THAT(ErrorOf("<model/>"), HasSubstr("the top element is <model>; expected <diagram>"));
+  EXPECT_THAT(ErrorOf("<diagram><solver/>\n<solver/></diagram>"), StartsWith("test.xml:2: a second <solver>"));
+}
+
+TEST(LoaderTest, UnknownBlockTypeListsTheKnownOnes) {
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "  <block type='gian' name='h' k='1'/>\n")),
+              AllOf(StartsWith("test.xml:8: block 'h' has unknown type 'gian' (did you mean 'gain'?)"),
+                    HasSubstr("known types: abs, clock, constant")));
+}
+
+TEST(LoaderTest, BadNumbersAreReportedWithTheirAttribute) {
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='1e-6x'/>")),
+              AllOf(StartsWith("test.xml:"), HasSubstr("solver setting 'rtol': '1e-6x' is not a valid expression")));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "  <block type='gain' name='h' k='2..5'/>\n")),
+              AllOf(StartsWith("test.xml:8: block 'h' parameter 'k'"), HasSubstr("not a valid expression")));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "  <block type='gain' name='h' k='kk'/>\n")),
+              HasSubstr("unknown name 'kk' (did you mean 'k'?)"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "  <block type='gain' name='h' k=''/>\n")),
+              HasSubstr("expected a number or an expression, found nothing"));
+}
+
+TEST(LoaderTest, MissingReferencedFile) {
+  const std::string path = ::testing::TempDir() + "/mechflow_missing_file.xml";
+  {
+    std::ofstream f(path);
+    f << Valid("<solver t_end='1'/>", "  <block type='table' name='tab' file='nope.csv'/>\n");
+  }
+  const std::string error = InputErrorOf([&] { LoadDiagram(path); });
+  EXPECT_THAT(error, AllOf(HasSubstr("mechflow_missing_file.xml:8: block 'tab' parameter 'file': file 'nope.csv' "
+                                     "not found")));
+  std::remove(path.c_str());
+  EXPECT_THAT(InputErrorOf([&] { LoadDiagram(path); }), HasSubstr("cannot open diagram file"));
+}
+
+TEST(LoaderTest, IdentifierErrors) {
+  const std::string below =
+      "<diagram><identifiers>\n<identifier name='a' value='b*2'/>\n<identifier name='b' value='1'/>\n"
+      "</identifiers></diagram>";
+  EXPECT_THAT(ErrorOf(below), StartsWith("test.xml:2: identifier 'a': uses 'b', which is defined below it "
+                                         "(at test.xml:3)"));
+  const std::string cycle =
+      "<diagram><identifiers>\n<identifier name='a' value='b'/>\n<identifier name='b' value='a'/>\n"
+      "</identifiers></diagram>";
+  EXPECT_THAT(ErrorOf(cycle), HasSubstr("which is defined below it"));
+  EXPECT_THAT(ErrorOf("<diagram><identifiers>\n<identifier name='a' value='(1 +'/></identifiers></diagram>"),
+              AllOf(StartsWith("test.xml:2: identifier 'a': '(1 +' is not a valid expression"),
+                    HasSubstr("unexpected symbol")));
+}
+
+TEST(LoaderTest, LuaExpressionSyntaxErrorNamesTheBlock) {
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "  <block type='expression' name='f' expr='u +* 2'/>\n")),
+              AllOf(StartsWith("test.xml:8: block 'f' (expression): expression 'u +* 2' does not compile"),
+                    HasSubstr("block 'f':1: unexpected symbol near '*'")));
+}
+
+TEST(LoaderTest, SchedulerErrorsNameBothEnds) {
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "  <block type='gain' name='h' k='1'/>\n")),
+              StartsWith("test.xml:8: input h.u is not connected"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "", "  <connect from='x.y' to='x.u'/>\n")),
+              AllOf(StartsWith("test.xml:12: input x.u is driven twice: by g.y (test.xml:11) and by x.y"),
+                    HasSubstr("use a sum block")));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "  <block type='constant' name='c' value='1 2'/>\n"
+                                                   "  <block type='gain' name='h' k='1'/>\n",
+                            "  <connect from='c.y' to='h.u'/>\n")),
+              HasSubstr("connection from 'c.y' to 'h.u': width mismatch: output c.y has width 2, input h.u has width 1"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "", "  <connect from='x.y' to='g.in'/>\n")),
+              AllOf(HasSubstr("connection from 'x.y' to 'g.in': block 'g' (gain) has no input port 'in'"), HasSubstr("its inputs: u")));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "", "  <connect from='xx.y' to='g.u'/>\n")),
+              HasSubstr("there is no block named 'xx' (did you mean 'x'?)"));
+  // gain -> sum -> gain, all with direct feedthrough
+  const std::string loop = Valid("<solver t_end='1'/>",
+                                 "  <block type='gain' name='a' k='1'/>\n  <block type='sum' name='s'/>\n"
+                                 "  <block type='constant' name='c' value='1'/>\n",
+                                 "  <connect from='a.y' to='s.u1'/>\n  <connect from='c.y' to='s.u2'/>\n"
+                                 "  <connect from='s.y' to='a.u'/>\n");
+  EXPECT_THAT(ErrorOf(loop), AllOf(HasSubstr("algebraic loop through"), HasSubstr("a.y -> s.u1 (feeds s.y directly)"),
+                                   HasSubstr("s.y -> a.u (feeds a.y directly)")));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/>", "  <block type='gain' name='g' k='1'/>\n")),
+              HasSubstr("block name 'g' is used twice (first at test.xml:7)"));
+}
+
+TEST(LoaderTest, SolverSettingsAreChecked) {
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='0'/>")), HasSubstr("t_end must be greater than t_start"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='-1'/>")), HasSubstr("t_end must be greater than t_start"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='-1e-6'/>")), HasSubstr("rtol must be > 0"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' atol='-1'/>")), HasSubstr("atol must be > 0"));
+  LoadOptions options;
+  options.t_end = -3;
+  EXPECT_THAT(ErrorOf(Valid(), options), HasSubstr("(t_end given by --t-end)"));
+}
+
+TEST(LoaderTest, SetOverridesOnlyNumbers) {
+  LoadOptions options;
+  options.overrides = {{"K", -3}};
+  const LoadedDiagram loaded = LoadXml(Valid(), options);
+  EXPECT_EQ(loaded.identifiers->Value("k"), -3);
+  options.overrides = {{"kay", 1}};
+  EXPECT_THAT(ErrorOf(Valid(), options), HasSubstr("--set kay: no identifier named 'kay'"));
+  const std::string derived = "<diagram><identifiers><identifier name='a' value='1'/>"
+                              "<identifier name='b' value='2*a'/></identifiers></diagram>";
+  options.overrides = {{"b", 1}};
+  EXPECT_THAT(ErrorOf(derived, options), HasSubstr("--set b: identifier 'b' is defined by an expression"));
+}
+
+TEST(LoaderTest, OutputsLogsGroupsAndRecorders) {
+  const LoadedDiagram loaded = LoadXml(Valid("<solver t_end='2' rtol='1e-9'/>\n"
+                                             "<output interval='0.5' plot='p.svg'>\n"
+                                             "  <log signal='x' label='position' group='state'/>\n"
+                                             "  <log signal='g.y' label='rate' group='state'/>\n"
+                                             "</output>",
+                                             "  <block type='recorder' name='rec' inputs='2'/>\n",
+                                             "  <connect from='x.y' to='rec.u1'/>\n  <connect from='g.y' to='rec.u2'/>\n"));
+  EXPECT_EQ(loaded.solver.t_end, 2);
+  EXPECT_EQ(loaded.solver.rtol, 1e-9);
+  EXPECT_EQ(loaded.solver.output_interval, 0.5);
+  EXPECT_EQ(loaded.csv_file, "ok.csv");
+  EXPECT_EQ(loaded.plot_file, "p.svg");
+  ASSERT_EQ(loaded.logged.size(), 4u);
+  EXPECT_EQ(loaded.logged[0].name, "position");
+  EXPECT_EQ(loaded.logged[1].name, "rate");
+  EXPECT_EQ(loaded.logged[2].name, "x.y");
+  EXPECT_EQ(loaded.logged[3].name, "g.y");
+  ASSERT_EQ(loaded.groups.size(), 2u);
+  EXPECT_EQ(loaded.groups[0].name, "state");
+  EXPECT_EQ(loaded.groups[0].columns, (std::vector<int>{1, 2}));
+  EXPECT_EQ(loaded.groups[1].name, "rec");
+  EXPECT_EQ(loaded.groups[1].columns, (std::vector<int>{3, 4}));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/><output><log signal='x'/><log signal='x.y'/></output>")),
+              HasSubstr("a second logged column named 'x.y'"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/><output><log signal='x.z'/></output>")),
+              HasSubstr("<log>: signal 'x.z': block 'x' has no output 'z'"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/><output plot='p.jpg'/>")), HasSubstr("must end in .png or .svg"));
+}
+
+}  // namespace
+}  // namespace mechflow::diagrams
