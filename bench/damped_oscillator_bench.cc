@@ -243,13 +243,13 @@ int main(int argc, char** argv) {
     if (ids.Has("x0")) osc.x0 = ids.Value("x0");
     if (!(osc.beta < 1.0)) throw std::runtime_error("the closed form needs beta < 1");
 
-    // the logged columns to compare: "x" and "v"
-    mechflow::blocks::Results columns([&] {
-      std::vector<std::string> names;
-      for (const auto& s : loaded.logged) names.push_back(s.name);
-      return names;
-    }());
-    const int x_column = columns.FindColumn("x"), v_column = columns.FindColumn("v");
+    // the logged columns to compare: "x" and "v" (column 0 is time)
+    int x_column = -1, v_column = -1;
+    for (int i = 0, column = 1; i < static_cast<int>(loaded.logged.size()); column += loaded.logged[i++].width) {
+      if (loaded.logged[i].width != 1) continue;
+      if (loaded.logged[i].name == "x") x_column = column;
+      if (loaded.logged[i].name == "v") v_column = column;
+    }
     if (x_column < 0 || v_column < 0)
       throw std::runtime_error(path + ": the diagram must log signals labelled \"x\" and \"v\"");
 

@@ -37,6 +37,9 @@ struct Simulator::Solver {
 
 namespace {
 
+// Right-hand-side failures (exceptions) tolerated in one run before it stops.
+constexpr int kMaxCallbackFailures = 30;
+
 std::vector<std::string> ColumnNames(const std::vector<SignalRef>& logged) {
   std::vector<std::string> names;
   for (const auto& s : logged) {
@@ -99,8 +102,11 @@ int Simulator::Rhs(double t, N_Vector y, N_Vector ydot, void* user) {
     EvaluateOutputs(d, &ctx);
     EvaluateDerivatives(d, &ctx);
   } catch (const std::exception& e) {
+    // recoverable at first: CVODE retries with smaller steps, so a failing
+    // run stops close to the failing instant; then final, so that a model
+    // that cannot go on does not creep towards it with ever smaller steps
     self->callback_failure_ = e.what();
-    return -1;
+    return ++self->callback_failures_ > kMaxCallbackFailures ? -1 : 1;
   }
   if (d.num_states() == 0) xdot[0] = 0.0;  // the placeholder state of a stateless diagram
   for (int i = 0; i < d.num_states(); ++i) {
@@ -207,6 +213,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   results_ = Results(ColumnNames(logged_));
   events_.clear();
   stats_ = SolverStats();
+  callback_failures_ = 0;
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
 

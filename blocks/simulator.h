@@ -119,6 +119,7 @@ class Simulator {
   std::vector<int> roots_found_;
   std::vector<long> next_hit_;           // per periodic block: next k
   std::string callback_failure_;         // reason stored by a failed callback
+  int callback_failures_ = 0;
   std::string solver_message_;           // last message from CVODE's error handler
   std::unique_ptr<Solver> solver_;
 };

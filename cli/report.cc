@@ -1,6 +1,7 @@
 #include "cli/report.h"
 
 #include <cstdio>
+#include <sstream>
 #include <string>
 
 namespace mechflow::cli {
@@ -116,15 +117,15 @@ void PrintDot(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
       << "  edge [fontname=\"sans\", fontsize=9];\n";
   for (int bi = 0; bi < d.num_blocks(); ++bi) {
     const blocks::Block& b = d.block(bi);
-    std::string inputs, outputs;
+    std::ostringstream inputs, outputs;
     for (int p = 0; p < b.num_inputs(); ++p)
-      inputs += (p ? "|" : "") + std::string("<i") + std::to_string(p) + "> " + RecordText(b.input_port(p).name);
+      inputs << (p ? "|" : "") << "<i" << p << "> " << RecordText(b.input_port(p).name);
     for (int p = 0; p < b.num_outputs(); ++p)
-      outputs += (p ? "|" : "") + std::string("<o") + std::to_string(p) + "> " + RecordText(b.output_port(p).name);
+      outputs << (p ? "|" : "") << "<o" << p << "> " << RecordText(b.output_port(p).name);
     std::string label = "{";
-    if (!inputs.empty()) label += "{" + inputs + "}|";
+    if (b.num_inputs() > 0) label += "{" + inputs.str() + "}|";
     label += RecordText(b.name()) + "\\n(" + RecordText(b.type()) + ")";
-    if (!outputs.empty()) label += "|{" + outputs + "}";
+    if (b.num_outputs() > 0) label += "|{" + outputs.str() + "}";
     label += "}";
     out << "  b" << bi << " [label=" << DotQuote(label) << "];\n";
   }

@@ -1,0 +1,182 @@
+// The mechflow command, run as a user would: exit codes, messages, files.
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace mechflow::cli {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string ReadFile(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `mechflow ARGS` through the shell with stdout and stderr captured.
+Outcome Mechflow(const std::string& args) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "mechflow_cli";
+  fs::create_directories(dir);
+  const std::string command = std::string(MECHFLOW_BINARY) + " " + args + " >" + (dir / "out").string() + " 2>" +
+                              (dir / "err").string() + " </dev/null";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadFile(dir / "out"), ReadFile(dir / "err")};
+}
+
+std::string Example(const std::string& name) {
+  return std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + name;
+}
+
+fs::path FreshDir(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+fs::path WriteDiagram(const std::string& name, const std::string& xml) {
+  const fs::path path = fs::path(::testing::TempDir()) / name;
+  std::ofstream(path) << xml;
+  return path;
+}
+
+int CountLines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+TEST(CliTest, Help) {
+  const Outcome general = Mechflow("--help");
+  EXPECT_EQ(general.exit_code, 0);
+  EXPECT_THAT(general.out, HasSubstr("Commands:"));
+  const Outcome run_help = Mechflow("help run");
+  EXPECT_THAT(run_help.out, StartsWith("usage: mechflow run FILE"));
+  EXPECT_EQ(Mechflow("run --help").out, run_help.out);
+  EXPECT_THAT(Mechflow("check --help").out, StartsWith("usage: mechflow check FILE"));
+  const Outcome bad = Mechflow("rnu x.xml");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("unknown command 'rnu' (did you mean 'run'?)"));
+  EXPECT_EQ(Mechflow("run").exit_code, 2);
+  EXPECT_THAT(Mechflow("run x.xml --t-end abc").err, HasSubstr("--t-end: 'abc' is not a number"));
+}
+
+TEST(CliTest, CheckAndGraphEveryExample) {
+  for (const char* name : {"damped_oscillator_blocks.xml", "van_der_pol_stiff.xml", "bouncing_ball_blocks.xml",
+                           "stick_slip_blocks.xml"}) {
+    const Outcome check = Mechflow("check " + Example(name));
+    EXPECT_EQ(check.exit_code, 0) << name << check.err;
+    EXPECT_THAT(check.out, HasSubstr("evaluation order (output ports):"));
+    EXPECT_THAT(check.out, HasSubstr("continuous states:"));
+    const Outcome graph = Mechflow("graph " + Example(name));
+    EXPECT_EQ(graph.exit_code, 0) << name;
+    EXPECT_THAT(graph.out, StartsWith("digraph"));
+    EXPECT_THAT(graph.out, HasSubstr(" -> "));
+  }
+}
+
+TEST(CliTest, RunWritesCsvAndPlot) {
+  const fs::path out = FreshDir("mechflow_run");
+  const Outcome run = Mechflow("run " + Example("damped_oscillator_blocks.xml") + " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("steps"));
+  EXPECT_THAT(run.out, HasSubstr("RHS evaluations"));
+  const std::string csv = ReadFile(out / "damped_oscillator_blocks.csv");
+  EXPECT_THAT(csv, StartsWith("time,x,v\n"));
+  EXPECT_EQ(CountLines(csv), 1002);  // header + t = 0, 0.01, ..., 10
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    EXPECT_TRUE(fs::exists(out / "damped_oscillator_blocks.png"));
+    EXPECT_TRUE(fs::exists(out / "damped_oscillator_blocks.png.gp"));
+  } else {
+    EXPECT_THAT(run.err, HasSubstr("gnuplot not found"));
+  }
+}
+
+TEST(CliTest, SetAndTEndChangeTheRun) {
+  const fs::path a = FreshDir("mechflow_set_a"), b = FreshDir("mechflow_set_b");
+  ASSERT_EQ(Mechflow("run " + Example("damped_oscillator_blocks.xml") + " --out " + a.string()).exit_code, 0);
+  ASSERT_EQ(Mechflow("run " + Example("damped_oscillator_blocks.xml") + " --set beta=0.2 --t-end 1 --out " +
+                     b.string()).exit_code,
+            0);
+  const std::string csv_a = ReadFile(a / "damped_oscillator_blocks.csv");
+  const std::string csv_b = ReadFile(b / "damped_oscillator_blocks.csv");
+  EXPECT_EQ(CountLines(csv_b), 1 + 101);  // t_end 1 keeps the output interval of the diagram (0.01)
+  // same start, different damping: the rows differ after the first
+  EXPECT_EQ(csv_a.substr(0, csv_a.find('\n', 10)), csv_b.substr(0, csv_b.find('\n', 10)));
+  EXPECT_NE(csv_a.substr(0, 2000), csv_b.substr(0, 2000));
+  const Outcome derived = Mechflow("run " + Example("damped_oscillator_blocks.xml") + " --set c=1");
+  EXPECT_EQ(derived.exit_code, 2);
+  EXPECT_THAT(derived.err, HasSubstr("--set c: identifier 'c' is defined by an expression"));
+}
+
+TEST(CliTest, BadDiagramExitsWithOneMessage) {
+  const fs::path path = WriteDiagram("mechflow_bad.xml", "<diagram>\n<blocks>\n<block type='gain' name='g'/>\n"
+                                                         "</blocks>\n</diagram>\n");
+  const Outcome run = Mechflow("run " + path.string());
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("mechflow_bad.xml:3: block 'g' (gain) needs the parameter 'k'"));
+  EXPECT_EQ(CountLines(run.err), 1);
+  EXPECT_EQ(run.out, "");
+  EXPECT_EQ(Mechflow("check " + path.string()).exit_code, 2);
+  EXPECT_EQ(Mechflow("check /nonexistent/d.xml").exit_code, 2);
+}
+
+// A run that fails part-way keeps and writes what it computed.
+TEST(CliTest, FailedRunWritesResultsUpToTheFailure) {
+  const fs::path lua_error = WriteDiagram("mechflow_fail.xml", R"xml(<diagram name="fail">
+  <blocks>
+    <block type="clock" name="clk"/>
+    <block type="expression" name="f" inputs="u" expr="u &lt; 0.5 and u or error('boom')"/>
+    <block type="integrator" name="x"/>
+  </blocks>
+  <connections>
+    <connect from="clk.y" to="f.u"/>
+    <connect from="f.y" to="x.u"/>
+  </connections>
+  <solver t_end="2"/>
+  <output interval="0.01"><log signal="x.y" label="x"/></output>
+</diagram>)xml");
+  const fs::path out = FreshDir("mechflow_fail");
+  const Outcome run = Mechflow("run " + lua_error.string() + " --out " + out.string());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.err, HasSubstr("simulation failed at t = 0.5 s"));
+  EXPECT_THAT(run.err, HasSubstr("block 'f':1: boom"));
+  const std::string csv = ReadFile(out / "fail.csv");
+  EXPECT_GE(CountLines(csv), 50);  // rows up to t = 0.5 only
+  EXPECT_LE(CountLines(csv), 53);
+
+  // x' = x^2, x(0) = 1 has x = 1 / (1 - t): it blows up at t = 1
+  const fs::path blow_up = WriteDiagram("mechflow_blowup.xml", R"xml(<diagram name="blowup">
+  <blocks>
+    <block type="integrator" name="x" initial="1"/>
+    <block type="product" name="sq"/>
+  </blocks>
+  <connections>
+    <connect from="x.y" to="sq.u1"/>
+    <connect from="x.y" to="sq.u2"/>
+    <connect from="sq.y" to="x.u"/>
+  </connections>
+  <solver t_end="2" max_steps="20000"/>
+  <output interval="0.01"><log signal="x.y" label="x"/></output>
+</diagram>)xml");
+  const Outcome blown = Mechflow("run " + blow_up.string() + " --out " + out.string());
+  EXPECT_EQ(blown.exit_code, 1);
+  EXPECT_THAT(blown.err, HasSubstr("simulation failed at t = "));
+  const std::string csv2 = ReadFile(out / "blowup.csv");
+  EXPECT_GE(CountLines(csv2), 100);  // rows up to t = 0.99 at least
+  EXPECT_LE(CountLines(csv2), 103);
+}
+
+}  // namespace
+}  // namespace mechflow::cli
