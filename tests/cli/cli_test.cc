@@ -1,6 +1,7 @@
 // The mechflow command, run as a user would: exit codes, messages, files.
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -31,7 +32,8 @@ std::string ReadFile(const fs::path& p) {
 
 // Runs `mechflow ARGS` through the shell with stdout and stderr captured.
 Outcome Mechflow(const std::string& args) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "mechflow_cli";
+  // one folder per test process: CTest runs tests in parallel
+  const fs::path dir = fs::path(::testing::TempDir()) / ("mechflow_cli_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const std::string command = std::string(MECHFLOW_BINARY) + " " + args + " >" + (dir / "out").string() + " 2>" +
                               (dir / "err").string() + " </dev/null";

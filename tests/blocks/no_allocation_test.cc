@@ -1,0 +1,178 @@
+// The evaluation passes allocate nothing (house style, architecture rule 4).
+//
+// Every example diagram is loaded and set up the way blocks::Simulator sets up
+// its Context; then the passes the solver callbacks run (outputs, derivatives,
+// zero crossings) are called 1000 times with operator new counted. Expected:
+// zero calls. Lua does not allocate through operator new but through
+// LuaState's own allocator, so for diagrams with Lua blocks the Lua heap is
+// checked too, with Lua's garbage collector stopped so that garbage collected
+// during the loop cannot hide an allocation made in it.
+//
+// Not covered: malloc called directly (CVODE's own allocations happen at
+// set-up, outside the right-hand side), and the event/reinitialisation path.
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <lua.hpp>
+
+#include "blocks/evaluation.h"
+#include "diagrams/loader.h"
+#include "scripting/lua_state.h"
+
+// ---------------------------------------------------------------------------
+// counting replacements of the global allocation functions
+
+namespace {
+
+std::atomic<bool> g_counting{false};
+std::atomic<long> g_new_calls{0};
+
+void* Allocate(std::size_t size) {
+  if (g_counting.load(std::memory_order_relaxed)) g_new_calls.fetch_add(1, std::memory_order_relaxed);
+  return std::malloc(size == 0 ? 1 : size);
+}
+
+void* AllocateAligned(std::size_t size, std::align_val_t alignment) {
+  if (g_counting.load(std::memory_order_relaxed)) g_new_calls.fetch_add(1, std::memory_order_relaxed);
+  const auto a = static_cast<std::size_t>(alignment);
+  const std::size_t rounded = (size + a - 1) / a * a;  // aligned_alloc wants a multiple of the alignment
+  return std::aligned_alloc(a, rounded == 0 ? a : rounded);
+}
+
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (void* p = Allocate(size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  if (void* p = Allocate(size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return Allocate(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return Allocate(size); }
+void* operator new(std::size_t size, std::align_val_t alignment) {
+  if (void* p = AllocateAligned(size, alignment)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size, std::align_val_t alignment) {
+  if (void* p = AllocateAligned(size, alignment)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
+  return AllocateAligned(size, alignment);
+}
+void* operator new[](std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
+  return AllocateAligned(size, alignment);
+}
+
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+
+// ---------------------------------------------------------------------------
+
+namespace mechflow {
+namespace {
+
+// Counts operator new calls while alive. No GoogleTest macro may run inside
+// (a failing assertion allocates its message).
+class CountAllocations {
+ public:
+  CountAllocations() {
+    g_new_calls = 0;
+    g_counting = true;
+  }
+  ~CountAllocations() { g_counting = false; }
+  long calls() const { return g_new_calls.load(); }
+};
+
+// The counter itself works: an allocation in the counted region is seen.
+// (::operator new is called directly because a new-expression may be elided.)
+TEST(NoAllocationTest, CounterSeesAnAllocation) {
+  long calls = 0;
+  {
+    CountAllocations counter;
+    void* p = ::operator new(64);
+    ::operator delete(p);
+    calls = counter.calls();
+  }
+  EXPECT_EQ(calls, 1);
+}
+
+class ExampleDiagram : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ExampleDiagram, EvaluationPassesDoNotAllocate) {
+  const std::string path = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + GetParam();
+  const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(path);
+  const blocks::Diagram& d = *loaded.diagram;
+
+  // the Context as blocks::Simulator sizes it; x, xdot and crossings stand in
+  // for the SUNDIALS vectors
+  blocks::Context ctx;
+  ctx.signals.assign(d.num_signals(), 0.0);
+  ctx.discrete.assign(d.num_discrete_states(), 0.0);
+  std::vector<double> x(std::max(1, d.num_states()), 0.0);
+  std::vector<double> xdot(x.size(), 0.0);
+  std::vector<double> crossings(std::max(1, d.num_zero_crossings()), 0.0);
+  ctx.x = x.data();
+  ctx.xdot = xdot.data();
+  ctx.crossings = crossings.data();
+  const double t0 = loaded.solver.t_start, t_end = loaded.solver.t_end;
+  ctx.time = t0;
+  blocks::InitializeStates(d, &ctx);
+  ASSERT_TRUE(blocks::SettleModes(d, &ctx));  // as the simulator does before integrating
+
+  // Lua: collect what loading left behind, then stop the collector so any
+  // allocation in the loop shows as growth
+  lua_State* L = loaded.lua->get();
+  lua_gc(L, LUA_GCCOLLECT);
+  lua_gc(L, LUA_GCSTOP);
+  const std::size_t lua_before = loaded.lua->memory_in_use();
+
+  constexpr int kCalls = 1000;
+  long new_calls = 0;
+  {
+    CountAllocations counter;
+    for (int i = 0; i < kCalls; ++i) {
+      ctx.time = t0 + (t_end - t0) * i / kCalls;
+      ++ctx.evaluation;
+      blocks::EvaluateOutputs(d, &ctx);
+      blocks::EvaluateDerivatives(d, &ctx);
+      blocks::EvaluateZeroCrossings(d, &ctx);
+    }
+    new_calls = counter.calls();
+  }
+  const std::size_t lua_after = loaded.lua->memory_in_use();
+  lua_gc(L, LUA_GCRESTART);
+
+  EXPECT_EQ(new_calls, 0) << "operator new called in " << kCalls << " evaluations of " << GetParam();
+  EXPECT_EQ(lua_after, lua_before) << "Lua heap changed by " << static_cast<long>(lua_after - lua_before)
+                                   << " bytes in " << kCalls << " evaluations of " << GetParam();
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, ExampleDiagram,
+                         ::testing::Values("damped_oscillator_blocks.xml", "stick_slip_blocks.xml",
+                                           "van_der_pol_stiff.xml", "bouncing_ball_blocks.xml"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           std::string name = info.param;
+                           name = name.substr(0, name.find('.'));
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace mechflow
