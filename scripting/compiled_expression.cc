@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <set>
+#include <cstdio>
+#include <cstring>
 
 #include <lua.hpp>
 
+#include "blocks/suggest.h"
 #include "mech/errors.h"
 #include "scripting/identifiers.h"
 #include "scripting/lua_state.h"
@@ -16,56 +18,131 @@ namespace {
 
 bool IsNameStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
 bool IsNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool IsDigit(char c) { return std::isdigit(static_cast<unsigned char>(c)); }
 
-// Rewrites identifier names to lower case and collects the free names that
-// need an upvalue (identifiers and built-ins). Strings and field names
-// (after '.' or ':') are left alone.
-std::string Rewrite(const std::string& expr, const std::vector<std::string>& arguments, const IdentifierTable& ids,
-                    std::set<std::string>* used_identifiers, std::set<std::string>* used_builtins) {
-  std::string out;
-  size_t i = 0;
-  char previous = 0;  // last non-space character copied
-  while (i < expr.size()) {
-    const char c = expr[i];
-    if (c == '"' || c == '\'') {  // string literal
-      size_t j = i + 1;
-      while (j < expr.size() && expr[j] != c) j += expr[j] == '\\' ? 2 : 1;
-      out.append(expr, i, j + 1 - i);
-      i = j + 1;
-      previous = c;
-    } else if (std::isdigit(static_cast<unsigned char>(c)) ||
-               (c == '.' && i + 1 < expr.size() && std::isdigit(static_cast<unsigned char>(expr[i + 1])))) {
-      size_t j = i;
-      while (j < expr.size() && (IsNameChar(expr[j]) || expr[j] == '.' ||
-                                 ((expr[j] == '+' || expr[j] == '-') && j > i &&
-                                  std::string("eEpP").find(expr[j - 1]) != std::string::npos)))
-        ++j;
-      out.append(expr, i, j - i);
-      i = j;
-      previous = '0';
-    } else if (IsNameStart(c)) {
-      size_t j = i;
-      while (j < expr.size() && IsNameChar(expr[j])) ++j;
-      std::string name = expr.substr(i, j - i);
-      const bool field = previous == '.' || previous == ':';
-      const bool argument = std::find(arguments.begin(), arguments.end(), name) != arguments.end();
-      if (!field && !argument) {
-        if (ids.Has(name)) {
-          name = ToLower(name);
-          used_identifiers->insert(name);
-        } else if (LuaState::IsBuiltinName(name)) {
-          used_builtins->insert(name);
-        }
-      }
-      out += name;
-      i = j;
-      previous = 'a';
+// Length of the long bracket opening at `i` ("[[" -> 2, "[==[" -> 4), or 0.
+std::size_t LongBracketOpen(const std::string& s, std::size_t i) {
+  if (i >= s.size() || s[i] != '[') return 0;
+  std::size_t j = i + 1;
+  while (j < s.size() && s[j] == '=') ++j;
+  return j < s.size() && s[j] == '[' ? j + 1 - i : 0;
+}
+
+// End (one past) of the long string or comment whose opening bracket of
+// `open_length` characters starts at `i`; the text's end if unclosed.
+std::size_t LongBracketEnd(const std::string& s, std::size_t i, std::size_t open_length) {
+  const std::string close = "]" + std::string(open_length - 2, '=') + "]";
+  const std::size_t end = s.find(close, i + open_length);
+  return end == std::string::npos ? s.size() : end + close.size();
+}
+
+// End (one past) of the number starting at `i`.
+std::size_t NumberEnd(const std::string& s, std::size_t i) {
+  const bool hex = s[i] == '0' && i + 1 < s.size() && (s[i + 1] == 'x' || s[i + 1] == 'X');
+  const char exponent_lower = hex ? 'p' : 'e';
+  std::size_t j = hex ? i + 2 : i;
+  while (j < s.size()) {
+    const char c = s[j];
+    if ((c == '+' || c == '-') && std::tolower(static_cast<unsigned char>(s[j - 1])) == exponent_lower) {
+      ++j;
+    } else if (IsNameChar(c) || c == '.') {
+      ++j;
     } else {
-      out += c;
-      if (!std::isspace(static_cast<unsigned char>(c))) previous = c;
-      ++i;
+      break;
     }
   }
+  return j;
+}
+
+// The free names of an expression, and the expression with identifier names
+// in their canonical lower case.
+struct Scan {
+  std::string rewritten;
+  std::vector<std::string> free_names;  // in order of first use, after rewriting
+  bool defines_function = false;
+};
+
+Scan ScanExpression(const std::string& expr, const IdentifierTable& identifiers) {
+  Scan scan;
+  std::string previous;  // previous token if it was punctuation, else ""
+  std::size_t i = 0;
+  while (i < expr.size()) {
+    const char c = expr[i];
+    std::size_t end = i + 1;
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      scan.rewritten += c;
+      i = end;
+      continue;
+    }
+    if (c == '-' && i + 1 < expr.size() && expr[i + 1] == '-') {  // comment
+      const std::size_t open = LongBracketOpen(expr, i + 2);
+      end = open ? LongBracketEnd(expr, i + 2, open) : std::min(expr.find('\n', i), expr.size());
+      scan.rewritten.append(expr, i, end - i);
+      i = end;
+      continue;
+    }
+    if (c == '"' || c == '\'') {  // short string
+      while (end < expr.size() && expr[end] != c) end += expr[end] == '\\' ? 2 : 1;
+      end = std::min(end + 1, expr.size());
+      previous.clear();
+    } else if (const std::size_t open = LongBracketOpen(expr, i)) {  // long string
+      end = LongBracketEnd(expr, i, open);
+      previous.clear();
+    } else if (IsDigit(c) || (c == '.' && i + 1 < expr.size() && IsDigit(expr[i + 1]))) {
+      end = NumberEnd(expr, i);
+      previous.clear();
+    } else if (IsNameStart(c)) {
+      while (end < expr.size() && IsNameChar(expr[end])) ++end;
+      std::string name = expr.substr(i, end - i);
+      std::size_t next = end;
+      while (next < expr.size() && std::isspace(static_cast<unsigned char>(expr[next]))) ++next;
+      const bool field = previous == "." || previous == ":";
+      const bool key = next < expr.size() && expr[next] == '=' && (next + 1 == expr.size() || expr[next + 1] != '=');
+      if (!IsLuaName(name)) {  // a keyword
+        scan.defines_function |= name == "function";
+      } else if (!field && !key) {
+        if (identifiers.Has(name)) name = ToLower(name);
+        if (std::find(scan.free_names.begin(), scan.free_names.end(), name) == scan.free_names.end())
+          scan.free_names.push_back(name);
+      }
+      scan.rewritten += name;
+      i = end;
+      previous.clear();
+      continue;
+    } else {  // punctuation: "..." and ".." are one token each
+      while (end < expr.size() && end - i < 3 && (c == '.' || c == ':') && expr[end] == c) ++end;
+      previous = expr.substr(i, end - i);
+    }
+    scan.rewritten.append(expr, i, end - i);
+    i = end;
+  }
+  return scan;
+}
+
+// Message handler of an expression (upvalue 1: its chunk name). Turns any
+// error object into text; adds a traceback only when Lua code from another
+// chunk (a function a script defined) was running, since the expression's own
+// position is already in the message.
+int ExpressionMessageHandler(lua_State* L) {
+  const char* chunk = lua_tostring(L, lua_upvalueindex(1));
+  bool foreign = false;
+  lua_Debug ar;
+  for (int level = 1; lua_getstack(L, level, &ar); ++level) {
+    lua_getinfo(L, "S", &ar);
+    if (std::strcmp(ar.what, "C") == 0) continue;
+    if (std::strcmp(ar.source, chunk) == 0) break;  // reached the expression
+    foreign = true;
+  }
+  if (foreign) return LuaState::TracebackHandler(L);
+  if (lua_type(L, 1) == LUA_TSTRING) return 1;
+  if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
+  lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  return 1;
+}
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
   return out;
 }
 
@@ -76,59 +153,147 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
                                        const std::string& chunk_name)
     : lua_(lua),
       expression_(expression),
-      label_(chunk_name.size() > 1 && (chunk_name[0] == '=' || chunk_name[0] == '@') ? chunk_name.substr(1)
-                                                                                       : chunk_name),
+      label_(!chunk_name.empty() && (chunk_name[0] == '=' || chunk_name[0] == '@') ? chunk_name.substr(1)
+                                                                                   : chunk_name),
       arguments_(std::move(argument_names)) {
-  std::set<std::string> used_identifiers, used_builtins;
-  const std::string body = Rewrite(expression, arguments_, identifiers, &used_identifiers, &used_builtins);
-
-  // the expression stays on line 1 of the chunk so Lua's line numbers match it
-  std::string upvalues, arguments;
-  for (const auto& name : used_builtins) upvalues += (upvalues.empty() ? "" : ", ") + name;
-  for (const auto& name : used_identifiers) upvalues += (upvalues.empty() ? "" : ", ") + name;
-  for (const auto& name : arguments_) arguments += (arguments.empty() ? "" : ", ") + name;
-  std::string code;
-  if (!upvalues.empty()) code += "local " + upvalues + " = ...; ";
-  code += "return function(" + arguments + ") return (" + body + ") end";
-
+  for (std::size_t i = 0; i < arguments_.size(); ++i) {
+    if (!IsLuaName(arguments_[i]))
+      throw InputError(label_ + ": argument name '" + arguments_[i] + "' is not a Lua name");
+    if (std::find(arguments_.begin(), arguments_.begin() + i, arguments_[i]) != arguments_.begin() + i)
+      throw InputError(label_ + ": argument name '" + arguments_[i] + "' is given twice");
+    // identifiers are case-insensitive, arguments are not: `U` would be ambiguous
+    if (const int id = identifiers.Find(arguments_[i]); id >= 0)
+      throw InputError(label_ + ": argument name '" + arguments_[i] + "' is also the name of the identifier '" +
+                       identifiers.name(id) + "' (" + identifiers.origin(id) + "); rename one of them");
+  }
   lua_State* L = lua_.get();
   const int top = lua_gettop(L);
-  if (luaL_loadbufferx(L, code.data(), code.size(), chunk_name.c_str(), "t") != LUA_OK) {
-    const std::string message = lua_tostring(L, -1);
+
+  // syntax, checked on the text as written so Lua's message quotes it
+  const std::string alone = "return " + expression;
+  int status = luaL_loadbufferx(L, alone.data(), alone.size(), chunk_name.c_str(), "t");
+  if (status != LUA_OK) {
+    const std::string message = lua_.ErrorText(status);
     lua_settop(L, top);
     throw InputError("expression '" + expression + "' does not compile: " + message);
   }
-  for (const auto& name : used_builtins) lua_getglobal(L, name.c_str());
-  for (const auto& name : used_identifiers) lua_pushnumber(L, identifiers.Value(name));
-  const int n = static_cast<int>(used_builtins.size() + used_identifiers.size());
-  if (lua_pcall(L, n, 1, 0) != LUA_OK || !lua_isfunction(L, -1)) {
-    const std::string message = lua_isstring(L, -1) ? lua_tostring(L, -1) : "not a function";
+  lua_settop(L, top);
+
+  // resolve every free name: argument, identifier, existing global, or error
+  const Scan scan = ScanExpression(expression, identifiers);
+  std::vector<std::string> upvalues;
+  std::vector<std::string> unknown;
+  for (const auto& name : scan.free_names) {
+    if (std::find(arguments_.begin(), arguments_.end(), name) != arguments_.end()) continue;
+    if (identifiers.Has(name)) {
+      identifiers_used_.push_back(name);
+      upvalues.push_back(name);
+      continue;
+    }
+    const bool exists = lua_getglobal(L, name.c_str()) != LUA_TNIL;
     lua_settop(L, top);
-    throw InputError("expression '" + expression + "': " + message);
+    if (exists) {
+      upvalues.push_back(name);
+    } else if (!scan.defines_function) {
+      unknown.push_back(name);
+    }
+  }
+  if (!unknown.empty()) {
+    std::vector<std::string> candidates = arguments_;
+    for (const auto& name : identifiers.Names()) candidates.push_back(name);
+    for (const auto& name : LuaState::BuiltinNames()) candidates.push_back(name);
+    // a one-letter name is close to too many others for a suggestion to help
+    const std::string& name = unknown.front();
+    throw InputError("expression '" + expression + "' uses the unknown name '" + name + "'" +
+                     (name.size() > 1 ? blocks::DidYouMean(name, candidates) : "") +
+                     (arguments_.empty() ? "; it has no arguments" : "; its arguments are " + Join(arguments_)));
+  }
+
+  // the chunk: upvalues as locals set from its arguments, then the function
+  std::string code;
+  if (!upvalues.empty()) code += "local " + Join(upvalues) + " = ...; ";
+  code += "return function(" + Join(arguments_) + ") return (" + scan.rewritten + "\n) end";
+  status = luaL_loadbufferx(L, code.data(), code.size(), chunk_name.c_str(), "t");
+  if (status != LUA_OK) {
+    const std::string message = lua_.ErrorText(status);
+    lua_settop(L, top);
+    throw InputError("expression '" + expression + "' does not compile as one expression: " + message);
+  }
+  if (!lua_checkstack(L, static_cast<int>(upvalues.size()) + 2)) {
+    lua_settop(L, top);
+    throw InputError("expression '" + expression + "' uses too many names");
+  }
+  for (const auto& name : upvalues) {
+    if (identifiers.Has(name)) {
+      lua_pushnumber(L, identifiers.Value(name));
+    } else {
+      lua_getglobal(L, name.c_str());
+    }
+  }
+  std::string error;
+  if (!lua_.Call(static_cast<int>(upvalues.size()), 1, &error) || !lua_isfunction(L, -1)) {
+    lua_settop(L, top);
+    throw InputError("expression '" + expression + "': " + (error.empty() ? "did not compile to a function" : error));
   }
   function_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
-  if (!lua_checkstack(L, num_arguments() + 4)) throw InputError("expression '" + expression + "': Lua stack full");
+  lua_pushstring(L, chunk_name.c_str());
+  lua_pushcclosure(L, &ExpressionMessageHandler, 1);
+  handler_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
 }
 
-CompiledExpression::~CompiledExpression() { luaL_unref(lua_.get(), LUA_REGISTRYINDEX, function_ref_); }
+CompiledExpression::~CompiledExpression() {
+  luaL_unref(lua_.get(), LUA_REGISTRYINDEX, function_ref_);
+  luaL_unref(lua_.get(), LUA_REGISTRYINDEX, handler_ref_);
+}
 
 double CompiledExpression::Evaluate(const double* args) const {
   lua_State* L = lua_.get();
+  const int n = num_arguments();
   const int top = lua_gettop(L);
+  if (!lua_checkstack(L, n + 2)) throw SimulationError(label_ + ": Lua stack overflow");
+  lua_rawgeti(L, LUA_REGISTRYINDEX, handler_ref_);
   lua_rawgeti(L, LUA_REGISTRYINDEX, function_ref_);
-  for (int i = 0; i < num_arguments(); ++i) lua_pushnumber(L, args[i]);
-  if (lua_pcall(L, num_arguments(), 1, 0) != LUA_OK) {
-    const std::string message = lua_isstring(L, -1) ? lua_tostring(L, -1) : "error object is not a string";
+  for (int i = 0; i < n; ++i) lua_pushnumber(L, args[i]);
+  const int status = lua_pcall(L, n, 1, top + 1);
+  if (status != LUA_OK) {
+    const std::string message = lua_.ErrorText(status);
     lua_settop(L, top);
-    throw SimulationError(message);
+    throw SimulationError(label_ + ": expression error" + (n > 0 ? " " + DescribeArguments(args) : "") + ": " +
+                          message);
   }
-  int is_number = 0;
-  const double value = lua_tonumberx(L, -1, &is_number);
+  const int type = lua_type(L, -1);
+  const double value = lua_tonumber(L, -1);
   lua_settop(L, top);
-  if (!is_number) throw SimulationError(label_ + ": expression '" + expression_ + "' did not give a number");
+  if (type != LUA_TNUMBER)
+    throw SimulationError(label_ + ": expression '" + expression_ + "' gives a " + lua_typename(L, type) +
+                          ", not a number" + (n > 0 ? ", " + DescribeArguments(args) : "") +
+                          (type == LUA_TBOOLEAN ? " (write 'cond and 1 or 0' for a number)" : ""));
   if (!std::isfinite(value))
-    throw SimulationError(label_ + ": expression '" + expression_ + "' gave " + std::to_string(value));
+    throw SimulationError(label_ + ": expression '" + expression_ + "' gives " + std::to_string(value) +
+                          (n > 0 ? " " + DescribeArguments(args) : ""));
   return value;
+}
+
+void CompiledExpression::Rebind(const IdentifierTable& identifiers) {
+  lua_State* L = lua_.get();
+  lua_rawgeti(L, LUA_REGISTRYINDEX, function_ref_);
+  for (int i = 1; const char* name = lua_getupvalue(L, -1, i); ++i) {
+    lua_pop(L, 1);
+    if (std::find(identifiers_used_.begin(), identifiers_used_.end(), name) == identifiers_used_.end()) continue;
+    lua_pushnumber(L, identifiers.Value(name));
+    lua_setupvalue(L, -2, i);
+  }
+  lua_pop(L, 1);
+}
+
+std::string CompiledExpression::DescribeArguments(const double* args) const {
+  std::string out = "at";
+  for (int i = 0; i < num_arguments(); ++i) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%.6g", args[i]);
+    out += (i ? ", " : " ") + arguments_[i] + " = " + value;
+  }
+  return out;
 }
 
 }  // namespace mechflow::scripting

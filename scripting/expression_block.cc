@@ -1,6 +1,6 @@
 #include "scripting/expression_block.h"
 
-#include <cctype>
+#include <algorithm>
 #include <memory>
 #include <sstream>
 
@@ -15,29 +15,27 @@ namespace {
 class ExpressionBlock : public blocks::Block {
  public:
   ExpressionBlock(const std::string& name, const std::string& expr, const std::vector<std::string>& inputs,
-                  LuaState& lua, const IdentifierTable& ids)
-      : Block("expression", name), arguments_(inputs.size() + 1) {
+                  LuaState& lua, const IdentifierTable& identifiers)
+      : Block("expression", name), arguments_(inputs.size() + 1, 0.0) {
     for (const auto& input : inputs) DeclareInputPort(input);
-    DeclareOutputPort("y");
+    DeclareOutputPort("y");  // every input feeds y: the default
     std::vector<std::string> names = {"t"};
     names.insert(names.end(), inputs.begin(), inputs.end());
-    expression_ = std::make_unique<CompiledExpression>(lua, expr, names, ids, "=block '" + name + "'");
+    expression_ = std::make_unique<CompiledExpression>(lua, expr, std::move(names), identifiers,
+                                                       "=block '" + name + "'");
   }
 
  protected:
   void DoCalcOutput(int, const blocks::BlockContext& ctx) const override {
     arguments_[0] = ctx.time();
     for (int i = 0; i < num_inputs(); ++i) arguments_[i + 1] = ctx.input_scalar(i);
-    try {
-      ctx.output(0)[0] = expression_->Evaluate(arguments_.data());
-    } catch (const SimulationError& e) {
-      throw SimulationError(std::string(e.what()) + " (at t = " + std::to_string(ctx.time()) + ")");
-    }
+    ctx.output(0)[0] = expression_->Evaluate(arguments_.data());
   }
 
  private:
   std::unique_ptr<CompiledExpression> expression_;
-  // scratch for the call; a diagram is evaluated by one simulator at a time
+  // (t, inputs...) for the call, sized once; a diagram is evaluated by one
+  // simulator at a time (it shares the one Lua state anyway)
   mutable std::vector<double> arguments_;
 };
 
@@ -46,6 +44,20 @@ std::vector<std::string> SplitNames(const std::string& text) {
   std::vector<std::string> names;
   for (std::string name; in >> name;) names.push_back(name);
   return names;
+}
+
+// Throws InputError unless `inputs` are usable as ports and as Lua arguments.
+void CheckInputNames(const std::vector<std::string>& inputs, const IdentifierTable& identifiers) {
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const std::string& in = inputs[i];
+    if (!IsLuaName(in) || in == "t")
+      throw InputError("input name '" + in + "' must be a Lua name (letters, digits, '_'; not a keyword) other than t");
+    if (std::find(inputs.begin(), inputs.begin() + i, in) != inputs.begin() + i)
+      throw InputError("input name '" + in + "' is given twice");
+    if (const int id = identifiers.Find(in); id >= 0)
+      throw InputError("input name '" + in + "' is also the name of the identifier '" + identifiers.name(id) +
+                       "' (" + identifiers.origin(id) + "); rename the input");
+  }
 }
 
 }  // namespace
@@ -59,15 +71,8 @@ void RegisterScriptingBlocks(blocks::BlockRegistry* registry, LuaState* lua, con
       {"inputs", blocks::ParamKind::kText, false, "u", "space-separated input port names (may be empty)"},
   };
   type.create = [lua, identifiers](const std::string& name, const blocks::BlockParams& p) {
-    const std::vector<std::string> inputs = p.Has("inputs") ? SplitNames(p.Text("inputs")) : std::vector<std::string>{};
-    for (size_t i = 0; i < inputs.size(); ++i) {
-      const std::string& in = inputs[i];
-      bool valid = !in.empty() && (std::isalpha(static_cast<unsigned char>(in[0])) || in[0] == '_');
-      for (const char c : in) valid &= std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-      if (!valid || in == "t") throw InputError("input name '" + in + "' must be a Lua name other than t");
-      for (size_t j = 0; j < i; ++j)
-        if (inputs[j] == in) throw InputError("input name '" + in + "' is given twice");
-    }
+    const std::vector<std::string> inputs = SplitNames(p.Has("inputs") ? p.Text("inputs") : "u");
+    CheckInputNames(inputs, *identifiers);
     return std::make_unique<ExpressionBlock>(name, p.Text("expr"), inputs, *lua, *identifiers);
   };
   registry->Add(std::move(type));

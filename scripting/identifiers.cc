@@ -15,14 +15,31 @@
 namespace mechflow::scripting {
 namespace {
 
-const char* const kKeywords[] = {"and",  "break", "do",   "else", "elseif", "end",   "false", "for",
-                                 "function", "goto", "if", "in", "local", "nil", "not", "or",
-                                 "repeat", "return", "then", "true", "until", "while"};
+constexpr const char* kKeywords[] = {"and",    "break", "do",    "else", "elseif", "end",   "false", "for",
+                                     "function", "goto", "if",  "in",   "local",  "nil",   "not",   "or",
+                                     "repeat", "return", "then", "true", "until",  "while"};
 // names that mean something else inside expressions
-const char* const kReserved[] = {"t", "x", "v"};
+constexpr const char* kArgumentNames[] = {"t", "x", "v"};
+// the Lua globals an expression may need (lower-case, as identifiers are stored)
+constexpr const char* kLuaGlobals[] = {
+    "assert", "collectgarbage", "dofile", "error", "getmetatable", "ipairs", "load",   "loadfile", "next",
+    "pairs",  "pcall",          "print",  "rawequal", "rawget",    "rawlen", "rawset", "require",  "select",
+    "setmetatable", "tonumber", "tostring", "type", "xpcall", "warn", "_g", "_version", "_env", "math",
+    "string", "table", "utf8", "io", "os", "debug", "package", "coroutine"};
 
-// Load-time expressions get this many VM instructions before they are stopped.
+// Load-time expressions get this many VM instructions before they are stopped
+// (about 0.1 s; a real identifier expression needs tens).
 constexpr long kInstructionLimit = 10'000'000;
+
+// Chunk name of load-time expressions; Lua's "expression:1: " is cut from
+// messages, which already say which identifier or parameter failed.
+constexpr char kChunkName[] = "=expression";
+constexpr char kChunkLabel[] = "expression:";
+
+template <std::size_t N>
+bool Contains(const char* const (&list)[N], const std::string& name) {
+  return std::find_if(std::begin(list), std::end(list), [&](const char* s) { return name == s; }) != std::end(list);
+}
 
 std::string Trim(const std::string& s) {
   const auto first = s.find_first_not_of(" \t\r\n");
@@ -30,9 +47,59 @@ std::string Trim(const std::string& s) {
   return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
 }
 
-bool IsLuaName(const std::string& s) {
-  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+// "expression:1: unexpected symbol" -> "unexpected symbol"
+std::string WithoutPosition(std::string message) {
+  if (message.rfind(kChunkLabel, 0) != 0) return message;
+  std::size_t i = sizeof(kChunkLabel) - 1;
+  while (i < message.size() && std::isdigit(static_cast<unsigned char>(message[i]))) ++i;
+  if (i + 1 < message.size() && message[i] == ':' && message[i + 1] == ' ') message.erase(0, i + 2);
+  return message;
+}
+
+// --- Lua side of the evaluation environment ------------------------------------
+// Called by Lua: no C++ objects with destructors (lua_error long-jumps).
+
+// The identifiers an expression may see, as plain arrays.
+struct VisibleIdentifiers {
+  const char* const* names;  // lower-case
+  const double* values;
+  int count;
+};
+
+// __index of the environment: the identifier with the lower-cased name, else
+// the global of that exact name, else an error object {unknown = name}.
+int LowerCaseIndex(lua_State* L) {
+  if (lua_type(L, 2) != LUA_TSTRING) return 0;
+  std::size_t length = 0;
+  const char* key = lua_tolstring(L, 2, &length);
+  luaL_Buffer buffer;
+  char* lower = luaL_buffinitsize(L, &buffer, length);
+  for (std::size_t i = 0; i < length; ++i) lower[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(key[i])));
+  luaL_pushresultsize(&buffer, length);
+  if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
+  lua_pop(L, 1);
+  if (lua_getglobal(L, key) != LUA_TNIL) return 1;
+  lua_createtable(L, 0, 1);
+  lua_pushvalue(L, 2);
+  lua_setfield(L, -2, "unknown");
+  return lua_error(L);
+}
+
+// Returns a new environment table for the identifiers passed as a light
+// userdata (a VisibleIdentifiers). Run in protected mode: it allocates.
+int BuildEnvironment(lua_State* L) {
+  const auto* visible = static_cast<const VisibleIdentifiers*>(lua_touserdata(L, 1));
+  lua_createtable(L, 0, 0);  // the environment, empty: every lookup goes to __index
+  lua_createtable(L, 0, 1);  // its metatable
+  lua_createtable(L, 0, visible->count);
+  for (int i = 0; i < visible->count; ++i) {
+    lua_pushnumber(L, visible->values[i]);
+    lua_setfield(L, -2, visible->names[i]);
+  }
+  lua_pushcclosure(L, &LowerCaseIndex, 1);
+  lua_setfield(L, -2, "__index");
+  lua_setmetatable(L, -2);
+  return 1;
 }
 
 }  // namespace
@@ -47,23 +114,33 @@ bool ParseNumber(const std::string& text, double* value) {
   if (t.empty()) return false;
   const char* begin = t.data();
   if (*begin == '+') ++begin;  // from_chars takes no leading plus
-  const auto [end, error] = std::from_chars(begin, t.data() + t.size(), *value);
-  return error == std::errc() && end == t.data() + t.size();
+  double parsed = 0.0;
+  const auto [end, error] = std::from_chars(begin, t.data() + t.size(), parsed);
+  if (error != std::errc() || end != t.data() + t.size() || !std::isfinite(parsed)) return false;
+  *value = parsed;
+  return true;
+}
+
+bool IsLuaName(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  if (!std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }))
+    return false;
+  return !Contains(kKeywords, s);
 }
 
 void IdentifierTable::Add(const std::string& name, const std::string& definition, const std::string& origin,
                           const std::string& comment, const std::string& unit) {
   const std::string lower = ToLower(name);
-  if (!IsLuaName(name))
+  const bool keyword = Contains(kKeywords, lower);
+  if (!keyword && !IsLuaName(name))
     throw InputError(origin + ": identifier name '" + name +
                      "' must start with a letter or '_' and contain only letters, digits and '_'");
-  const bool keyword = std::find(std::begin(kKeywords), std::end(kKeywords), lower) != std::end(kKeywords);
-  const bool reserved = std::find(std::begin(kReserved), std::end(kReserved), lower) != std::end(kReserved);
-  if (keyword || reserved || LuaState::IsBuiltinName(lower))
-    throw InputError(origin + ": identifier name '" + name + "' is reserved (" +
-                     (keyword ? "a Lua keyword" : reserved ? "t is time, x and v are force-law arguments"
-                                                           : "a built-in function or constant") +
-                     "); choose another name");
+  const char* why = keyword                           ? "a Lua keyword"
+                    : Contains(kArgumentNames, lower) ? "t is time, x and v are force-law arguments"
+                    : LuaState::IsBuiltinName(lower)  ? "a built-in function or constant"
+                    : Contains(kLuaGlobals, lower)    ? "a Lua function or library"
+                                                      : nullptr;
+  if (why) throw InputError(origin + ": identifier name '" + name + "' is reserved (" + why + "); choose another name");
   const int existing = Find(lower);
   if (existing >= 0)
     throw InputError(origin + ": identifier '" + name + "' is defined twice (first at " + items_[existing].origin +
@@ -74,8 +151,8 @@ void IdentifierTable::Add(const std::string& name, const std::string& definition
   item.origin = origin;
   item.comment = comment;
   item.unit = unit;
-  item.is_expression = !ParseNumber(item.definition, &item.value);
   if (item.definition.empty()) throw InputError(origin + ": identifier '" + name + "' has an empty value");
+  item.is_expression = !ParseNumber(item.definition, &item.value);
   items_.push_back(std::move(item));
 }
 
@@ -88,74 +165,84 @@ void IdentifierTable::Override(const std::string& name, double value) {
   if (item.is_expression)
     throw InputError("identifier '" + item.name + "' is defined by an expression (" + item.name + " = " +
                      item.definition + ", at " + item.origin + "); set the identifiers it depends on instead");
+  if (!std::isfinite(value))
+    throw InputError("identifier '" + item.name + "' cannot be set to " + std::to_string(value) +
+                     "; expected a finite number");
   item.value = value;
   item.overridden = true;
 }
 
-double IdentifierTable::Eval(LuaState& lua, const std::string& text, int visible, const std::string& what) const {
+double IdentifierTable::Eval(LuaState& lua, const std::string& text, int visible, int self,
+                             const std::string& what) const {
   lua_State* L = lua.get();
   const int top = lua_gettop(L);
-  const std::string chunk = "return (" + text + "\n)";
-  if (luaL_loadbufferx(L, chunk.data(), chunk.size(), "=expression", "t") != LUA_OK) {
-    std::string message = lua_tostring(L, -1);
+
+  // compile: "return <text>" accepts exactly an expression list
+  const std::string chunk = "return " + text;
+  int status = luaL_loadbufferx(L, chunk.data(), chunk.size(), kChunkName, "t");
+  if (status != LUA_OK) {
+    const std::string message = WithoutPosition(lua.ErrorText(status));
     lua_settop(L, top);
     throw InputError(what + ": '" + text + "' is not a valid expression: " + message);
   }
-  // environment: visible identifiers (case-insensitive), then the globals;
-  // an unknown name raises a table {unknown = name} recognised below
-  lua_newtable(L);  // env
-  lua_newtable(L);  // its metatable
-  lua_newtable(L);  // values by lower-case name
+
+  // environment: the visible identifiers (case-insensitive), then the globals
+  std::vector<const char*> names;
+  std::vector<double> values;
   for (int i = 0; i < visible; ++i) {
-    lua_pushnumber(L, items_[i].value);
-    lua_setfield(L, -2, items_[i].name.c_str());
+    names.push_back(items_[i].name.c_str());
+    values.push_back(items_[i].value);
   }
-  lua_pushcclosure(
-      L,
-      [](lua_State* S) -> int {
-        // no C++ objects with destructors here: lua_error long-jumps
-        const char* key = luaL_checkstring(S, 2);
-        lua_pushstring(S, key);
-        lua_getglobal(S, "string");
-        lua_getfield(S, -1, "lower");
-        lua_pushvalue(S, -3);
-        lua_call(S, 1, 1);
-        lua_gettable(S, lua_upvalueindex(1));
-        if (!lua_isnil(S, -1)) return 1;
-        lua_getglobal(S, key);
-        if (!lua_isnil(S, -1)) return 1;
-        lua_newtable(S);
-        lua_pushstring(S, key);
-        lua_setfield(S, -2, "unknown");
-        return lua_error(S);
-      },
-      1);
-  lua_setfield(L, -2, "__index");
-  lua_setmetatable(L, -2);
-  lua_setupvalue(L, -2, 1);  // the chunk's _ENV
-  InstructionLimit limit(lua, kInstructionLimit);
-  if (lua_pcall(L, 0, 1, 0) != LUA_OK) {
-    std::string message;
-    if (lua_istable(L, -1)) {
-      lua_getfield(L, -1, "unknown");
-      const std::string unknown = lua_tostring(L, -1);
-      lua_settop(L, top);
+  VisibleIdentifiers identifiers{names.data(), values.data(), visible};
+  lua_pushcfunction(L, &BuildEnvironment);
+  lua_pushlightuserdata(L, &identifiers);
+  status = lua_pcall(L, 1, 1, 0);
+  if (status != LUA_OK) {
+    const std::string message = lua.ErrorText(status);
+    lua_settop(L, top);
+    throw InputError(what + ": " + message);
+  }
+  lua_setupvalue(L, -2, 1);  // the chunk's only upvalue is _ENV
+
+  // run, bounded
+  {
+    InstructionLimit limit(lua, kInstructionLimit);
+    status = lua_pcall(L, 0, LUA_MULTRET, 0);
+  }
+  if (status != LUA_OK) {
+    std::string unknown;
+    if (lua_istable(L, -1) && lua_getfield(L, -1, "unknown") == LUA_TSTRING) unknown = lua_tostring(L, -1);
+    const std::string message = unknown.empty() ? WithoutPosition(lua.ErrorText(status)) : "";
+    lua_settop(L, top);
+    if (message.empty()) {
       const int defined = Find(unknown);
+      if (defined >= 0 && defined == self)
+        throw InputError(what + ": uses itself; an identifier may only use identifiers above it");
       if (defined >= visible)
         throw InputError(what + ": uses '" + unknown + "', which is defined below it (at " + items_[defined].origin +
                          "); an identifier may only use identifiers above it");
-      std::vector<std::string> names;
-      for (int i = 0; i < visible; ++i) names.push_back(items_[i].name);
-      throw InputError(what + ": unknown name '" + unknown + "'" + blocks::DidYouMean(ToLower(unknown), names));
+      std::vector<std::string> candidates = LuaState::BuiltinNames();
+      for (int i = 0; i < visible; ++i) candidates.push_back(items_[i].name);
+      // a one-letter name is close to too many others for a suggestion to help
+      std::string hint = unknown.size() > 1 ? blocks::DidYouMean(unknown, candidates) : "";
+      if (Contains(kArgumentNames, ToLower(unknown)))
+        hint = " (t, x and v have values only while the model runs; identifiers and parameters are evaluated "
+               "once, when the diagram is loaded)";
+      throw InputError(what + ": unknown name '" + unknown + "'" + hint);
     }
-    message = lua_isstring(L, -1) ? lua_tostring(L, -1) : "error";
-    lua_settop(L, top);
     throw InputError(what + ": error evaluating '" + text + "': " + message);
   }
-  int is_number = 0;
-  const double value = lua_tonumberx(L, -1, &is_number);
+
+  // exactly one finite number
+  const int results = lua_gettop(L) - top;
+  const int type = results > 0 ? lua_type(L, top + 1) : LUA_TNIL;
+  const double value = type == LUA_TNUMBER ? lua_tonumber(L, top + 1) : 0.0;
   lua_settop(L, top);
-  if (!is_number) throw InputError(what + ": '" + text + "' does not give a number");
+  if (results != 1)
+    throw InputError(what + ": '" + text + "' gives " + std::to_string(results) + " values; expected one number");
+  if (type != LUA_TNUMBER)
+    throw InputError(what + ": '" + text + "' does not give a number (it gives a " + lua_typename(L, type) + ")" +
+                     (type == LUA_TBOOLEAN ? "; write 'cond and 1 or 0' for a number" : ""));
   if (!std::isfinite(value)) throw InputError(what + ": '" + text + "' gives " + std::to_string(value));
   return value;
 }
@@ -164,12 +251,12 @@ void IdentifierTable::Evaluate(LuaState& lua) {
   for (int i = 0; i < size(); ++i) {
     Item& item = items_[i];
     if (!item.is_expression) continue;
-    item.value = Eval(lua, item.definition, i, item.origin + ": identifier '" + item.name + "'");
+    item.value = Eval(lua, item.definition, i, i, item.origin + ": identifier '" + item.name + "'");
   }
 }
 
 double IdentifierTable::EvaluateExpression(LuaState& lua, const std::string& text, const std::string& what) const {
-  return Eval(lua, text, size(), what);
+  return Eval(lua, text, size(), -1, what);
 }
 
 int IdentifierTable::Find(const std::string& name) const {

@@ -1,11 +1,24 @@
 #pragma once
-// IdentifierTable: the named real parameters of a diagram.
+// IdentifierTable: the named real parameters of a diagram (ELEMENTS.md 1.1).
 //
 // An identifier is defined by a number or by an expression of the identifiers
 // ABOVE it (so definitions cannot be circular); the list is evaluated top to
 // bottom. Names are case-insensitive (`Mass` and `mass` are one identifier;
 // they are stored lower-case). An identifier defined by an expression is
 // derived: it cannot be overridden, it follows what it depends on.
+//
+// Expressions are Lua expressions (`^` is the right-associative power) over
+// the identifiers and the functions of the sandbox (sin, sqrt, sqr, ln, pi,
+// ...; see LuaState). They are evaluated in an environment whose lookups
+// lower-case the name, so `MASS*k^2` finds `mass`; every evaluation runs under
+// an instruction limit, so `(function() while true do end end)()` cannot hang
+// loading.
+//
+// Typical use (the diagram loader):
+//   ids.Add("m", "10", "d.xml:3");  ids.Add("c", "4*pi^2*m", "d.xml:4");
+//   ids.Override("m", 20);          // --set m=20
+//   ids.Evaluate(lua);              // c follows m
+//   double k = ids.EvaluateExpression(lua, "-c/m", "d.xml:9: block 'k' parameter 'k'");
 
 #include <string>
 #include <vector>
@@ -16,16 +29,23 @@ class LuaState;
 
 class IdentifierTable {
  public:
-  // `definition` is a number or a Lua expression; `origin` is "file:line" for
-  // messages. Throws InputError for a bad or duplicate name.
+  // Appends an identifier. `definition` is a number (the whole text, as
+  // std::from_chars reads it: "1.5abc" is not a number) or a Lua expression;
+  // `origin` is "file:line" for messages. Throws InputError for a name that is
+  // not a Lua name, is reserved (a Lua keyword, t, x, v, pi, a built-in
+  // function or Lua library name) or is already defined (case-insensitively).
   void Add(const std::string& name, const std::string& definition, const std::string& origin,
            const std::string& comment = "", const std::string& unit = "");
 
-  // A value given from outside (--set): only for identifiers defined by a number.
+  // A value given from outside (--set): only for identifiers defined by a
+  // number, and only a finite one. Call Evaluate afterwards so derived
+  // identifiers follow. Throws InputError otherwise (unknown names get a
+  // "did you mean").
   void Override(const std::string& name, double value);
 
-  // Evaluates every identifier, top to bottom. Throws InputError naming the
-  // identifier's origin on any error.
+  // Evaluates every expression identifier, top to bottom, each seeing only the
+  // identifiers above it. Throws InputError starting with the identifier's
+  // origin: "<origin>: identifier 'c': ...".
   void Evaluate(LuaState& lua);
 
   // Evaluates an expression over all identifiers (after Evaluate). Errors are
@@ -36,12 +56,14 @@ class IdentifierTable {
   int Find(const std::string& name) const;  // index or -1, case-insensitive
   bool Has(const std::string& name) const { return Find(name) >= 0; }
   double Value(const std::string& name) const;  // throws std::out_of_range when unknown
-  std::vector<std::string> Names() const;
+  std::vector<std::string> Names() const;       // lower-case, in order
 
+  // The i-th identifier, 0 <= i < size(). Names are lower-case.
   const std::string& name(int i) const { return items_.at(i).name; }
   const std::string& definition(int i) const { return items_.at(i).definition; }
   double value(int i) const { return items_.at(i).value; }
   bool is_expression(int i) const { return items_.at(i).is_expression; }
+  bool is_overridden(int i) const { return items_.at(i).overridden; }
   const std::string& comment(int i) const { return items_.at(i).comment; }
   const std::string& unit(int i) const { return items_.at(i).unit; }
   const std::string& origin(int i) const { return items_.at(i).origin; }
@@ -53,9 +75,9 @@ class IdentifierTable {
     bool overridden = false;
     double value = 0.0;
   };
-  // Evaluates `text` seeing identifiers [0, visible); on an unknown name
-  // stores it in `*unknown` and throws.
-  double Eval(LuaState& lua, const std::string& text, int visible, const std::string& what) const;
+  // Evaluates `text` seeing identifiers [0, visible); `self` is the index of
+  // the identifier being defined, or -1. Errors start with `what`.
+  double Eval(LuaState& lua, const std::string& text, int visible, int self, const std::string& what) const;
 
   std::vector<Item> items_;
 };
@@ -63,7 +85,12 @@ class IdentifierTable {
 // Lower-case copy (identifier names are case-insensitive).
 std::string ToLower(std::string s);
 
-// A plain number written in full ("1.5", "-2e3"), or false.
+// A finite number written in full, surrounding blanks and a leading '+'
+// allowed ("1.5", " -2e3", "+4"); false for anything else ("1.5abc", "inf").
 bool ParseNumber(const std::string& text, double* value);
+
+// True for a Lua name (letter or '_', then letters, digits, '_') that is not a
+// Lua keyword.
+bool IsLuaName(const std::string& name);
 
 }  // namespace mechflow::scripting

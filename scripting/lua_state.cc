@@ -1,6 +1,11 @@
 #include "scripting/lua_state.h"
 
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 #include <lua.hpp>
@@ -8,49 +13,113 @@
 namespace mechflow::scripting {
 namespace {
 
-// Run once in every state: the function names of the expression grammar.
-const char kPrelude[] = R"lua(
-local m = math
-sin, cos, tan = m.sin, m.cos, m.tan
-arcsin, arccos, arctan = m.asin, m.acos, m.atan
-asin, acos, atan = m.asin, m.acos, m.atan
-exp, ln, log, sqrt, abs = m.exp, m.log, m.log, m.sqrt, m.abs
-floor, ceil, min, max = m.floor, m.ceil, m.min, m.max
-pi = m.pi
-function sqr(x) return x * x end
-function sign(x) if x > 0 then return 1 elseif x < 0 then return -1 else return 0 end end
-function sinh(x) return (m.exp(x) - m.exp(-x)) / 2 end
-function cosh(x) return (m.exp(x) + m.exp(-x)) / 2 end
-function tanh(x)
-  if x > 20 then return 1 elseif x < -20 then return -1 end
-  local e = m.exp(2 * x)
-  return (e - 1) / (e + 1)
-end
-)lua";
+// Every function below is called by Lua and may raise a Lua error (a
+// long jump): none may own a C++ object with a destructor.
 
-// Text chunks only: precompiled bytecode can crash the interpreter.
-const char kRestrictLoad[] = R"lua(
-local raw_load = load
-load = function(chunk, name, mode, env) return raw_load(chunk, name, "t", env) end
-dofile, loadfile = nil, nil
-)lua";
-
-const char* const kBuiltins[] = {"sin",  "cos",  "tan", "arcsin", "arccos", "arctan", "asin", "acos",
-                                 "atan", "exp",  "ln",  "log",    "sqrt",   "sqr",    "abs",  "sign",
-                                 "min",  "max",  "floor", "ceil", "sinh",   "cosh",   "tanh", "pi"};
-
-void RunOrThrow(lua_State* L, const char* code, const char* name) {
-  if (luaL_loadbufferx(L, code, std::char_traits<char>::length(code), name, "t") != LUA_OK ||
-      lua_pcall(L, 0, 0, 0) != LUA_OK) {
-    const std::string message = lua_tostring(L, -1);
-    lua_pop(L, 1);
-    throw std::logic_error("Lua set-up failed: " + message);
-  }
-}
+// Once the instruction limit is exceeded, the error is raised again this often,
+// so a script that catches it with pcall is stopped soon after.
+constexpr int kRepeatInstructions = 1000;
 
 void InstructionHook(lua_State* L, lua_Debug*) {
-  lua_sethook(L, nullptr, 0, 0);
-  luaL_error(L, "instruction limit exceeded (endless loop?)");
+  lua_sethook(L, &InstructionHook, LUA_MASKCOUNT, kRepeatInstructions);
+  luaL_where(L, 0);  // in a hook, level 0 is the Lua function that was running
+  lua_pushliteral(L, "instruction limit exceeded (endless loop?)");
+  lua_concat(L, 2);
+  lua_error(L);
+}
+
+// load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t":
+// precompiled bytecode is not checked by Lua and can crash the interpreter.
+int TextOnlyLoad(lua_State* L) {
+  const int n = std::max(lua_gettop(L), 3);  // keeps env absent when it was
+  lua_settop(L, n);
+  lua_pushliteral(L, "t");
+  lua_replace(L, 3);
+  lua_pushvalue(L, lua_upvalueindex(1));  // the original load
+  lua_insert(L, 1);
+  lua_call(L, n, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
+// the expression functions that Lua's math library lacks
+int Sqr(lua_State* L) {
+  const lua_Number x = luaL_checknumber(L, 1);
+  lua_pushnumber(L, x * x);
+  return 1;
+}
+int Sign(lua_State* L) {
+  const lua_Number x = luaL_checknumber(L, 1);
+  lua_pushnumber(L, x > 0 ? 1.0 : x < 0 ? -1.0 : x == 0 ? 0.0 : x);  // NaN stays NaN
+  return 1;
+}
+int Sinh(lua_State* L) {
+  lua_pushnumber(L, std::sinh(luaL_checknumber(L, 1)));
+  return 1;
+}
+int Cosh(lua_State* L) {
+  lua_pushnumber(L, std::cosh(luaL_checknumber(L, 1)));
+  return 1;
+}
+int Tanh(lua_State* L) {
+  lua_pushnumber(L, std::tanh(luaL_checknumber(L, 1)));
+  return 1;
+}
+
+// global name = math field, for the names of the expression grammar
+struct Alias {
+  const char* global;
+  const char* math_field;
+};
+constexpr Alias kMathAliases[] = {
+    {"sin", "sin"},     {"cos", "cos"},     {"tan", "tan"},     {"arcsin", "asin"}, {"arccos", "acos"},
+    {"arctan", "atan"}, {"asin", "asin"},   {"acos", "acos"},   {"atan", "atan"},   {"exp", "exp"},
+    {"ln", "log"},      {"log", "log"},     {"sqrt", "sqrt"},   {"abs", "abs"},     {"min", "min"},
+    {"max", "max"},     {"floor", "floor"}, {"ceil", "ceil"},   {"pi", "pi"},
+};
+constexpr luaL_Reg kExtraFunctions[] = {
+    {"sqr", Sqr}, {"sign", Sign}, {"sinh", Sinh}, {"cosh", Cosh}, {"tanh", Tanh},
+};
+
+// Sets up the sandbox and the expression names; run in protected mode.
+int SetUp(lua_State* L) {
+  const bool unsafe = lua_toboolean(L, 1);
+  if (unsafe) {
+    luaL_openlibs(L);
+  } else {
+    // io, os, package/require, debug and coroutine are left out on purpose
+    constexpr luaL_Reg kLibraries[] = {{LUA_GNAME, luaopen_base},       {LUA_MATHLIBNAME, luaopen_math},
+                                       {LUA_STRLIBNAME, luaopen_string}, {LUA_TABLIBNAME, luaopen_table},
+                                       {LUA_UTF8LIBNAME, luaopen_utf8}};
+    for (const auto& library : kLibraries) {
+      luaL_requiref(L, library.name, library.func, 1);
+      lua_pop(L, 1);
+    }
+    lua_pushnil(L);
+    lua_setglobal(L, "dofile");
+    lua_pushnil(L);
+    lua_setglobal(L, "loadfile");
+  }
+  lua_getglobal(L, "load");
+  lua_pushcclosure(L, &TextOnlyLoad, 1);
+  lua_setglobal(L, "load");
+
+  lua_getglobal(L, LUA_MATHLIBNAME);
+  for (const Alias& alias : kMathAliases) {
+    lua_getfield(L, -1, alias.math_field);
+    lua_setglobal(L, alias.global);
+  }
+  lua_pop(L, 1);
+  for (const luaL_Reg& f : kExtraFunctions) {
+    lua_pushcfunction(L, f.func);
+    lua_setglobal(L, f.name);
+  }
+  return 0;
+}
+
+int Panic(lua_State* L) {
+  const char* message = lua_tostring(L, -1);
+  std::fprintf(stderr, "mechflow: unprotected Lua error (%s)\n", message ? message : "no message");
+  return 0;  // Lua aborts
 }
 
 }  // namespace
@@ -69,22 +138,17 @@ void* LuaState::Allocate(void* ud, void* ptr, std::size_t old_size, std::size_t 
   return block;
 }
 
-LuaState::LuaState(bool unsafe) {
+LuaState::LuaState(bool unsafe) : unsafe_(unsafe) {
   L_ = lua_newstate(&LuaState::Allocate, &memory_);
-  if (!L_) throw std::runtime_error("cannot create a Lua state");
-  if (unsafe) {
-    luaL_openlibs(L_);
-  } else {
-    const luaL_Reg libraries[] = {{LUA_GNAME, luaopen_base},       {LUA_MATHLIBNAME, luaopen_math},
-                                  {LUA_STRLIBNAME, luaopen_string}, {LUA_TABLIBNAME, luaopen_table},
-                                  {LUA_UTF8LIBNAME, luaopen_utf8}};
-    for (const auto& lib : libraries) {
-      luaL_requiref(L_, lib.name, lib.func, 1);
-      lua_pop(L_, 1);
-    }
-    RunOrThrow(L_, kRestrictLoad, "=sandbox");
+  if (!L_) throw std::runtime_error("cannot create a Lua state (out of memory)");
+  lua_atpanic(L_, &Panic);
+  lua_pushcfunction(L_, &SetUp);
+  lua_pushboolean(L_, unsafe);
+  std::string error;
+  if (!Call(1, 0, &error)) {
+    lua_close(L_);
+    throw std::runtime_error("cannot set up Lua: " + error);
   }
-  RunOrThrow(L_, kPrelude, "=prelude");
 }
 
 LuaState::~LuaState() {
@@ -93,16 +157,72 @@ LuaState::~LuaState() {
 
 void LuaState::set_instruction_limit(long count) {
   if (count > 0) {
-    lua_sethook(L_, &InstructionHook, LUA_MASKCOUNT, static_cast<int>(std::min<long>(count, 1L << 30)));
+    lua_sethook(L_, &InstructionHook, LUA_MASKCOUNT, static_cast<int>(std::min<long>(count, INT_MAX)));
   } else {
     lua_sethook(L_, nullptr, 0, 0);
   }
 }
 
-bool LuaState::IsBuiltinName(std::string_view name) {
-  for (const char* b : kBuiltins)
-    if (name == b) return true;
+std::string LuaState::ErrorText(int status) const {
+  std::string text;
+  if (const char* message = lua_tostring(L_, -1)) {
+    text = message;
+  } else {
+    text = std::string("(error object is a ") + luaL_typename(L_, -1) + " value)";
+  }
+  if (status == LUA_ERRMEM)
+    text += " (Lua may use at most " + std::to_string(memory_.limit >> 20) + " MiB)";
+  return text;
+}
+
+bool LuaState::Call(int num_args, int num_results, std::string* error) {
+  const int handler = lua_gettop(L_) - num_args;  // where the function is now
+  lua_pushcfunction(L_, &TracebackHandler);
+  lua_insert(L_, handler);
+  const int status = lua_pcall(L_, num_args, num_results, handler);
+  lua_remove(L_, handler);
+  if (status == LUA_OK) return true;
+  if (error) *error = ErrorText(status);
+  lua_pop(L_, 1);
   return false;
+}
+
+bool LuaState::Run(std::string_view code, const std::string& chunk_name, std::string* error) {
+  const int status = luaL_loadbufferx(L_, code.data(), code.size(), chunk_name.c_str(), "t");
+  if (status != LUA_OK) {
+    if (error) *error = ErrorText(status);
+    lua_pop(L_, 1);
+    return false;
+  }
+  return Call(0, 0, error);
+}
+
+int LuaState::TracebackHandler(lua_State* L) {
+  const char* message = lua_tostring(L, 1);
+  if (!message) {
+    if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) {
+      message = lua_tostring(L, -1);
+    } else {
+      message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+    }
+  }
+  luaL_traceback(L, L, message, 1);
+  return 1;
+}
+
+bool LuaState::IsBuiltinName(std::string_view name) {
+  for (const Alias& alias : kMathAliases)
+    if (name == alias.global) return true;
+  for (const luaL_Reg& f : kExtraFunctions)
+    if (name == f.name) return true;
+  return false;
+}
+
+std::vector<std::string> LuaState::BuiltinNames() {
+  std::vector<std::string> names;
+  for (const Alias& alias : kMathAliases) names.push_back(alias.global);
+  for (const luaL_Reg& f : kExtraFunctions) names.push_back(f.name);
+  return names;
 }
 
 }  // namespace mechflow::scripting

@@ -1,2 +1,5 @@
-# Tests of scripting/.
-mechflow_test(scripting_test unit tests/scripting/scripting_test.cc)
+# Tests of scripting/, one executable per source file.
+mechflow_test(lua_state_test unit tests/scripting/lua_state_test.cc)
+mechflow_test(identifiers_test unit tests/scripting/identifiers_test.cc)
+mechflow_test(compiled_expression_test unit tests/scripting/compiled_expression_test.cc)
+mechflow_test(expression_block_test unit tests/scripting/expression_block_test.cc)
