@@ -1,6 +1,13 @@
 #include "blocks/library/discontinuities.h"
 
 namespace mechflow::blocks {
+namespace {
+
+// Mode of an element whose input is on a corner (and before the first
+// classification, as inputs are not valid in Initialize): y follows u exactly.
+constexpr double kExact = -1.0;
+
+}  // namespace
 
 PiecewiseLinearBlock::PiecewiseLinearBlock(const std::string& type, const std::string& name,
                                            std::vector<double> corners, int width)
@@ -17,16 +24,24 @@ int PiecewiseLinearBlock::Classify(double u) const {
   return mode;
 }
 
+bool PiecewiseLinearBlock::InsidePiece(int mode, double u) const {
+  const int n = static_cast<int>(corners_.size());
+  return mode >= 0 && mode <= n && (mode == 0 || u > corners_[mode - 1]) && (mode == n || u < corners_[mode]);
+}
+
 void PiecewiseLinearBlock::DoInitialize(const BlockContext& ctx) const {
-  // inputs are not valid yet: start on the middle piece, UpdateModes fixes it
-  for (double& mode : ctx.discrete()) mode = static_cast<double>(corners_.size() / 2);
+  // inputs are not valid yet: UpdateModes classifies once they are
+  for (double& mode : ctx.discrete()) mode = kExact;
 }
 
 void PiecewiseLinearBlock::DoCalcOutput(int, const BlockContext& ctx) const {
   const auto u = ctx.input(0);
   const auto y = ctx.output(0);
   const auto modes = ctx.discrete();
-  for (size_t i = 0; i < y.size(); ++i) y[i] = Piece(static_cast<int>(modes[i]), u[i]);
+  for (size_t i = 0; i < y.size(); ++i) {
+    const int mode = modes[i] == kExact ? Classify(u[i]) : static_cast<int>(modes[i]);
+    y[i] = Piece(mode, u[i]);
+  }
 }
 
 void PiecewiseLinearBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
@@ -49,7 +64,10 @@ bool PiecewiseLinearBlock::DoUpdateModes(const BlockContext& ctx) const {
   const auto modes = ctx.discrete();
   bool changed = false;
   for (size_t i = 0; i < u.size(); ++i) {
-    const double mode = Classify(u[i]);
+    const int piece = Classify(u[i]);
+    // on a corner: exact, since leaving it might give no event
+    const bool on_corner = piece > 0 && u[i] == corners_[piece - 1];
+    const double mode = on_corner ? kExact : InsidePiece(static_cast<int>(modes[i]), u[i]) ? modes[i] : piece;
     changed |= mode != modes[i];
     modes[i] = mode;
   }

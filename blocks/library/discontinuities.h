@@ -9,6 +9,15 @@
 // state. Zero crossings of u - corner change the mode at the located instant;
 // inside a step the output follows the frozen mode, so the right-hand side is
 // smooth there. After any event the modes are re-classified from u.
+//
+// Ports: input u, output y (both of width `width`); u feeds y directly.
+//
+// Ties: when u sits exactly on a corner at an event (or at the start), the
+// mode is 'exact': y is the piecewise function of u itself (both pieces agree
+// on the corner). A frozen piece would be wrong there, because CVODE ignores
+// a crossing function that is exactly zero where an integration starts (after
+// every event): an input that leaves the corner then gives no event. The next
+// crossing, or any later event, puts the block back on a frozen piece.
 
 #include "blocks/block.h"
 
@@ -30,7 +39,10 @@ class PiecewiseLinearBlock : public Block {
   bool DoUpdateModes(const BlockContext& ctx) const override;
 
  private:
+  // The piece holding u (a corner itself goes to the piece above it).
   int Classify(double u) const;
+  // True when u lies strictly inside piece `mode`.
+  bool InsidePiece(int mode, double u) const;
   std::vector<double> corners_;
 };
 

@@ -3,6 +3,14 @@
 #include <algorithm>
 
 namespace mechflow::blocks {
+namespace {
+
+// Trigger sign before the first UpdateModes (inputs are not valid in Initialize).
+constexpr double kSignUnknown = 2.0;
+
+double Sign(double v) { return v > 0.0 ? 1.0 : v < 0.0 ? -1.0 : 0.0; }
+
+}  // namespace
 
 IntegratorBlock::IntegratorBlock(const std::string& name, std::vector<double> initial, std::optional<double> lower,
                                  std::optional<double> upper, ResetKind reset)
@@ -19,13 +27,14 @@ IntegratorBlock::IntegratorBlock(const std::string& name, std::vector<double> in
   if (has_limits()) {
     DeclareDiscreteStates(w);
     // per element: crossing 2i watches the upper side, 2i+1 the lower side
-    for (int i = 0; i < 2 * w; ++i) DeclareZeroCrossing(CrossingDirection::kFalling);
+    for (int i = 0; i < 2 * w; ++i) DeclareZeroCrossing(CrossingDirection::kEither);
   }
   if (reset_ != ResetKind::kNone) {
-    const CrossingDirection d = reset_ == ResetKind::kRising    ? CrossingDirection::kRising
-                                : reset_ == ResetKind::kFalling ? CrossingDirection::kFalling
-                                                                : CrossingDirection::kEither;
-    reset_crossing_ = DeclareZeroCrossing(d);
+    trigger_sign_ = has_limits() ? w : 0;
+    DeclareDiscreteStates(1);
+    reset_crossing_ = DeclareZeroCrossing(reset_ == ResetKind::kRising    ? CrossingDirection::kRising
+                                          : reset_ == ResetKind::kFalling ? CrossingDirection::kFalling
+                                                                          : CrossingDirection::kEither);
   }
 }
 
@@ -35,16 +44,29 @@ double IntegratorBlock::Clamp(double x) const {
   return x;
 }
 
-double IntegratorBlock::ModeFor(double x, double u) const {
-  if (upper_ && x >= *upper_ && u > 0.0) return kAtUpper;
-  if (lower_ && x <= *lower_ && u < 0.0) return kAtLower;
+double IntegratorBlock::LimitMode(double x, double u) const {
+  // on a limit: held while u pushes into it, exact while u is 0, free when it pulls away
+  if (upper_ && x >= *upper_) return u > 0.0 ? kAtUpper : u == 0.0 ? kExactUpper : kFree;
+  if (lower_ && x <= *lower_) return u < 0.0 ? kAtLower : u == 0.0 ? kExactLower : kFree;
   return kFree;
 }
 
-void IntegratorBlock::DoInitialize(const BlockContext& ctx) const {
+void IntegratorBlock::Reset(const BlockContext& ctx) const {
   const auto x = ctx.state();
-  for (size_t i = 0; i < x.size(); ++i) x[i] = Clamp(initial_[i]);
-  for (double& mode : ctx.discrete()) mode = kFree;  // settled against u by UpdateModes
+  const auto x0 = ctx.input(2);
+  const auto u = ctx.input(0);
+  for (size_t i = 0; i < x.size(); ++i) {
+    x[i] = Clamp(x0[i]);
+    if (has_limits()) ctx.discrete()[i] = LimitMode(x[i], u[i]);
+  }
+}
+
+void IntegratorBlock::DoInitialize(const BlockContext& ctx) const {
+  std::copy(initial_.begin(), initial_.end(), ctx.state().begin());
+  // modes and the trigger's sign are settled against the inputs by UpdateModes
+  if (has_limits())
+    for (size_t i = 0; i < initial_.size(); ++i) ctx.discrete()[i] = kFree;
+  if (trigger_sign_ >= 0) ctx.discrete()[trigger_sign_] = kSignUnknown;
 }
 
 void IntegratorBlock::DoCalcOutput(int, const BlockContext& ctx) const {
@@ -55,7 +77,18 @@ void IntegratorBlock::DoCalcOutput(int, const BlockContext& ctx) const {
 void IntegratorBlock::DoCalcDerivatives(const BlockContext& ctx) const {
   const auto u = ctx.input(0);
   const auto xdot = ctx.derivative();
-  for (size_t i = 0; i < xdot.size(); ++i) xdot[i] = (has_limits() && ctx.discrete()[i] != kFree) ? 0.0 : u[i];
+  if (!has_limits()) {
+    std::copy(u.begin(), u.end(), xdot.begin());
+    return;
+  }
+  const auto modes = ctx.discrete();
+  for (size_t i = 0; i < xdot.size(); ++i) {
+    const double mode = modes[i];
+    xdot[i] = mode == kFree          ? u[i]
+              : mode == kExactUpper ? std::min(u[i], 0.0)
+              : mode == kExactLower ? std::max(u[i], 0.0)
+                                    : 0.0;
+  }
 }
 
 void IntegratorBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
@@ -65,57 +98,64 @@ void IntegratorBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
     const auto u = ctx.input(0);
     const auto modes = ctx.discrete();
     for (size_t i = 0; i < x.size(); ++i) {
-      // each falls through zero when its event is due; a missing limit never fires
-      if (modes[i] == kAtUpper) {
-        g[2 * i] = u[i];        // leaves the upper limit when u turns negative
-      } else {
-        g[2 * i] = upper_ ? *upper_ - x[i] : 1.0;
-      }
-      if (modes[i] == kAtLower) {
-        g[2 * i + 1] = -u[i];   // leaves the lower limit when u turns positive
-      } else {
-        g[2 * i + 1] = lower_ ? x[i] - *lower_ : 1.0;
-      }
+      // at a limit u changing sign is the event; free, reaching the limit (a missing one never fires)
+      const bool at_upper = modes[i] == kAtUpper || modes[i] == kExactUpper;
+      const bool at_lower = modes[i] == kAtLower || modes[i] == kExactLower;
+      g[2 * i] = at_upper ? u[i] : upper_ ? *upper_ - x[i] : 1.0;
+      g[2 * i + 1] = at_lower ? u[i] : lower_ ? x[i] - *lower_ : 1.0;
     }
   }
   if (reset_crossing_ >= 0) g[reset_crossing_] = ctx.input_scalar(1);
 }
 
-void IntegratorBlock::DoZeroCrossing(int index, int, const BlockContext& ctx) const {
-  const auto x = ctx.state();
+void IntegratorBlock::DoZeroCrossing(int index, int direction, const BlockContext& ctx) const {
   if (index == reset_crossing_) {
-    const auto x0 = ctx.input(2);
-    for (size_t i = 0; i < x.size(); ++i) x[i] = Clamp(x0[i]);
-    if (has_limits())
-      for (size_t i = 0; i < x.size(); ++i) ctx.discrete()[i] = ModeFor(x[i], ctx.input(0)[i]);
+    // inputs hold their values just before the event: x0 is read there
+    if ((direction > 0 && fires_rising()) || (direction < 0 && fires_falling())) Reset(ctx);
+    ctx.discrete()[trigger_sign_] = Sign(ctx.input_scalar(1));
     return;
   }
+  const auto x = ctx.state();
   const size_t i = index / 2;
   double& mode = ctx.discrete()[i];
   const bool upper_side = index % 2 == 0;
-  if (mode == kFree) {
-    // reached a limit: stop exactly on it
+  if (mode != kFree) {
+    // u changed sign at the limit: free; UpdateModes holds it again if u still pushes
+    mode = kFree;
+  } else if (direction < 0) {
+    // reached the limit: stop exactly on it
     mode = upper_side ? kAtUpper : kAtLower;
     x[i] = upper_side ? *upper_ : *lower_;
-  } else {
-    mode = kFree;  // the input turned away from the limit
   }
 }
 
 bool IntegratorBlock::DoUpdateModes(const BlockContext& ctx) const {
-  if (!has_limits()) return false;
+  bool changed = false;
+  if (trigger_sign_ >= 0) {
+    // a trigger that jumped across zero at this event (no crossing saw it)
+    double& last = ctx.discrete()[trigger_sign_];
+    const double now = Sign(ctx.input_scalar(1));
+    if (last != kSignUnknown && now != last) {
+      const bool fires = (fires_rising() && last <= 0.0 && now > 0.0) || (fires_falling() && last >= 0.0 && now < 0.0);
+      if (fires) {
+        Reset(ctx);
+        changed = true;
+      }
+    }
+    last = now;
+  }
+  if (!has_limits()) return changed;
   const auto x = ctx.state();
   const auto u = ctx.input(0);
-  bool changed = false;
   for (size_t i = 0; i < x.size(); ++i) {
     double& mode = ctx.discrete()[i];
-    const double wanted = ModeFor(x[i], u[i]);
-    // enter a limit here only if the state already sits on it; leave when u turned
-    if (wanted != mode && (wanted != kFree || mode != kFree)) {
-      mode = wanted;
-      if (mode != kFree) x[i] = mode == kAtUpper ? *upper_ : *lower_;
-      changed = true;
-    }
+    const double wanted = LimitMode(x[i], u[i]);
+    if (wanted == mode) continue;
+    mode = wanted;
+    // entering a limit here only happens with x already on it: make it exact
+    if (mode == kAtUpper || mode == kExactUpper) x[i] = *upper_;
+    if (mode == kAtLower || mode == kExactLower) x[i] = *lower_;
+    changed = true;
   }
   return changed;
 }

@@ -1,6 +1,7 @@
 // The standard block types: parameters (with defaults and units) and the
 // checks that turn well-formed but unusable values into clear errors.
 
+#include <charconv>
 #include <cmath>
 
 #include "blocks/block_factory.h"
@@ -20,11 +21,17 @@ using K = ParamKind;
 
 const ParamSpec kWidth = {"width", K::kNumber, false, "1", "width of the input and output signals"};
 
+// A number as a user would write it (shortest form that reads back exactly).
+std::string Format(double v) {
+  char buffer[32];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return error == std::errc() ? std::string(buffer, end) : std::to_string(v);
+}
+
 int Count(const BlockParams& p, const std::string& name, int minimum) {
   const double v = p.Number(name);
   if (v != std::floor(v) || v < minimum || v > 1e6)
-    throw InputError("'" + name + "' must be a whole number >= " + std::to_string(minimum) + ", got " +
-                     std::to_string(v));
+    throw InputError("'" + name + "' must be a whole number >= " + std::to_string(minimum) + ", got " + Format(v));
   return static_cast<int>(v);
 }
 
@@ -159,6 +166,13 @@ void RegisterStandardBlocks(BlockRegistry* r) {
         if (p.Has("lower")) lower = p.Number("lower");
         if (p.Has("upper")) upper = p.Number("upper");
         if (lower && upper && !(*lower < *upper)) throw InputError("'lower' must be less than 'upper'");
+        const std::vector<double> initial = Values(p, "initial", width);
+        for (const double x0 : initial) {
+          if (upper && x0 > *upper)
+            throw InputError("'initial' (" + Format(x0) + ") is above 'upper' (" + Format(*upper) + ")");
+          if (lower && x0 < *lower)
+            throw InputError("'initial' (" + Format(x0) + ") is below 'lower' (" + Format(*lower) + ")");
+        }
         ResetKind reset = ResetKind::kNone;
         if (p.Has("reset")) {
           const std::string& kind = p.Text("reset");
@@ -167,7 +181,7 @@ void RegisterStandardBlocks(BlockRegistry* r) {
           else if (kind == "either") reset = ResetKind::kEither;
           else throw InputError("'reset' must be rising, falling or either, got '" + kind + "'");
         }
-        return std::make_unique<IntegratorBlock>(n, Values(p, "initial", width), lower, upper, reset);
+        return std::make_unique<IntegratorBlock>(n, initial, lower, upper, reset);
       });
   Add(r, "first_order_lag", "T y' + y = K u",
       {{"time_constant", K::kNumber, true, "", "time constant T [s], > 0"},
