@@ -1,9 +1,14 @@
 #pragma once
-// First-order lag: T y' + y = K u.
+// First-order lag: T y' + y = K u, elementwise.
 //
-//   input u (width w), output y (width w), state y; y does not depend on u
-//   directly. Step response from y(0) = y0: y = K u + (y0 - K u) exp(-t/T).
-//   Parameters: time_constant T [s] > 0, gain K, initial y0.
+//   ports:   input u, output y (both of width w); y is the state, so u does
+//            not feed y directly (the lag breaks algebraic loops)
+//   states:  y (w continuous)
+//   params:  time_constant T [s] (> 0, required), gain K (1) [unit of y /
+//            unit of u], initial y(t_start) (0; one value or one per
+//            element), width w (1)
+// Step response from y(0) = y0 to a constant u: y = K u + (y0 - K u) exp(-t/T).
+// No events.
 
 #include "blocks/block.h"
 

@@ -5,11 +5,14 @@
 //   mu(v) = mu_d + (mu_s - mu_d) exp(-(|v| / v_s)^2)
 //   F     = -( mu(v) max(N, 0) tanh(v / v_reg) + c_visc v )
 //
-//   inputs:  N [N] (a pulling N < 0 gives no dry friction), v [m/s]
-//   output:  F [N], opposing v; both inputs feed it directly
-//   params:  mu_static, mu_dynamic, stribeck_velocity v_s [m/s],
-//            viscous c_visc [N s/m], regularisation_velocity v_reg [m/s]
-// A held load below mu_s N creeps at about v_reg atanh(F / (mu_s N)).
+//   ports:   inputs N (normal force [N]; a pulling N < 0 gives no dry
+//            friction) and v (sliding velocity [m/s]); output F (friction
+//            force [N], opposing v); all width 1, both inputs feed F directly
+//   params:  mu_static mu_s, mu_dynamic mu_d (required, >= 0),
+//            stribeck_velocity v_s [m/s] (0.01, > 0), viscous c_visc [N s/m]
+//            (0, >= 0), regularisation_velocity v_reg [m/s] (1e-4, > 0)
+// The tanh regularisation makes F smooth (no events, no modes), at the price
+// of creep: a held load below mu_s N slides at about v_reg atanh(F / (mu_s N)).
 
 #include "blocks/block.h"
 #include "mech/friction_law.h"

@@ -24,6 +24,7 @@
 #include "blocks/evaluation.h"
 #include "diagrams/loader.h"
 #include "scripting/lua_state.h"
+#include "tests/blocks/block_test_util.h"
 
 // ---------------------------------------------------------------------------
 // counting replacements of the global allocation functions
@@ -168,6 +169,66 @@ TEST_P(ExampleDiagram, EvaluationPassesDoNotAllocate) {
   EXPECT_EQ(new_calls, 0) << "operator new called in " << kCalls << " evaluations of " << GetParam();
   EXPECT_EQ(lua_after, lua_before) << "Lua heap changed by " << static_cast<long>(lua_after) - static_cast<long>(lua_before)
                                    << " bytes in " << kCalls << " evaluations of " << GetParam();
+}
+
+// Every block of the standard library in one diagram, driven by time-varying
+// signals so that modes switch during the loop: the evaluation passes and the
+// mode updates allocate nothing.
+TEST(NoAllocationTest, StandardLibraryBlocks) {
+  using blocks::testing::MakeBlock;
+  blocks::DiagramBuilder builder;
+  const std::vector<std::pair<std::string, blocks::testing::ParamTexts>> blocks_made = {
+      {"clock", {}}, {"sine", {}}, {"step", {{"time", "0.3"}}}, {"ramp", {{"start", "0.2"}}},
+      {"constant", {{"value", "2"}}}, {"table", {{"points", "0 0; 0.5 1; 1 -1"}}}, {"gain", {{"k", "3"}}},
+      {"sum", {{"signs", "+-+"}}}, {"product", {{"operations", "**/"}}}, {"abs", {}},
+      {"saturation", {{"lower", "-0.5"}, {"upper", "0.5"}}}, {"dead_zone", {{"start", "-0.2"}, {"end", "0.2"}}},
+      {"integrator", {{"upper", "0.3"}, {"lower", "-0.3"}, {"reset", "either"}}},
+      {"first_order_lag", {{"time_constant", "0.1"}}},
+      {"friction_from_normal_force", {{"mu_static", "0.5"}, {"mu_dynamic", "0.3"}}},
+      {"sample_hold", {{"period", "0.1"}}}, {"recorder", {{"inputs", "2"}}}};
+  for (const auto& [type, params] : blocks_made) builder.AddBlock(MakeBlock(type, type, params));
+  const std::vector<std::pair<const char*, const char*>> connections = {
+      {"sine", "gain"}, {"sine", "sum.u1"}, {"table", "sum.u2"}, {"ramp", "sum.u3"}, {"sine", "product.u1"},
+      {"step", "product.u2"}, {"constant", "product.u3"}, {"sine", "abs"}, {"gain", "saturation"},
+      {"sine", "dead_zone"}, {"sum", "integrator.u"}, {"sine", "integrator.reset"}, {"table", "integrator.x0"},
+      {"sine", "first_order_lag"}, {"constant", "friction_from_normal_force.N"},
+      {"sine", "friction_from_normal_force.v"}, {"clock", "sample_hold"}, {"integrator", "recorder.u1"},
+      {"saturation", "recorder.u2"}};
+  for (const auto& [from, to] : connections) builder.Connect(from, to);
+  const auto diagram = builder.Build();
+  const blocks::Diagram& d = *diagram;
+
+  blocks::Context ctx;
+  ctx.signals.assign(d.num_signals(), 0.0);
+  ctx.discrete.assign(d.num_discrete_states(), 0.0);
+  std::vector<double> x(std::max(1, d.num_states()), 0.0);
+  std::vector<double> xdot(x.size(), 0.0);
+  std::vector<double> crossings(std::max(1, d.num_zero_crossings()), 0.0);
+  ctx.x = x.data();
+  ctx.xdot = xdot.data();
+  ctx.crossings = crossings.data();
+  ctx.time = 0.0;
+  blocks::InitializeStates(d, &ctx);
+  ASSERT_TRUE(blocks::SettleModes(d, &ctx));
+
+  constexpr int kCalls = 1000;
+  long new_calls = 0;
+  bool settled = true;
+  {
+    CountAllocations counter;
+    for (int i = 0; i < kCalls; ++i) {
+      ctx.time = 2.0 * i / kCalls;
+      ++ctx.evaluation;
+      blocks::EvaluateOutputs(d, &ctx);
+      blocks::EvaluateDerivatives(d, &ctx);
+      blocks::EvaluateZeroCrossings(d, &ctx);
+      // as after an event: modes follow the inputs (and the reset may fire)
+      settled &= blocks::SettleModes(d, &ctx);
+    }
+    new_calls = counter.calls();
+  }
+  EXPECT_TRUE(settled);
+  EXPECT_EQ(new_calls, 0) << "operator new called in " << kCalls << " evaluations of the standard blocks";
 }
 
 INSTANTIATE_TEST_SUITE_P(Examples, ExampleDiagram,

@@ -1,12 +1,8 @@
-#include "blocks/library/sinks.h"
+#include "blocks/library/sample_hold.h"
 
 #include <algorithm>
 
 namespace mechflow::blocks {
-
-RecorderBlock::RecorderBlock(const std::string& name, int num_inputs, int width) : Block("recorder", name) {
-  for (int i = 0; i < num_inputs; ++i) DeclareInputPort(num_inputs == 1 ? "u" : "u" + std::to_string(i + 1), width);
-}
 
 SampleHoldBlock::SampleHoldBlock(const std::string& name, double period, double offset, std::vector<double> initial)
     : Block("sample_hold", name), initial_(std::move(initial)) {

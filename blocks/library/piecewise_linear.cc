@@ -1,4 +1,4 @@
-#include "blocks/library/discontinuities.h"
+#include "blocks/library/piecewise_linear.h"
 
 namespace mechflow::blocks {
 namespace {
@@ -73,17 +73,5 @@ bool PiecewiseLinearBlock::DoUpdateModes(const BlockContext& ctx) const {
   }
   return changed;
 }
-
-AbsBlock::AbsBlock(const std::string& name, int width) : PiecewiseLinearBlock("abs", name, {0.0}, width) {}
-
-SaturationBlock::SaturationBlock(const std::string& name, double lower, double upper, int width)
-    : PiecewiseLinearBlock("saturation", name, {lower, upper}, width), lower_(lower), upper_(upper) {}
-
-double SaturationBlock::Piece(int mode, double u) const { return mode == 0 ? lower_ : mode == 2 ? upper_ : u; }
-
-DeadZoneBlock::DeadZoneBlock(const std::string& name, double start, double end, int width)
-    : PiecewiseLinearBlock("dead_zone", name, {start, end}, width), start_(start), end_(end) {}
-
-double DeadZoneBlock::Piece(int mode, double u) const { return mode == 0 ? u - start_ : mode == 2 ? u - end_ : 0.0; }
 
 }  // namespace mechflow::blocks

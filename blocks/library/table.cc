@@ -1,0 +1,116 @@
+#include "blocks/library/table.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+
+#include "mech/errors.h"
+
+namespace mechflow::blocks {
+namespace {
+
+// A number as a user would write it (shortest form that reads back exactly).
+std::string Format(double v) {
+  char buffer[32];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return error == std::errc() ? std::string(buffer, end) : std::to_string(v);
+}
+
+// Checks one point against the points before it; `where` starts the message
+// and `previous` names the row before ("row 2", "line 7").
+void CheckPoint(double t, double y, const std::vector<double>& times, const std::string& where,
+                const std::string& previous) {
+  if (!std::isfinite(t) || !std::isfinite(y))
+    throw InputError(where + ": point (" + Format(t) + ", " + Format(y) + ") is not finite");
+  if (!times.empty() && !(t > times.back()))
+    throw InputError(where + ": times must increase strictly, but t = " + Format(t) + " follows t = " +
+                     Format(times.back()) + " (" + previous + ")");
+}
+
+void CheckCount(const std::vector<double>& times, const std::string& source) {
+  if (times.size() < 2)
+    throw InputError(source + ": a table needs at least two points, got " + std::to_string(times.size()));
+}
+
+}  // namespace
+
+TableBlock::TableBlock(const std::string& name, std::vector<double> times, std::vector<double> values)
+    : Block("table", name), times_(std::move(times)), values_(std::move(values)) {
+  DeclareOutputPort("y");
+}
+
+void TableBlock::DoCalcOutput(int, const BlockContext& ctx) const {
+  const double t = ctx.time();
+  double& y = ctx.output(0)[0];
+  if (t <= times_.front()) {
+    y = values_.front();
+  } else if (t >= times_.back()) {
+    y = values_.back();
+  } else {
+    // times_[i-1] <= t < times_[i]
+    const size_t i = std::upper_bound(times_.begin(), times_.end(), t) - times_.begin();
+    const double s = (t - times_[i - 1]) / (times_[i] - times_[i - 1]);
+    y = values_[i - 1] + s * (values_[i] - values_[i - 1]);
+  }
+}
+
+void TablePointsFromRows(const std::vector<std::vector<double>>& rows, std::vector<double>* times,
+                         std::vector<double>* values) {
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const std::string where = "points row " + std::to_string(i + 1);
+    if (rows[i].size() != 2)
+      throw InputError(where + " has " + std::to_string(rows[i].size()) + " numbers; expected two (t y)");
+    CheckPoint(rows[i][0], rows[i][1], *times, where, "row " + std::to_string(i));
+    times->push_back(rows[i][0]);
+    values->push_back(rows[i][1]);
+  }
+  CheckCount(*times, "points");
+}
+
+void ReadTableCsv(const std::string& path, std::vector<double>* times, std::vector<double>* values) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot open table file '" + path + "'");
+  std::string line;
+  int line_number = 0, previous_line = 0;
+  bool header_allowed = true;
+  while (std::getline(in, line)) {
+    ++line_number;
+    // '#' starts a comment; commas, semicolons and tabs separate like spaces
+    const std::string text = line.substr(0, line.find('#'));
+    std::string fields = text;
+    for (char& c : fields)
+      if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
+    std::vector<double> row;
+    bool numeric = true;
+    size_t pos = 0;
+    while ((pos = fields.find_first_not_of(' ', pos)) != std::string::npos) {
+      const size_t end = std::min(fields.find(' ', pos), fields.size());
+      double v = 0;
+      const auto [ptr, error] = std::from_chars(fields.data() + pos, fields.data() + end, v);
+      if (error != std::errc() || ptr != fields.data() + end) numeric = false;
+      row.push_back(v);
+      pos = end;
+    }
+    if (row.empty()) continue;
+    const std::string where = path + ":" + std::to_string(line_number);
+    if (!numeric) {
+      // one header line is allowed, before the first point
+      if (header_allowed) {
+        header_allowed = false;
+        continue;
+      }
+      throw InputError(where + ": expected two numbers (t, y), found '" + text + "'");
+    }
+    header_allowed = false;
+    if (row.size() != 2)
+      throw InputError(where + ": expected two numbers (t, y), found " + std::to_string(row.size()));
+    CheckPoint(row[0], row[1], *times, where, "line " + std::to_string(previous_line));
+    times->push_back(row[0]);
+    values->push_back(row[1]);
+    previous_line = line_number;
+  }
+  CheckCount(*times, path);
+}
+
+}  // namespace mechflow::blocks
