@@ -1,4 +1,5 @@
 # Every test executable, one line each: mechflow_test(name label sources...).
+include(tests/mech/tests.cmake)
 include(tests/blocks/tests.cmake)
 include(tests/scripting/tests.cmake)
 include(tests/diagrams/tests.cmake)

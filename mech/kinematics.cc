@@ -1,0 +1,112 @@
+#include "mech/kinematics.h"
+
+namespace mechflow::mech {
+namespace {
+
+Eigen::Quaterniond QuaternionAt(std::span<const double> q, int i) {
+  return Eigen::Quaterniond(q[i + 3], q[i + 4], q[i + 5], q[i + 6]).normalized();
+}
+
+}  // namespace
+
+Kinematics::Kinematics(const Model& model) {
+  const std::size_t ns = model.segments().size(), nb = model.bodies().size();
+  X.resize(ns);
+  pose.resize(ns);
+  axis.assign(ns, Vec6::Zero());
+  velocity.assign(ns, Vec6::Zero());
+  bias.assign(ns, Vec6::Zero());
+  prescribed.resize(ns);
+  body_pose.resize(nb);
+  body_omega.assign(nb, Vec3::Zero());
+  body_velocity.assign(nb, Vec3::Zero());
+}
+
+void UpdateKinematics(const Model& model, double t, std::span<const double> q, std::span<const double> v,
+                      Kinematics* kin) {
+  kin->time = t;
+  const auto& segments = model.segments();
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const Segment& seg = segments[i];
+    Pose joint;
+    Vec6 vJ = Vec6::Zero();
+    Vec6 aJ = Vec6::Zero();  // prescribed joint acceleration
+    if (seg.motion == SegmentMotion::kFree) {
+      joint = {QuaternionAt(q, seg.q_index).toRotationMatrix(),
+               Vec3(q[seg.q_index], q[seg.q_index + 1], q[seg.q_index + 2])};
+      for (int k = 0; k < 6; ++k) vJ(k) = v[seg.v_index + k];
+    } else {
+      Jet s;
+      if (seg.drive == SegmentDrive::kTime) {
+        s = seg.function->Evaluate(t);
+        kin->prescribed[i] = s;
+      } else {
+        s = {q[seg.q_index], v[seg.v_index], 0.0};
+      }
+      Vec6& S = kin->axis[i];
+      if (seg.motion == SegmentMotion::kRevolute) {
+        joint = Pose::Rotation(AxisRotation(seg.axis, s.value));
+        S << seg.axis, Vec3::Zero();
+      } else {
+        joint = Pose::Translation(seg.axis * s.value);
+        S << Vec3::Zero(), seg.axis;
+      }
+      vJ = S * s.rate;
+      aJ = S * s.acceleration;
+    }
+    const Pose local = seg.placement * joint;
+    kin->X[i] = SpatialTransform::FromPose(local);
+    if (seg.parent == kGround) {
+      kin->pose[i] = local;
+      kin->velocity[i] = vJ;
+      kin->bias[i] = aJ;
+    } else {
+      kin->pose[i] = kin->pose[seg.parent] * local;
+      const Vec6 v_parent = kin->X[i].Motion(kin->velocity[seg.parent]);
+      kin->velocity[i] = v_parent + vJ;
+      kin->bias[i] = CrossMotion(kin->velocity[i], vJ) + aJ;
+    }
+  }
+  for (std::size_t b = 0; b < model.bodies().size(); ++b) {
+    const Body& body = model.bodies()[b];
+    if (body.segment == kGround) {
+      kin->body_pose[b] = body.in_segment;
+      kin->body_omega[b].setZero();
+      kin->body_velocity[b].setZero();
+      continue;
+    }
+    const Pose& sp = kin->pose[body.segment];
+    const Vec6& sv = kin->velocity[body.segment];
+    kin->body_pose[b] = sp * body.in_segment;
+    kin->body_omega[b] = sp.R * sv.head<3>();
+    kin->body_velocity[b] = sp.R * (sv.tail<3>() + sv.head<3>().cross(body.in_segment.p));
+  }
+}
+
+void CoordinateRates(const Model& model, std::span<const double> q, std::span<const double> v,
+                     std::span<double> qdot) {
+  if (!model.has_quaternions()) {
+    for (int i = 0; i < model.nv(); ++i) qdot[i] = v[i];
+    return;
+  }
+  for (const Dof& dof : model.dofs()) qdot[dof.q_index] = v[dof.v_index];
+  for (const Segment& seg : model.segments()) {
+    if (seg.motion != SegmentMotion::kFree) continue;
+    const int iq = seg.q_index, iv = seg.v_index;
+    const Eigen::Quaterniond quat(q[iq + 3], q[iq + 4], q[iq + 5], q[iq + 6]);
+    const Vec3 omega(v[iv], v[iv + 1], v[iv + 2]);
+    const Vec3 lin(v[iv + 3], v[iv + 4], v[iv + 5]);
+    const Vec3 pdot = quat.normalized().toRotationMatrix() * lin;
+    // q' = 1/2 q (x) (0, omega)
+    const Eigen::Quaterniond rate = quat * Eigen::Quaterniond(0.0, omega.x(), omega.y(), omega.z());
+    qdot[iq] = pdot.x();
+    qdot[iq + 1] = pdot.y();
+    qdot[iq + 2] = pdot.z();
+    qdot[iq + 3] = 0.5 * rate.w();
+    qdot[iq + 4] = 0.5 * rate.x();
+    qdot[iq + 5] = 0.5 * rate.y();
+    qdot[iq + 6] = 0.5 * rate.z();
+  }
+}
+
+}  // namespace mechflow::mech

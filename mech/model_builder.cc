@@ -1,0 +1,271 @@
+#include "mech/model_builder.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+#include "mech/errors.h"
+
+namespace mechflow::mech {
+namespace {
+
+std::string Where(const std::string& origin) { return origin.empty() ? std::string() : origin + ": "; }
+
+std::string Num(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+void CheckBody(const BodySpec& b) {
+  const std::string where = Where(b.origin) + "body '" + b.name + "': ";
+  if (!(b.mass > 0.0) || !std::isfinite(b.mass))
+    throw InputError(where + "mass must be a positive number of kg (got " + Num(b.mass) + ")");
+  const Mat3& I = b.inertia;
+  if (!I.allFinite() || (I - I.transpose()).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + I.cwiseAbs().maxCoeff()))
+    throw InputError(where + "inertia tensor must be symmetric (Ixy = Iyx, Ixz = Izx, Iyz = Izy)");
+  Eigen::SelfAdjointEigenSolver<Mat3> eig(I);
+  const Vec3 p = eig.eigenvalues();  // ascending
+  if (!(p(0) > 0.0))
+    throw InputError(where + "inertia tensor must be positive definite (smallest principal moment " + Num(p(0)) +
+                     " kg m^2)");
+  // A rigid body's principal moments obey I1 + I2 >= I3 (rounding allowed).
+  if (p(0) + p(1) < p(2) * (1.0 - 1e-9))
+    throw InputError(where + "principal moments " + Num(p(0)) + ", " + Num(p(1)) + ", " + Num(p(2)) +
+                     " violate the triangle inequality I1 + I2 >= I3: no rigid body has them");
+  if (!b.com.allFinite()) throw InputError(where + "centre of mass must be finite");
+}
+
+bool IsVariable(TransformType t) { return t == TransformType::kTv || t == TransformType::kRv; }
+bool IsTimed(TransformType t) { return t == TransformType::kTt || t == TransformType::kRt; }
+bool IsRotation(TransformType t) {
+  return t == TransformType::kRc || t == TransformType::kRt || t == TransformType::kRv;
+}
+
+}  // namespace
+
+int Model::FindBody(const std::string& name) const {
+  for (int i = 0; i < num_bodies(); ++i)
+    if (bodies_[i].name == name) return i;
+  return -1;
+}
+int Model::FindJoint(const std::string& name) const {
+  for (int i = 0; i < static_cast<int>(joints_.size()); ++i)
+    if (joints_[i].name == name) return i;
+  return -1;
+}
+int Model::FindDof(const std::string& name) const {
+  for (int i = 0; i < static_cast<int>(dofs_.size()); ++i)
+    if (dofs_[i].name == name) return i;
+  return -1;
+}
+
+ModelBuilder::ModelBuilder() : model_(new Model) {
+  Body base;
+  base.name = "Base0";
+  model_->bodies_.push_back(base);
+}
+
+void ModelBuilder::AddBody(BodySpec spec) {
+  if (built_) throw std::logic_error("ModelBuilder used after Build()");
+  CheckBody(spec);
+  if (model_->FindBody(spec.name) >= 0)
+    throw InputError(Where(spec.origin) + "body '" + spec.name + "' is defined twice");
+  Body body;
+  body.name = spec.name;
+  body.mass = spec.mass;
+  body.com = spec.com;
+  body.inertia = spec.inertia;
+  body.points = std::move(spec.points);
+  body.origin = spec.origin;
+  model_->bodies_.push_back(std::move(body));
+}
+
+void ModelBuilder::AddJoint(JointSpec spec) {
+  if (built_) throw std::logic_error("ModelBuilder used after Build()");
+  const std::string where = Where(spec.origin) + "joint '" + spec.name + "': ";
+  for (const auto& other : joint_specs_)
+    if (other.name == spec.name) throw InputError(Where(spec.origin) + "joint '" + spec.name + "' is defined twice");
+  for (const std::string* body : {&spec.body1, &spec.body2})
+    if (model_->FindBody(*body) < 0)
+      throw InputError(where + "unknown body '" + *body + "' (bodies are defined before the joints that use them)");
+  if (spec.body1 == spec.body2) throw InputError(where + "body 1 and body 2 are the same body '" + spec.body1 + "'");
+  for (std::size_t k = 0; k < spec.chain.size(); ++k) {
+    const TransformSpec& et = spec.chain[k];
+    const std::string et_where = Where(et.origin.empty() ? spec.origin : et.origin) + "joint '" + spec.name +
+                                 "' transformation " + std::to_string(k + 1) + ": ";
+    if (!(et.axis.norm() > 0.0) || !et.axis.allFinite())
+      throw InputError(et_where + "axis vector must be non-zero");
+    if (IsTimed(et.type) && !et.function) throw InputError(et_where + "a time function is required");
+    if (!std::isfinite(et.value) || !std::isfinite(et.rate)) throw InputError(et_where + "values must be finite");
+  }
+  joint_specs_.push_back(std::move(spec));
+}
+
+int ModelBuilder::AddDof(const std::string& name, int joint, bool rotational, double q0, double v0) {
+  Model& m = *model_;
+  if (m.FindDof(name) >= 0)
+    throw InputError(Where(joint_specs_[joint].origin) + "joint '" + joint_specs_[joint].name +
+                     "': coordinate name '" + name + "' is used twice");
+  Dof dof{name, joint, m.nq_, m.nv_, rotational};
+  m.dofs_.push_back(dof);
+  m.initial_q_.push_back(q0);
+  m.initial_v_.push_back(v0);
+  ++m.nq_;
+  ++m.nv_;
+  return static_cast<int>(m.dofs_.size()) - 1;
+}
+
+int ModelBuilder::AppendChain(const JointSpec& spec, int joint_index, int parent, Pose pending, bool ghost,
+                              Pose* end) {
+  Model& m = *model_;
+  int num_variable = 0;
+  for (const auto& et : spec.chain)
+    if (IsVariable(et.type) && !et.locked) ++num_variable;
+  int k_variable = 0;
+  for (const auto& et : spec.chain) {
+    const Vec3 axis = et.axis.normalized();
+    const bool moving = IsTimed(et.type) || (IsVariable(et.type) && !et.locked);
+    if (!moving) {
+      const double s = et.value;
+      pending = IsRotation(et.type) ? pending * Pose::Rotation(AxisRotation(axis, s))
+                                    : pending * Pose::Translation(axis * s);
+      continue;
+    }
+    Segment seg;
+    seg.parent = parent;
+    seg.placement = pending;
+    seg.motion = IsRotation(et.type) ? SegmentMotion::kRevolute : SegmentMotion::kPrismatic;
+    seg.axis = axis;
+    seg.joint = joint_index;
+    seg.ghost = ghost;
+    if (IsTimed(et.type)) {
+      seg.drive = SegmentDrive::kTime;
+      seg.function = et.function;
+    } else {
+      ++k_variable;
+      std::string name = et.dof_name;
+      if (name.empty()) name = num_variable == 1 ? spec.name : spec.name + "." + std::to_string(k_variable);
+      const int dof = AddDof(name, joint_index, IsRotation(et.type), et.value, et.rate);
+      seg.drive = SegmentDrive::kDof;
+      seg.q_index = m.dofs_[dof].q_index;
+      seg.v_index = m.dofs_[dof].v_index;
+      m.joints_[joint_index].dofs.push_back(dof);
+    }
+    m.segments_.push_back(seg);
+    parent = static_cast<int>(m.segments_.size()) - 1;
+    pending = Pose();
+  }
+  *end = pending;
+  return parent;
+}
+
+void ModelBuilder::CompileTreeJoint(const JointSpec& spec, int joint_index) {
+  Model& m = *model_;
+  Joint& joint = m.joints_[joint_index];
+  const Body& b1 = m.bodies_[joint.body1];
+  const Pose start = b1.in_segment * spec.frame1;
+  int last = b1.segment;
+  Pose end;
+  if (spec.quaternion) {
+    Segment seg;
+    seg.parent = last;
+    seg.placement = start;
+    seg.motion = SegmentMotion::kFree;
+    seg.drive = SegmentDrive::kDof;
+    seg.joint = joint_index;
+    seg.q_index = m.nq_;
+    seg.v_index = m.nv_;
+    const auto& init = spec.quaternion_initial;
+    const Eigen::Quaterniond quat = init.orientation.normalized();
+    const Vec3 v_body = quat.toRotationMatrix().transpose() * init.velocity;
+    const double q0[7] = {init.position.x(), init.position.y(), init.position.z(), quat.w(), quat.x(), quat.y(),
+                          quat.z()};
+    const double v0[6] = {init.angular_velocity.x(), init.angular_velocity.y(), init.angular_velocity.z(),
+                          v_body.x(), v_body.y(), v_body.z()};
+    m.initial_q_.insert(m.initial_q_.end(), q0, q0 + 7);
+    m.initial_v_.insert(m.initial_v_.end(), v0, v0 + 6);
+    m.nq_ += 7;
+    m.nv_ += 6;
+    m.has_quaternions_ = true;
+    m.segments_.push_back(seg);
+    last = static_cast<int>(m.segments_.size()) - 1;
+    end = Pose();
+  } else {
+    last = AppendChain(spec, joint_index, last, start, /*ghost=*/false, &end);
+    if (last == b1.segment) end = start * end;  // no moving transformation: a fixed joint
+  }
+  joint.last_segment = last;
+  joint.end_offset = end;
+  Body& b2 = m.bodies_[joint.body2];
+  b2.segment = last;
+  b2.in_segment = end * spec.frame2.Inverse();
+}
+
+void ModelBuilder::CompileCutJoint(const JointSpec& spec, int joint_index) {
+  Model& m = *model_;
+  Joint& joint = m.joints_[joint_index];
+  if (spec.quaternion)
+    throw InputError(Where(spec.origin) + "joint '" + spec.name +
+                     "': a quaternion joint cannot close a loop (it constrains nothing)");
+  const Body& b1 = m.bodies_[joint.body1];
+  const Pose start = b1.in_segment * spec.frame1;
+  Pose end;
+  int last = AppendChain(spec, joint_index, b1.segment, start, /*ghost=*/true, &end);
+  if (last == b1.segment) end = start * end;
+  joint.is_cut = true;
+  joint.last_segment = last;
+  joint.end_offset = end;
+  joint.body2_attachment = spec.frame2;
+  ++m.num_cut_joints_;
+}
+
+std::shared_ptr<const Model> ModelBuilder::Build() {
+  if (built_) throw std::logic_error("ModelBuilder::Build() called twice");
+  built_ = true;
+  Model& m = *model_;
+  for (std::size_t j = 0; j < joint_specs_.size(); ++j) {
+    Joint joint;
+    joint.name = joint_specs_[j].name;
+    joint.body1 = m.FindBody(joint_specs_[j].body1);
+    joint.body2 = m.FindBody(joint_specs_[j].body2);
+    joint.origin = joint_specs_[j].origin;
+    m.joints_.push_back(joint);
+  }
+  // Spanning tree: sweep the joints in file order until nothing new is placed.
+  std::vector<bool> placed(m.bodies_.size(), false), used(joint_specs_.size(), false);
+  placed[0] = true;
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (std::size_t j = 0; j < joint_specs_.size(); ++j) {
+      const Joint& joint = m.joints_[j];
+      if (used[j] || !placed[joint.body1] || placed[joint.body2]) continue;
+      CompileTreeJoint(joint_specs_[j], static_cast<int>(j));
+      placed[joint.body2] = true;
+      used[j] = true;
+      progress = true;
+    }
+  }
+  for (std::size_t b = 1; b < m.bodies_.size(); ++b) {
+    if (placed[b]) continue;
+    std::string hint;
+    for (const auto& joint : m.joints_)
+      if (joint.body2 == static_cast<int>(b) || joint.body1 == static_cast<int>(b))
+        hint = " (joint '" + joint.name + "' uses it, but a chain of joints from Base0 must reach it as body 2)";
+    throw InputError(Where(m.bodies_[b].origin) + "body '" + m.bodies_[b].name + "' is not connected to Base0" +
+                     (hint.empty() ? " (no joint places it)" : hint));
+  }
+  for (std::size_t j = 0; j < joint_specs_.size(); ++j)
+    if (!used[j]) CompileCutJoint(joint_specs_[j], static_cast<int>(j));
+  // Bodies lend their inertia to the segment they ride on.
+  for (const Body& body : m.bodies_) {
+    if (body.segment == kGround) continue;
+    const Pose& P = body.in_segment;
+    m.segments_[body.segment].inertia +=
+        SpatialInertia(body.mass, P * body.com, P.R * body.inertia * P.R.transpose());
+  }
+  return std::shared_ptr<const Model>(model_.release());
+}
+
+}  // namespace mechflow::mech
