@@ -40,7 +40,7 @@ void UpdateKinematics(const Model& model, double t, std::span<const double> q, s
       if (seg.drive == SegmentDrive::kTime) {
         s = seg.function->Evaluate(t);
         kin->prescribed[i] = s;
-      } else {
+      } else if (seg.drive == SegmentDrive::kDof) {
         s = {q[seg.q_index], v[seg.v_index], 0.0};
       }
       Vec6& S = kin->axis[i];

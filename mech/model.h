@@ -35,7 +35,8 @@ namespace mechflow::mech {
 inline constexpr int kGround = -1;  // parent of root segments; Base0 is body 0
 
 enum class SegmentMotion { kRevolute, kPrismatic, kFree };
-enum class SegmentDrive { kDof, kTime };
+// kNone: a fixed joint's segment, kept so the joint's reaction is computed.
+enum class SegmentDrive { kDof, kTime, kNone };
 
 struct Segment {
   int parent = kGround;      // segment index
@@ -80,7 +81,8 @@ struct Joint {
   std::string name;
   int body1 = 0, body2 = 0;
   bool is_cut = false;
-  int last_segment = kGround;  // body 2 side (tree) or ghost end (cut)
+  int first_segment = kGround;  // tree joints: the segment whose transmitted force is the reaction
+  int last_segment = kGround;   // body 2 side (tree) or ghost end (cut)
   Pose end_offset;             // from last_segment's frame to body 2's frame (tree) or to the
                                // constraint frame (cut: that frame must coincide with body 2's
                                // attachment frame)

@@ -191,10 +191,22 @@ void ModelBuilder::CompileTreeJoint(const JointSpec& spec, int joint_index) {
     m.has_quaternions_ = true;
     m.segments_.push_back(seg);
     last = static_cast<int>(m.segments_.size()) - 1;
+    joint.first_segment = last;
     end = Pose();
   } else {
+    const int first_new = static_cast<int>(m.segments_.size());
     last = AppendChain(spec, joint_index, last, start, /*ghost=*/false, &end);
-    if (last == b1.segment) end = start * end;  // no moving transformation: a fixed joint
+    if (last == b1.segment) {  // no moving transformation: a fixed joint gets a fixed segment
+      Segment seg;
+      seg.parent = last;
+      seg.placement = start * end;
+      seg.drive = SegmentDrive::kNone;
+      seg.joint = joint_index;
+      m.segments_.push_back(seg);
+      last = first_new;
+      end = Pose();
+    }
+    joint.first_segment = first_new;
   }
   joint.last_segment = last;
   joint.end_offset = end;

@@ -1,2 +1,3 @@
 # Tests of mech/.
 mechflow_test(dynamics_test unit tests/mech/dynamics_test.cc)
+mechflow_test(constraints_test unit tests/mech/constraints_test.cc)

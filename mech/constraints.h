@@ -1,0 +1,75 @@
+#pragma once
+// Constraints: the cut joints that close loops, as weld constraints.
+//
+// A cut joint's own moving transformations hang from body 1 as massless
+// "ghost" segments (mech/model.h); its constraint frame G (end of that chain)
+// must coincide with the attachment frame B on body 2. Per cut joint six
+// equations, in G's axes: rotation error (3) then position error (3). Rows are
+// the relative motion of B with respect to G:
+//   J v = [R_G^T (w_B - w_G); R_G^T (v_B(x_B) - v_G(x_B))],
+// so a multiplier is the wrench [moment about x_B; force] that body 2
+// receives, in G's axes. Equations that a loop satisfies identically (a
+// planar loop's out-of-plane rows, Convel1's redundant ones) make J rank
+// deficient; every solve here is least-squares/least-norm (complete
+// orthogonal decomposition), so redundancy is accepted and reported as a rank.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/QR>
+
+#include "mech/kinematics.h"
+
+namespace mechflow::mech {
+
+class Constraints {
+ public:
+  explicit Constraints(const Model& model);
+
+  int size() const { return static_cast<int>(cut_joints_.size()) * 6; }
+  bool empty() const { return cut_joints_.empty(); }
+  const std::vector<int>& cut_joints() const { return cut_joints_; }
+
+  // Position residual phi (size()).
+  void Residual(const Model& model, const Kinematics& kin, Eigen::VectorXd* phi) const;
+  // J (size() x nv) and the velocity residual's time part: psi_t = J v +
+  // psi_t is the relative velocity (prescribed motions included).
+  void Jacobian(const Model& model, const Kinematics& kin, Eigen::MatrixXd* J) const;
+  // Relative velocity of B w.r.t. G for the current kinematics (= J v + psi_t).
+  void VelocityResidual(const Model& model, const Kinematics& kin, Eigen::VectorXd* psi) const;
+  // Relative acceleration when v' = 0 (velocity products and prescribed
+  // accelerations): J v' + bias = 0 holds on the constraint manifold.
+  void AccelerationBias(const Model& model, const Kinematics& kin, std::vector<Vec6>* scratch,
+                        Eigen::VectorXd* bias) const;
+  // Global pose of the constraint frame G and of B for cut joint k.
+  Pose FrameG(const Model& model, const Kinematics& kin, int k) const;
+  Pose FrameB(const Model& model, const Kinematics& kin, int k) const;
+
+ private:
+  std::vector<int> cut_joints_;
+  // is_ancestor_[s][a]: segment a lies on the path from the root to s (incl. s)
+  std::vector<std::vector<bool>> is_ancestor_;
+};
+
+struct ConstraintWorkspace {
+  explicit ConstraintWorkspace(const Model& model, const Constraints& constraints);
+  Eigen::MatrixXd M, J, kkt;
+  Eigen::VectorXd phi, psi, bias, rhs, solution, lambda;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> kkt_solver, j_solver;
+  std::vector<Vec6> scratch;
+  std::vector<Vec6> loads;  // segment loads with the constraint wrenches added
+  std::vector<double> h;    // inverse dynamics with v' = 0
+  std::vector<double> zero;
+};
+
+// Moves q (and then v) onto the constraint manifold by Gauss-Newton with
+// least-norm steps; returns the final position residual norm. Quaternion
+// coordinates are updated through their rotation vector.
+double ProjectPositions(const Model& model, const Constraints& constraints, double t, std::span<double> q,
+                        std::span<const double> v, double tolerance, int max_iterations, Kinematics* kin,
+                        ConstraintWorkspace* ws);
+void ProjectVelocities(const Model& model, const Constraints& constraints, double t, std::span<const double> q,
+                       std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws);
+
+}  // namespace mechflow::mech

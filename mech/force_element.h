@@ -1,0 +1,102 @@
+#pragma once
+// ForceElement: anything that applies loads to a mechanism from its state:
+// springs, dampers, bushings, joint forces, and (later) friction elements and
+// contacts with memory.
+//
+// An element declares, in its constructor, its sensor outputs ("force",
+// "length", "rate", ...), and -- for elements with memory -- continuous
+// internal states (integrated with the mechanism), discrete modes (stick/
+// slip, contact open/closed) and zero-crossing functions whose sign change is
+// the event that switches a mode. Mode switches are never `if`s hidden inside
+// a step: Evaluate() uses the current mode; OnCrossing() changes it.
+//
+// Run-time methods are const, must not allocate, and report bad numbers by
+// throwing SimulationError.
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mech/loads.h"
+#include "mech/time_function.h"
+
+namespace mechflow::mech {
+
+enum class Crossing { kRising, kFalling, kEither };
+
+// Everything an element may read during one evaluation.
+struct ElementContext {
+  double t = 0.0;
+  const Model* model = nullptr;
+  const Kinematics* kin = nullptr;
+  std::span<const double> q, v;
+  // [t, input_0, input_1, ...]: the arguments of parameters that depend on
+  // the mechanism's inputs (see Parameter).
+  std::span<const double> parameter_args;
+  std::span<const double> state;  // this element's continuous states
+  std::span<const double> modes;  // this element's discrete modes
+};
+
+// A numeric element parameter: a constant, or a function of (t, inputs...)
+// when it is an expression of identifiers that are mechanism inputs.
+struct Parameter {
+  double value = 0.0;
+  std::shared_ptr<const ScalarFunction> function;
+
+  Parameter() = default;
+  Parameter(double v) : value(v) {}  // NOLINT: a constant reads naturally
+  double Get(const ElementContext& ctx) const { return function ? function->Evaluate(ctx.parameter_args) : value; }
+  bool is_constant() const { return !function; }
+};
+
+class ForceElement {
+ public:
+  ForceElement(std::string name, std::string origin) : name_(std::move(name)), origin_(std::move(origin)) {}
+  virtual ~ForceElement() = default;
+  ForceElement(const ForceElement&) = delete;
+  ForceElement& operator=(const ForceElement&) = delete;
+
+  const std::string& name() const { return name_; }
+  const std::string& origin() const { return origin_; }
+  const std::vector<std::string>& sensor_names() const { return sensors_; }
+  int num_sensors() const { return static_cast<int>(sensors_.size()); }
+  int FindSensor(const std::string& sensor) const {
+    for (int i = 0; i < num_sensors(); ++i)
+      if (sensors_[i] == sensor) return i;
+    return -1;
+  }
+  int num_states() const { return num_states_; }
+  int num_modes() const { return num_modes_; }
+  int num_crossings() const { return static_cast<int>(crossings_.size()); }
+  Crossing crossing_direction(int i) const { return crossings_.at(i); }
+
+  // Initial internal states and modes from the initial configuration.
+  virtual void Initialize(const ElementContext&, std::span<double> /*state*/, std::span<double> /*modes*/) const {}
+  // Adds the element's loads, writes the rates of its internal states and its
+  // sensor values.
+  virtual void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
+                        std::span<double> sensors) const = 0;
+  virtual void ZeroCrossings(const ElementContext&, std::span<double> /*values*/) const {}
+  // Crossing `index` fired (direction +1 rising, -1 falling): switch modes,
+  // reset internal states.
+  virtual void OnCrossing(int /*index*/, int /*direction*/, const ElementContext&, std::span<double> /*state*/,
+                          std::span<double> /*modes*/) const {}
+
+ protected:
+  void DeclareSensor(std::string sensor) { sensors_.push_back(std::move(sensor)); }
+  void DeclareStates(int n) { num_states_ += n; }
+  void DeclareModes(int n) { num_modes_ += n; }
+  int DeclareCrossing(Crossing direction) {
+    crossings_.push_back(direction);
+    return num_crossings() - 1;
+  }
+
+ private:
+  std::string name_, origin_;
+  std::vector<std::string> sensors_;
+  int num_states_ = 0, num_modes_ = 0;
+  std::vector<Crossing> crossings_;
+};
+
+}  // namespace mechflow::mech

@@ -1,0 +1,249 @@
+#include "mech/mechanism.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "mech/errors.h"
+
+namespace mechflow::mech {
+namespace {
+
+ElementContext MakeContext(const Mechanism& mechanism, double t, std::span<const double> x,
+                           std::span<const double> modes, const MechanismWorkspace& ws, int e) {
+  const Model& model = mechanism.model();
+  const ForceElement& element = mechanism.element(e);
+  ElementContext ctx;
+  ctx.t = t;
+  ctx.model = &model;
+  ctx.kin = &ws.kin;
+  ctx.q = x.subspan(0, model.nq());
+  ctx.v = x.subspan(model.nq(), model.nv());
+  ctx.parameter_args = ws.parameter_args;
+  ctx.state = x.subspan(mechanism.state_offset(e), element.num_states());
+  ctx.modes = modes.empty() ? modes : modes.subspan(mechanism.mode_offset(e), element.num_modes());
+  return ctx;
+}
+
+void SetParameterArgs(double t, std::span<const double> inputs, MechanismWorkspace* ws) {
+  ws->parameter_args[0] = t;
+  for (std::size_t i = 0; i < inputs.size() && i + 1 < ws->parameter_args.size(); ++i)
+    ws->parameter_args[i + 1] = inputs[i];
+}
+
+// Segment loads with the constraint wrenches (lambda) applied to both sides.
+void AddConstraintLoads(const Mechanism& mechanism, MechanismWorkspace* ws) {
+  const Model& model = mechanism.model();
+  const Constraints& constraints = mechanism.constraints();
+  auto& loads = ws->constraint.loads;
+  for (std::size_t s = 0; s < loads.size(); ++s) loads[s] = ws->loads.segment_loads()[s];
+  for (int k = 0; k < static_cast<int>(constraints.cut_joints().size()); ++k) {
+    const Joint& joint = model.joints()[constraints.cut_joints()[k]];
+    const Pose G = constraints.FrameG(model, ws->kin, k), B = constraints.FrameB(model, ws->kin, k);
+    const Vec3 moment = G.R * ws->constraint.lambda.segment<3>(6 * k);
+    const Vec3 force = G.R * ws->constraint.lambda.segment<3>(6 * k + 3);
+    // +wrench on body 2's segment at x_B, -wrench on the ghost end's segment.
+    const int sides[2] = {model.bodies()[joint.body2].segment, joint.last_segment};
+    for (int side = 0; side < 2; ++side) {
+      const int s = sides[side];
+      if (s == kGround) continue;
+      const double sign = side == 0 ? 1.0 : -1.0;
+      const Pose& pose = ws->kin.pose[s];
+      const Vec3 f = pose.R.transpose() * force;
+      const Vec3 r = pose.R.transpose() * (B.p - pose.p);
+      loads[s].head<3>() += sign * (pose.R.transpose() * moment + r.cross(f));
+      loads[s].tail<3>() += sign * f;
+    }
+  }
+}
+
+void SolveConstrained(const Mechanism& mechanism, MechanismWorkspace* ws) {
+  const Model& model = mechanism.model();
+  ConstraintWorkspace& c = ws->constraint;
+  const int n = model.nv(), m = mechanism.constraints().size();
+  // f = tau - h(q, v, external): the accelerations' right-hand side.
+  InverseDynamics(model, ws->kin, c.zero, ws->loads.segment_loads(), c.h, &ws->dyn);
+  MassMatrix(model, ws->kin, &c.M, &ws->dyn);
+  mechanism.constraints().Jacobian(model, ws->kin, &c.J);
+  mechanism.constraints().AccelerationBias(model, ws->kin, &c.scratch, &c.bias);
+  c.kkt.topLeftCorner(n, n) = c.M;
+  c.kkt.topRightCorner(n, m) = c.J.transpose();
+  c.kkt.bottomLeftCorner(m, n) = c.J;
+  c.kkt.bottomRightCorner(m, m).setZero();
+  for (int i = 0; i < n; ++i) c.rhs(i) = ws->loads.generalized()[i] - c.h[i];
+  c.rhs.tail(m) = -c.bias;
+  c.kkt_solver.compute(c.kkt);
+  c.solution = c.kkt_solver.solve(c.rhs);
+  // M v' + J^T mu = f: the multipliers of "J^T lambda is the force" are -mu.
+  c.lambda = -c.solution.tail(m);
+  for (int i = 0; i < n; ++i) ws->vdot[i] = c.solution(i);
+  if (!c.solution.allFinite()) {
+    std::ostringstream out;
+    out << "singular constrained mass matrix at t = " << ws->kin.time;
+    throw SimulationError(out.str());
+  }
+}
+
+}  // namespace
+
+Mechanism::Mechanism(std::shared_ptr<const Model> model, std::vector<std::unique_ptr<ForceElement>> elements,
+                     std::vector<std::string> input_names)
+    : model_(std::move(model)),
+      elements_(std::move(elements)),
+      input_names_(std::move(input_names)),
+      constraints_(*model_) {
+  state_size_ = model_->nq() + model_->nv();
+  for (const auto& e : elements_) {
+    layout_.push_back({state_size_, mode_size_, crossing_size_, sensor_size_});
+    state_size_ += e->num_states();
+    mode_size_ += e->num_modes();
+    crossing_size_ += e->num_crossings();
+    sensor_size_ += e->num_sensors();
+  }
+}
+
+int Mechanism::FindElement(const std::string& name) const {
+  for (int i = 0; i < num_elements(); ++i)
+    if (elements_[i]->name() == name) return i;
+  return -1;
+}
+
+int Mechanism::FindInput(const std::string& name) const {
+  for (int i = 0; i < num_inputs(); ++i)
+    if (input_names_[i] == name) return i;
+  return -1;
+}
+
+MechanismWorkspace::MechanismWorkspace(const Mechanism& mechanism)
+    : kin(mechanism.model()),
+      dyn(mechanism.model()),
+      loads(mechanism.model()),
+      constraint(mechanism.model(), mechanism.constraints()),
+      vdot(mechanism.model().nv(), 0.0),
+      sensors(mechanism.num_sensor_values(), 0.0),
+      parameter_args(1 + mechanism.num_inputs(), 0.0) {}
+
+void EvaluatePositions(const Mechanism& mechanism, double t, std::span<const double> x, MechanismWorkspace* ws) {
+  const Model& model = mechanism.model();
+  UpdateKinematics(model, t, x.subspan(0, model.nq()), x.subspan(model.nq(), model.nv()), &ws->kin);
+  ws->accelerations_valid = false;
+}
+
+void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const double> x,
+                       std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
+                       std::span<double> xdot) {
+  const Model& model = mechanism.model();
+  EvaluatePositions(mechanism, t, x, ws);
+  SetParameterArgs(t, inputs, ws);
+  ws->loads.Clear();
+  std::span<double> all_rates = xdot.empty() ? std::span<double>() : xdot;
+  for (int e = 0; e < mechanism.num_elements(); ++e) {
+    const ForceElement& element = mechanism.element(e);
+    const ElementContext ctx = MakeContext(mechanism, t, x, modes, *ws, e);
+    std::span<double> rates =
+        all_rates.empty() ? std::span<double>() : all_rates.subspan(mechanism.state_offset(e), element.num_states());
+    element.Evaluate(ctx, &ws->loads,  rates,
+                     std::span<double>(ws->sensors).subspan(mechanism.sensor_offset(e), element.num_sensors()));
+  }
+  if (mechanism.constraints().empty()) {
+    ForwardDynamics(model, ws->kin, ws->loads.generalized(), ws->loads.segment_loads(), ws->vdot, &ws->dyn);
+    if (ws->want_reactions)
+      InverseDynamics(model, ws->kin, ws->vdot, ws->loads.segment_loads(), ws->constraint.h, &ws->dyn);
+  } else {
+    SolveConstrained(mechanism, ws);
+    // Reactions need the segment forces of the actual motion.
+    AddConstraintLoads(mechanism, ws);
+    InverseDynamics(model, ws->kin, ws->vdot, ws->constraint.loads, ws->constraint.h, &ws->dyn);
+  }
+  ws->accelerations_valid = true;
+  if (xdot.empty()) return;
+  CoordinateRates(model, x.subspan(0, model.nq()), x.subspan(model.nq(), model.nv()), xdot.subspan(0, model.nq()));
+  for (int i = 0; i < model.nv(); ++i) xdot[model.nq() + i] = ws->vdot[i];
+}
+
+void EvaluateCrossings(const Mechanism& mechanism, std::span<const double> x, std::span<const double> modes,
+                       MechanismWorkspace* ws, std::span<double> values) {
+  for (int e = 0; e < mechanism.num_elements(); ++e) {
+    const ForceElement& element = mechanism.element(e);
+    if (element.num_crossings() == 0) continue;
+    const ElementContext ctx = MakeContext(mechanism, ws->kin.time, x, modes, *ws, e);
+    element.ZeroCrossings(ctx, values.subspan(mechanism.crossing_offset(e), element.num_crossings()));
+  }
+}
+
+void ApplyCrossing(const Mechanism& mechanism, int crossing, int direction, std::span<double> x,
+                   std::span<double> modes, MechanismWorkspace* ws) {
+  for (int e = 0; e < mechanism.num_elements(); ++e) {
+    const ForceElement& element = mechanism.element(e);
+    const int first = mechanism.crossing_offset(e);
+    if (crossing < first || crossing >= first + element.num_crossings()) continue;
+    const ElementContext ctx = MakeContext(mechanism, ws->kin.time, x, modes, *ws, e);
+    element.OnCrossing(crossing - first, direction, ctx, x.subspan(mechanism.state_offset(e), element.num_states()),
+                       modes.subspan(mechanism.mode_offset(e), element.num_modes()));
+    return;
+  }
+}
+
+void InitialState(const Mechanism& mechanism, std::span<const double> inputs, std::span<double> x,
+                  std::span<double> modes, MechanismWorkspace* ws) {
+  const Model& model = mechanism.model();
+  for (int i = 0; i < model.nq(); ++i) x[i] = model.initial_q()[i];
+  for (int i = 0; i < model.nv(); ++i) x[model.nq() + i] = model.initial_v()[i];
+  for (int i = model.nq() + model.nv(); i < mechanism.num_states(); ++i) x[i] = 0.0;
+  for (double& m : modes) m = 0.0;
+  std::span<double> q = x.subspan(0, model.nq()), v = x.subspan(model.nq(), model.nv());
+  const Constraints& constraints = mechanism.constraints();
+  if (!constraints.empty()) {
+    const double residual = ProjectPositions(model, constraints, 0.0, q, v, 1e-12, 50, &ws->kin, &ws->constraint);
+    if (!(residual <= 1e-9)) {
+      std::ostringstream out;
+      const Joint& joint = model.joints()[constraints.cut_joints()[0]];
+      out << joint.origin << (joint.origin.empty() ? "" : ": ") << "the loop closed by joint '" << joint.name
+          << "' cannot be assembled from the initial coordinates (residual " << residual
+          << " after 50 Newton steps): check the dimensions and the initial coordinates";
+      throw InputError(out.str());
+    }
+    ProjectVelocities(model, constraints, 0.0, q, v, &ws->kin, &ws->constraint);
+  }
+  EvaluatePositions(mechanism, 0.0, x, ws);
+  SetParameterArgs(0.0, inputs, ws);
+  for (int e = 0; e < mechanism.num_elements(); ++e) {
+    const ForceElement& element = mechanism.element(e);
+    const ElementContext ctx = MakeContext(mechanism, 0.0, x, modes, *ws, e);
+    element.Initialize(ctx, x.subspan(mechanism.state_offset(e), element.num_states()),
+                       modes.subspan(mechanism.mode_offset(e), element.num_modes()));
+  }
+}
+
+Wrench JointReaction(const Mechanism& mechanism, const MechanismWorkspace& ws, int j) {
+  const Model& model = mechanism.model();
+  const Joint& joint = model.joints()[j];
+  Wrench w;
+  const Pose attach = [&] {
+    if (joint.is_cut) {
+      for (int k = 0; k < static_cast<int>(mechanism.constraints().cut_joints().size()); ++k)
+        if (mechanism.constraints().cut_joints()[k] == j) return mechanism.constraints().FrameB(model, ws.kin, k);
+    }
+    const int s = joint.last_segment;
+    return s == kGround ? joint.end_offset : ws.kin.pose[s] * joint.end_offset;
+  }();
+  if (joint.is_cut) {
+    const auto& cuts = mechanism.constraints().cut_joints();
+    for (int k = 0; k < static_cast<int>(cuts.size()); ++k) {
+      if (cuts[k] != j) continue;
+      const Pose G = mechanism.constraints().FrameG(model, ws.kin, k);
+      w.torque = G.R * ws.constraint.lambda.segment<3>(6 * k);
+      w.force = G.R * ws.constraint.lambda.segment<3>(6 * k + 3);
+    }
+    return w;
+  }
+  // Force transmitted into the joint's first segment, moved to the attachment point.
+  const int s = joint.first_segment;
+  const Pose& pose = ws.kin.pose[s];
+  const Vec6& f = ws.dyn.force[s];
+  w.force = pose.R * f.tail<3>();
+  const Vec3 moment_about_origin = pose.R * f.head<3>();
+  w.torque = moment_about_origin - (attach.p - pose.p).cross(w.force);
+  return w;
+}
+
+}  // namespace mechflow::mech

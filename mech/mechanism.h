@@ -1,0 +1,119 @@
+#pragma once
+// Mechanism: a compiled Model plus its force elements, evaluated as one
+// first-order system for the integrator.
+//
+// State vector x = [q (nq) | v (nv) | element states]. Discrete modes and
+// zero-crossings are the elements' own, concatenated in element order.
+// Inputs are named scalars whose values come from outside every evaluation
+// (identifier inputs, applied force components); elements see them through
+// ElementContext::parameter_args = [t, inputs...].
+//
+// Accelerations: a tree is solved by the articulated-body algorithm, O(n);
+// with cut joints the mass matrix and the constraint Jacobian form a KKT
+// system solved with a rank-revealing decomposition, so redundant
+// constraints (planar loops, Convel1) are accepted and their multipliers are
+// the least-norm ones (mech/constraints.h).
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/QR>
+
+#include "mech/constraints.h"
+#include "mech/dynamics.h"
+#include "mech/force_element.h"
+
+namespace mechflow::mech {
+
+class Mechanism {
+ public:
+  Mechanism(std::shared_ptr<const Model> model, std::vector<std::unique_ptr<ForceElement>> elements,
+            std::vector<std::string> input_names);
+
+  const Model& model() const { return *model_; }
+  const std::shared_ptr<const Model>& model_ptr() const { return model_; }
+  int num_elements() const { return static_cast<int>(elements_.size()); }
+  const ForceElement& element(int i) const { return *elements_.at(i); }
+  int FindElement(const std::string& name) const;
+  int num_inputs() const { return static_cast<int>(input_names_.size()); }
+  const std::string& input_name(int i) const { return input_names_.at(i); }
+  int FindInput(const std::string& name) const;
+
+  int num_states() const { return state_size_; }
+  int num_modes() const { return mode_size_; }
+  int num_crossings() const { return crossing_size_; }
+  int num_sensor_values() const { return sensor_size_; }
+  // Offsets of element i's slices.
+  int state_offset(int i) const { return layout_.at(i).state; }
+  int mode_offset(int i) const { return layout_.at(i).mode; }
+  int crossing_offset(int i) const { return layout_.at(i).crossing; }
+  int sensor_offset(int i) const { return layout_.at(i).sensor; }
+  const Constraints& constraints() const { return constraints_; }
+
+ private:
+  struct Slices {
+    int state, mode, crossing, sensor;
+  };
+  std::shared_ptr<const Model> model_;
+  std::vector<std::unique_ptr<ForceElement>> elements_;
+  std::vector<std::string> input_names_;
+  std::vector<Slices> layout_;
+  Constraints constraints_;
+  int state_size_ = 0, mode_size_ = 0, crossing_size_ = 0, sensor_size_ = 0;
+};
+
+// Everything one evaluation needs, allocated once per mechanism and run.
+struct MechanismWorkspace {
+  explicit MechanismWorkspace(const Mechanism& mechanism);
+
+  Kinematics kin;
+  DynamicsWorkspace dyn;
+  Loads loads;
+  ConstraintWorkspace constraint;
+  std::vector<double> vdot;            // nv, after Evaluate
+  std::vector<double> sensors;         // element sensor values, after Evaluate
+  std::vector<double> parameter_args;  // [t, inputs...]
+  bool accelerations_valid = false;
+  // Set when reaction sensors are read: trees then also run Newton-Euler
+  // after the articulated-body pass to get the transmitted forces.
+  bool want_reactions = false;
+};
+
+// Initial state and modes: the model's initial coordinates, loops assembled
+// (positions and velocities projected onto the constraints), elements
+// initialised. Throws InputError when loops cannot be assembled or leave no
+// motion, naming the joints and bodies.
+void InitialState(const Mechanism& mechanism, std::span<const double> inputs, std::span<double> x,
+                  std::span<double> modes, MechanismWorkspace* ws);
+
+// Kinematics only (positions, velocities), for outputs that need no
+// accelerations.
+void EvaluatePositions(const Mechanism& mechanism, double t, std::span<const double> x, MechanismWorkspace* ws);
+
+// Full evaluation: kinematics, element loads and sensors, accelerations,
+// constraint multipliers. Writes x' into `xdot` (may be empty to skip).
+void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const double> x,
+                       std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
+                       std::span<double> xdot);
+
+// The elements' zero-crossing values at the last EvaluateMechanism.
+void EvaluateCrossings(const Mechanism& mechanism, std::span<const double> x, std::span<const double> modes,
+                       MechanismWorkspace* ws, std::span<double> values);
+
+// An element crossing fired: let the element switch modes / reset states.
+void ApplyCrossing(const Mechanism& mechanism, int crossing, int direction, std::span<double> x,
+                   std::span<double> modes, MechanismWorkspace* ws);
+
+// Reaction of joint j after EvaluateMechanism: the force and moment (global
+// components, moment about the joint's attachment point on body 2) that body
+// 1's side applies to body 2 through the joint.
+struct Wrench {
+  Vec3 force = Vec3::Zero();
+  Vec3 torque = Vec3::Zero();
+};
+Wrench JointReaction(const Mechanism& mechanism, const MechanismWorkspace& ws, int joint);
+
+}  // namespace mechflow::mech

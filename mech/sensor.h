@@ -1,0 +1,48 @@
+#pragma once
+// Sensors: the named outputs of a mechanism (ELEMENTS.md, issue 3 item 6).
+//
+// A sensor reads the workspace after an evaluation. Positions and velocities
+// need only kinematics; accelerations and reactions need the full evaluation
+// (so in a diagram they depend directly on the mechanism's inputs).
+// Vector sensors are 3 wide (global components) unless one component is
+// chosen.
+
+#include <span>
+#include <string>
+
+#include "mech/mechanism.h"
+
+namespace mechflow::mech {
+
+enum class SensorKind {
+  kCoordinate,          // q of a DOF (index: Dof)
+  kVelocity,            // v of a DOF
+  kAcceleration,        // v' of a DOF
+  kReactionForce,       // joint reaction force on body 2 (index: Joint), global
+  kReactionTorque,      // joint reaction moment about body 2's attachment point, global
+  kElement,             // element sensor (index: element, element_sensor)
+  kPointPosition,       // body point (index: body, point in body frame), global
+  kPointVelocity,
+  kPointAcceleration,
+  kBodyAngles,          // Cardan 1-2-3 angles of the body frame in the global frame [rad]
+  kBodyAngularVelocity  // global components
+};
+
+struct SensorSpec {
+  std::string name;
+  SensorKind kind = SensorKind::kCoordinate;
+  int index = -1;
+  int element_sensor = -1;
+  Vec3 point = Vec3::Zero();
+  int component = -1;  // vector sensors: -1 all three, 0..2 one of x, y, z
+  std::string origin;
+};
+
+int SensorWidth(const SensorSpec& spec);
+bool SensorNeedsAccelerations(const SensorSpec& spec);
+// Writes the sensor's value(s). For acceleration/reaction sensors the
+// workspace must hold a full EvaluateMechanism at the current state.
+void EvaluateSensor(const Mechanism& mechanism, const MechanismWorkspace& ws, std::span<const double> x,
+                    const SensorSpec& spec, std::span<double> out);
+
+}  // namespace mechflow::mech
