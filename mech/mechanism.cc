@@ -1,5 +1,6 @@
 #include "mech/mechanism.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -80,6 +81,47 @@ void SolveConstrained(const Mechanism& mechanism, MechanismWorkspace* ws) {
     std::ostringstream out;
     out << "singular constrained mass matrix at t = " << ws->kin.time;
     throw SimulationError(out.str());
+  }
+}
+
+// A loop whose own coordinates are all fixed by its constraint (and that no
+// prescribed motion drives) locks its bodies: almost always a modelling error
+// (two hinges on different axes, a slider across a hinge).
+void CheckLoopsLeaveMotion(const Mechanism& mechanism, MechanismWorkspace* ws) {
+  const Model& model = mechanism.model();
+  const Constraints& constraints = mechanism.constraints();
+  constraints.Jacobian(model, ws->kin, &ws->constraint.J);
+  const Eigen::MatrixXd& J = ws->constraint.J;
+  for (int k = 0; k < static_cast<int>(constraints.cut_joints().size()); ++k) {
+    const auto rows = J.middleRows(6 * k, 6);
+    std::vector<int> columns;
+    for (int c = 0; c < model.nv(); ++c)
+      if (rows.col(c).lpNorm<Eigen::Infinity>() > 1e-12) columns.push_back(c);
+    Eigen::MatrixXd sub(6, columns.size());
+    for (std::size_t i = 0; i < columns.size(); ++i) sub.col(i) = rows.col(columns[i]);
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(sub);
+    cod.setThreshold(1e-10);
+    if (cod.rank() < static_cast<int>(columns.size())) continue;
+    const Joint& cut = model.joints()[constraints.cut_joints()[k]];
+    // Bodies moved by the locked coordinates, and whether time drives the loop.
+    std::vector<std::string> bodies;
+    bool driven = false;
+    for (const Segment& seg : model.segments())
+      if (seg.drive == SegmentDrive::kTime && !seg.ghost) driven = true;
+    if (driven) continue;
+    for (int c : columns)
+      for (const Dof& dof : model.dofs())
+        if (dof.v_index == c) {
+          const std::string& name = model.bodies()[model.joints()[dof.joint].body2].name;
+          if (std::find(bodies.begin(), bodies.end(), name) == bodies.end()) bodies.push_back(name);
+        }
+    std::ostringstream out;
+    out << cut.origin << (cut.origin.empty() ? "" : ": ") << "joint '" << cut.name
+        << "' over-constrains the mechanism: with it, bodies";
+    for (std::size_t i = 0; i < bodies.size(); ++i) out << (i ? ", '" : " '") << bodies[i] << "'";
+    out << " have no degree of freedom left (bodies '" << model.bodies()[cut.body1].name << "' and '"
+        << model.bodies()[cut.body2].name << "' are already joined through other joints)";
+    throw InputError(out.str());
   }
 }
 
@@ -203,6 +245,7 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
       throw InputError(out.str());
     }
     ProjectVelocities(model, constraints, 0.0, q, v, &ws->kin, &ws->constraint);
+    CheckLoopsLeaveMotion(mechanism, ws);
   }
   EvaluatePositions(mechanism, 0.0, x, ws);
   SetParameterArgs(0.0, inputs, ws);

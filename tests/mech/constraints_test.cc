@@ -159,3 +159,30 @@ TEST(ConstraintsTest, ALoopThatCannotCloseIsAnInputError) {
 
 }  // namespace
 }  // namespace mechflow::mech
+
+namespace mechflow::mech {
+namespace {
+
+TEST(ConstraintsTest, TwoHingesOnCrossedAxesAreOverConstrained) {
+  ModelBuilder m;
+  m.AddBody(testing::Box("Door", 1.0, {0.1, 0.1, 0.1}));
+  m.AddJoint(testing::ChainJoint("hinge", "Base0", "Door", {testing::Et(TransformType::kRv, Vec3::UnitX())}));
+  JointSpec other = testing::ChainJoint("other", "Base0", "Door", {testing::Et(TransformType::kRv, Vec3::UnitY())});
+  other.origin = "m.xml:12";
+  m.AddJoint(other);
+  Mechanism mech(m.Build(), {}, {});
+  MechanismWorkspace ws(mech);
+  std::vector<double> x(mech.num_states());
+  try {
+    InitialState(mech, {}, x, {}, &ws);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("m.xml:12: joint 'other' over-constrains the mechanism: with it, bodies "
+                                         "'Door' have no degree of freedom left"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace mechflow::mech
