@@ -12,7 +12,12 @@
 // planar loop's out-of-plane rows, Convel1's redundant ones) make J rank
 // deficient; every solve here is least-squares/least-norm (complete
 // orthogonal decomposition), so redundancy is accepted and reported as a rank.
+//
+// A constant-velocity joint (ELEMENTS.md 2.5) gives four rows: the centres
+// coincide (p2 - p1, global axes) and the zero-twist condition
+// c = R[1][0] - R[0][1] with R = J1^T J2, J_k = A_k [b_k, a_k x b_k, a_k].
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -25,9 +30,11 @@ namespace mechflow::mech {
 
 class Constraints {
  public:
-  explicit Constraints(const Model& model);
+  Constraints(const Model& model, std::span<const double> q0);
 
-  int size() const { return static_cast<int>(cut_joints_.size()) * 6; }
+  int size() const { return size_; }
+  int row(int k) const { return cuts_[k].row; }
+  int rows(int k) const { return cuts_[k].rows; }
   bool empty() const { return cut_joints_.empty(); }
   const std::vector<int>& cut_joints() const { return cut_joints_; }
 
@@ -42,12 +49,34 @@ class Constraints {
   // accelerations): J v' + bias = 0 holds on the constraint manifold.
   void AccelerationBias(const Model& model, const Kinematics& kin, std::vector<Vec6>* scratch,
                         Eigen::VectorXd* bias) const;
-  // Global pose of the constraint frame G and of B for cut joint k.
+  // Weld cuts: global pose of the constraint frame G and of B for cut k.
   Pose FrameG(const Model& model, const Kinematics& kin, int k) const;
   Pose FrameB(const Model& model, const Kinematics& kin, int k) const;
 
+  // The loads that multipliers `lambda` of cut k apply: +force at point_b on
+  // segment_b with +torque; -force at point_a on segment_a with -torque.
+  // Global components; torques about the respective points.
+  struct Load {
+    int segment_b = kGround, segment_a = kGround;
+    Vec3 point_b = Vec3::Zero(), point_a = Vec3::Zero();
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+  };
+  Load LoadOf(const Model& model, const Kinematics& kin, const Eigen::VectorXd& lambda, int k) const;
+
  private:
+  struct Cut {
+    int joint = -1;
+    bool convel = false;
+    int row = 0, rows = 6;
+    Mat3 Q1 = Mat3::Identity(), Q2 = Mat3::Identity();  // convel frames, body axes
+  };
+  // Convel: the twist-row vector g (global) with c' = g . (w2 - w1).
+  Vec3 TwistGradient(const Model& model, const Kinematics& kin, const Cut& cut) const;
+  double Twist(const Model& model, const Kinematics& kin, const Cut& cut) const;
+
+  std::vector<Cut> cuts_;
   std::vector<int> cut_joints_;
+  int size_ = 0;
   // is_ancestor_[s][a]: segment a lies on the path from the root to s (incl. s)
   std::vector<std::vector<bool>> is_ancestor_;
 };

@@ -37,23 +37,18 @@ void AddConstraintLoads(const Mechanism& mechanism, MechanismWorkspace* ws) {
   const Constraints& constraints = mechanism.constraints();
   auto& loads = ws->constraint.loads;
   for (std::size_t s = 0; s < loads.size(); ++s) loads[s] = ws->loads.segment_loads()[s];
+  auto add = [&](int s, const Vec3& point, const Vec3& force, const Vec3& torque) {
+    if (s == kGround) return;
+    const Pose& pose = ws->kin.pose[s];
+    const Vec3 f = pose.R.transpose() * force;
+    const Vec3 r = pose.R.transpose() * (point - pose.p);
+    loads[s].head<3>() += pose.R.transpose() * torque + r.cross(f);
+    loads[s].tail<3>() += f;
+  };
   for (int k = 0; k < static_cast<int>(constraints.cut_joints().size()); ++k) {
-    const Joint& joint = model.joints()[constraints.cut_joints()[k]];
-    const Pose G = constraints.FrameG(model, ws->kin, k), B = constraints.FrameB(model, ws->kin, k);
-    const Vec3 moment = G.R * ws->constraint.lambda.segment<3>(6 * k);
-    const Vec3 force = G.R * ws->constraint.lambda.segment<3>(6 * k + 3);
-    // +wrench on body 2's segment at x_B, -wrench on the ghost end's segment.
-    const int sides[2] = {model.bodies()[joint.body2].segment, joint.last_segment};
-    for (int side = 0; side < 2; ++side) {
-      const int s = sides[side];
-      if (s == kGround) continue;
-      const double sign = side == 0 ? 1.0 : -1.0;
-      const Pose& pose = ws->kin.pose[s];
-      const Vec3 f = pose.R.transpose() * force;
-      const Vec3 r = pose.R.transpose() * (B.p - pose.p);
-      loads[s].head<3>() += sign * (pose.R.transpose() * moment + r.cross(f));
-      loads[s].tail<3>() += sign * f;
-    }
+    const Constraints::Load load = constraints.LoadOf(model, ws->kin, ws->constraint.lambda, k);
+    add(load.segment_b, load.point_b, load.force, load.torque);
+    add(load.segment_a, load.point_a, -load.force, -load.torque);
   }
 }
 
@@ -132,7 +127,7 @@ Mechanism::Mechanism(std::shared_ptr<const Model> model, std::vector<std::unique
     : model_(std::move(model)),
       elements_(std::move(elements)),
       input_names_(std::move(input_names)),
-      constraints_(*model_) {
+      constraints_(*model_, model_->initial_q()) {
   state_size_ = model_->nq() + model_->nv();
   for (const auto& e : elements_) {
     layout_.push_back({state_size_, mode_size_, crossing_size_, sensor_size_});
@@ -261,31 +256,24 @@ Wrench JointReaction(const Mechanism& mechanism, const MechanismWorkspace& ws, i
   const Model& model = mechanism.model();
   const Joint& joint = model.joints()[j];
   Wrench w;
-  const Pose attach = [&] {
-    if (joint.is_cut) {
-      for (int k = 0; k < static_cast<int>(mechanism.constraints().cut_joints().size()); ++k)
-        if (mechanism.constraints().cut_joints()[k] == j) return mechanism.constraints().FrameB(model, ws.kin, k);
-    }
-    const int s = joint.last_segment;
-    return s == kGround ? joint.end_offset : ws.kin.pose[s] * joint.end_offset;
-  }();
   if (joint.is_cut) {
     const auto& cuts = mechanism.constraints().cut_joints();
     for (int k = 0; k < static_cast<int>(cuts.size()); ++k) {
       if (cuts[k] != j) continue;
-      const Pose G = mechanism.constraints().FrameG(model, ws.kin, k);
-      w.torque = G.R * ws.constraint.lambda.segment<3>(6 * k);
-      w.force = G.R * ws.constraint.lambda.segment<3>(6 * k + 3);
+      const Constraints::Load load = mechanism.constraints().LoadOf(model, ws.kin, ws.constraint.lambda, k);
+      w.force = load.force;
+      w.torque = load.torque;
     }
     return w;
   }
-  // Force transmitted into the joint's first segment, moved to the attachment point.
+  // Force transmitted into the joint's first segment, moved to body 2's
+  // attachment point (the end of the joint's chain).
   const int s = joint.first_segment;
   const Pose& pose = ws.kin.pose[s];
   const Vec6& f = ws.dyn.force[s];
+  const Pose attach = ws.kin.pose[joint.last_segment] * joint.end_offset;
   w.force = pose.R * f.tail<3>();
-  const Vec3 moment_about_origin = pose.R * f.head<3>();
-  w.torque = moment_about_origin - (attach.p - pose.p).cross(w.force);
+  w.torque = pose.R * f.head<3>() - (attach.p - pose.p).cross(w.force);
   return w;
 }
 

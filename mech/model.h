@@ -88,6 +88,12 @@ struct Joint {
                                // attachment frame)
   Pose body2_attachment;       // cut joints: attachment frame in body 2's frame
   std::vector<int> dofs;       // indices into Model::dofs
+  // Constant-velocity joint (ELEMENTS.md 2.5): always a constraint. Centres
+  // are frame1.p / frame2.p of the spec; axes unit; references zero = auto.
+  bool convel = false;
+  Vec3 cv_point1 = Vec3::Zero(), cv_point2 = Vec3::Zero();
+  Vec3 cv_axis1 = Vec3::UnitZ(), cv_axis2 = Vec3::UnitZ();
+  Vec3 cv_reference1 = Vec3::Zero(), cv_reference2 = Vec3::Zero();
   std::string origin;
 };
 

@@ -218,6 +218,20 @@ void ModelBuilder::CompileTreeJoint(const JointSpec& spec, int joint_index) {
 void ModelBuilder::CompileCutJoint(const JointSpec& spec, int joint_index) {
   Model& m = *model_;
   Joint& joint = m.joints_[joint_index];
+  if (spec.convel) {
+    const std::string where = Where(spec.origin) + "joint '" + spec.name + "': ";
+    for (const Vec3* axis : {&spec.convel_axis1, &spec.convel_axis2})
+      if (!(axis->norm() > 0.0)) throw InputError(where + "shaft axis must be non-zero");
+    joint.is_cut = joint.convel = true;
+    joint.cv_point1 = spec.frame1.p;
+    joint.cv_point2 = spec.frame2.p;
+    joint.cv_axis1 = spec.convel_axis1.normalized();
+    joint.cv_axis2 = spec.convel_axis2.normalized();
+    joint.cv_reference1 = spec.convel_reference1;
+    joint.cv_reference2 = spec.convel_reference2;
+    ++m.num_cut_joints_;
+    return;
+  }
   if (spec.quaternion)
     throw InputError(Where(spec.origin) + "joint '" + spec.name +
                      "': a quaternion joint cannot close a loop (it constrains nothing)");
@@ -252,7 +266,7 @@ std::shared_ptr<const Model> ModelBuilder::Build() {
     progress = false;
     for (std::size_t j = 0; j < joint_specs_.size(); ++j) {
       const Joint& joint = m.joints_[j];
-      if (used[j] || !placed[joint.body1] || placed[joint.body2]) continue;
+      if (used[j] || joint_specs_[j].convel || !placed[joint.body1] || placed[joint.body2]) continue;
       CompileTreeJoint(joint_specs_[j], static_cast<int>(j));
       placed[joint.body2] = true;
       used[j] = true;

@@ -52,6 +52,12 @@ struct JointSpec {
   std::vector<TransformSpec> chain;
   bool quaternion = false;  // the quaternion 6-DOF joint instead of a chain
   QuaternionJointSpec quaternion_initial;
+  // The constant-velocity joint instead of a chain: joint centres frame1.p and
+  // frame2.p, shaft axes in the body frames, optional zero-phase references
+  // (perpendicular to the axes; zero: chosen for zero initial twist).
+  bool convel = false;
+  Vec3 convel_axis1 = Vec3::UnitZ(), convel_axis2 = Vec3::UnitZ();
+  Vec3 convel_reference1 = Vec3::Zero(), convel_reference2 = Vec3::Zero();
   std::string origin;
 };
 

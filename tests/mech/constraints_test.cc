@@ -186,3 +186,127 @@ TEST(ConstraintsTest, TwoHingesOnCrossedAxesAreOverConstrained) {
 
 }  // namespace
 }  // namespace mechflow::mech
+
+namespace mechflow::mech {
+namespace {
+
+// A decaying torque F0 exp(-mu t) on one coordinate (test-only element).
+class DecayingTorque final : public ForceElement {
+ public:
+  DecayingTorque(int v_index, double f0, double mu) : ForceElement("torque", ""), v_(v_index), f0_(f0), mu_(mu) {}
+  void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>, std::span<double>) const override {
+    loads->AddGeneralizedForce(v_, f0_ * std::exp(-mu_ * ctx.t));
+  }
+
+ private:
+  int v_;
+  double f0_, mu_;
+};
+
+TEST(ConstraintsTest, Convel1ShaftsTurnTogetherAsCV1) {
+  // ELEMENTS.md 9.4 / CV-1: shaft 1 about global Y, shaft 2 inclined by alpha
+  // on a revolute about its own Y, joined by a CV joint at (0, 0.5, 0): three
+  // of its four equations repeat the revolute (redundant).
+  const double alpha = 10.0 * M_PI / 180.0, f0 = 0.01, mu = 0.1;
+  ModelBuilder m;
+  BodySpec shaft1 = testing::Box("Body1", 10.0, {0.1, 0.25, 0.1});
+  shaft1.inertia = Vec3(5.0, 0.1, 5.0).asDiagonal();
+  BodySpec shaft2 = shaft1;
+  shaft2.name = "Body2";
+  m.AddBody(shaft1);
+  m.AddBody(shaft2);
+  m.AddJoint(testing::ChainJoint("jBody1", "Base0", "Body1", {Et(T::kRv, Vec3::UnitY())}));
+  TransformSpec tilt = Et(T::kRt, Vec3::UnitX());
+  tilt.function = std::make_shared<ConstantTimeFunction>(alpha);
+  m.AddJoint(testing::ChainJoint("jBody2", "Base0", "Body2",
+                                 {Et(T::kTc, Vec3(0, 0.5, 0), 0.5), tilt, Et(T::kRv, Vec3::UnitY())}));
+  JointSpec cv;
+  cv.name = "cv";
+  cv.body1 = "Body1";
+  cv.body2 = "Body2";
+  cv.convel = true;
+  cv.frame1 = Pose::Translation(Vec3(0, 0.5, 0));
+  cv.convel_axis1 = Vec3::UnitY();
+  cv.convel_axis2 = Vec3::UnitY();
+  m.AddJoint(cv);
+  std::vector<std::unique_ptr<ForceElement>> elements;
+  elements.push_back(std::make_unique<DecayingTorque>(0, f0, mu));
+  Mechanism mech(m.Build(), std::move(elements), {});
+  MechanismWorkspace ws(mech);
+  const Model& model = mech.model();
+  const int n = mech.num_states();
+  std::vector<double> x(n), k1(n), k2(n), k3(n), k4(n), tmp(n);
+  InitialState(mech, {}, x, {}, &ws);
+  const double h = 5e-3;
+  double t = 0.0, worst_difference = 0.0;
+  auto f = [&](double time, const std::vector<double>& y, std::vector<double>* out) {
+    EvaluateMechanism(mech, time, y, {}, {}, &ws, *out);
+  };
+  for (int step = 0; step < 2000; ++step) {
+    f(t, x, &k1);
+    for (int i = 0; i < n; ++i) tmp[i] = x[i] + 0.5 * h * k1[i];
+    f(t + 0.5 * h, tmp, &k2);
+    for (int i = 0; i < n; ++i) tmp[i] = x[i] + 0.5 * h * k2[i];
+    f(t + 0.5 * h, tmp, &k3);
+    for (int i = 0; i < n; ++i) tmp[i] = x[i] + h * k3[i];
+    f(t + h, tmp, &k4);
+    for (int i = 0; i < n; ++i) x[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+    t += h;
+    std::span<double> q(x.data(), model.nq()), v(x.data() + model.nq(), model.nv());
+    ProjectPositions(model, mech.constraints(), t, q, v, 1e-13, 10, &ws.kin, &ws.constraint);
+    ProjectVelocities(model, mech.constraints(), t, q, v, &ws.kin, &ws.constraint);
+    worst_difference = std::max(worst_difference, std::abs(v[0] - v[1]));
+  }
+  const double expected = f0 / (mu * 0.2) * (1.0 - std::exp(-mu * 10.0));
+  EXPECT_NEAR(expected, 0.316060, 1e-6);
+  EXPECT_NEAR(x[model.nq()], expected, 1e-8);
+  EXPECT_NEAR(x[model.nq() + 1], expected, 1e-8);
+  EXPECT_LT(worst_difference, 1e-10);
+}
+
+TEST(ConstraintsTest, TwistResidualVanishesOnlyForEqualShaftAngles) {
+  // Two shafts on fixed bearings 30 deg apart: the zero-twist row holds
+  // exactly when both have turned by the same angle (ELEMENTS.md 2.5 proof).
+  const double alpha = 30.0 * M_PI / 180.0;
+  ModelBuilder m;
+  BodySpec shaft1 = testing::Box("S1", 1.0, {0.05, 0.25, 0.05});
+  BodySpec shaft2 = shaft1;
+  shaft2.name = "S2";
+  m.AddBody(shaft1);
+  m.AddBody(shaft2);
+  m.AddJoint(testing::ChainJoint("j1", "Base0", "S1", {Et(T::kRv, Vec3::UnitY(), 0.0, 1.0)}));
+  // Shaft 2: fixed inclined bearing, spinning about its own axis.
+  m.AddJoint(testing::ChainJoint("j2", "Base0", "S2",
+                                 {Et(T::kTc, Vec3::UnitY(), 0.5), Et(T::kRc, Vec3::UnitX(), alpha),
+                                  Et(T::kRv, Vec3::UnitY(), 0.0, 1.0)}));
+  JointSpec cv;
+  cv.name = "cv";
+  cv.body1 = "S1";
+  cv.body2 = "S2";
+  cv.convel = true;
+  cv.frame1 = Pose::Translation(Vec3(0, 0.5, 0));
+  cv.convel_axis1 = Vec3::UnitY();
+  cv.convel_axis2 = Vec3::UnitY();
+  m.AddJoint(cv);
+  Mechanism mech(m.Build(), {}, {});
+  MechanismWorkspace ws(mech);
+  std::vector<double> x(mech.num_states()), xdot(mech.num_states());
+  InitialState(mech, {}, x, {}, &ws);
+  // Rotate shaft 1 by a quarter turn, shaft 2 by the same angle: the twist
+  // residual stays zero (homokinetic), while a different angle violates it.
+  Eigen::VectorXd phi;
+  for (double angle : {0.3, 0.785, 1.5}) {
+    x[0] = angle;
+    x[1] = angle;
+    EvaluatePositions(mech, 0.0, x, &ws);
+    mech.constraints().Residual(mech.model(), ws.kin, &phi);
+    EXPECT_NEAR(phi(3), 0.0, 1e-12) << angle;
+    x[1] = angle + 0.1;
+    EvaluatePositions(mech, 0.0, x, &ws);
+    mech.constraints().Residual(mech.model(), ws.kin, &phi);
+    EXPECT_GT(std::abs(phi(3)), 1e-3) << angle;
+  }
+}
+
+}  // namespace
+}  // namespace mechflow::mech
