@@ -1,8 +1,10 @@
 #include "mech/constraints.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "mech/dynamics.h"
+#include "mech/errors.h"
 
 namespace mechflow::mech {
 namespace {
@@ -280,19 +282,34 @@ ConstraintWorkspace::ConstraintWorkspace(const Model& model, const Constraints& 
   const int m = constraints.size(), n = model.nv();
   M.setZero(n, n);
   J.setZero(m, n);
-  kkt.setZero(n + m, n + m);
   phi.setZero(m);
   psi.setZero(m);
   bias.setZero(m);
-  rhs.setZero(n + m);
-  solution.setZero(n + m);
   lambda.setZero(m);
-  kkt_solver = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(n + m, n + m);
-  j_solver = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(m, n);
+  step.setZero(n);
   scratch.assign(model.segments().size(), Vec6::Zero());
   loads.assign(model.segments().size(), Vec6::Zero());
   h.assign(n, 0.0);
   zero.assign(n, 0.0);
+}
+
+int ConstraintWorkspace::SelectIndependentRows(const Eigen::MatrixXd& full) {
+  const int m = static_cast<int>(full.rows()), n = static_cast<int>(full.cols());
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(full.transpose());
+  qr.setThreshold(1e-10);
+  const int r = static_cast<int>(qr.rank());
+  active.assign(qr.colsPermutation().indices().data(), qr.colsPermutation().indices().data() + r);
+  std::sort(active.begin(), active.end());
+  selected_none = r == 0;
+  Jr.setZero(r, n);
+  JJt.setZero(r, r);
+  kkt.setZero(n + r, n + r);
+  rhs.setZero(n + r);
+  solution.setZero(n + r);
+  reduced.setZero(r);
+  kkt_lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n + r);
+  jjt_llt = Eigen::LLT<Eigen::MatrixXd>(r);
+  return m - r;
 }
 
 namespace {
@@ -319,6 +336,35 @@ void AddVelocityStep(const Model& model, std::span<double> q, const Eigen::Vecto
 
 }  // namespace
 
+namespace {
+
+// Least-norm dv with J dv = e: the selected rows through Cholesky of Jr Jr^T
+// once rows are selected, the full J through a complete orthogonal
+// decomposition before (assembly).
+void LeastNormStep(const Eigen::MatrixXd& J, const Eigen::VectorXd& e, ConstraintWorkspace* ws) {
+  if (!ws->rows_selected()) {
+    ws->step = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(J).solve(e);
+    return;
+  }
+  const int r = static_cast<int>(ws->active.size());
+  if (r == 0) {
+    ws->step.setZero();
+    return;
+  }
+  for (int i = 0; i < r; ++i) {
+    ws->Jr.row(i) = J.row(ws->active[i]);
+    ws->reduced(i) = e(ws->active[i]);
+  }
+  ws->JJt.noalias() = ws->Jr * ws->Jr.transpose();
+  ws->jjt_llt.compute(ws->JJt);
+  if (ws->jjt_llt.info() != Eigen::Success)
+    throw SimulationError("the loop constraints became singular (a mechanism at a dead-centre position?)");
+  ws->jjt_llt.solveInPlace(ws->reduced);
+  ws->step.noalias() = ws->Jr.transpose() * ws->reduced;
+}
+
+}  // namespace
+
 double ProjectPositions(const Model& model, const Constraints& constraints, double t, std::span<double> q,
                         std::span<const double> v, double tolerance, int max_iterations, Kinematics* kin,
                         ConstraintWorkspace* ws) {
@@ -329,9 +375,9 @@ double ProjectPositions(const Model& model, const Constraints& constraints, doub
     norm = ws->phi.size() ? ws->phi.lpNorm<Eigen::Infinity>() : 0.0;
     if (norm <= tolerance || it >= max_iterations || !std::isfinite(norm)) break;
     constraints.Jacobian(model, *kin, &ws->J);
-    ws->j_solver.compute(ws->J);
-    ws->solution.head(model.nv()) = ws->j_solver.solve(ws->phi);
-    AddVelocityStep(model, q, -ws->solution.head(model.nv()));
+    LeastNormStep(ws->J, ws->phi, ws);
+    ws->step = -ws->step;
+    AddVelocityStep(model, q, ws->step);
   }
   return norm;
 }
@@ -341,9 +387,8 @@ void ProjectVelocities(const Model& model, const Constraints& constraints, doubl
   UpdateKinematics(model, t, q, v, kin);
   constraints.VelocityResidual(model, *kin, &ws->psi);
   constraints.Jacobian(model, *kin, &ws->J);
-  ws->j_solver.compute(ws->J);
-  ws->solution.head(model.nv()) = ws->j_solver.solve(ws->psi);
-  for (int i = 0; i < model.nv(); ++i) v[i] -= ws->solution(i);
+  LeastNormStep(ws->J, ws->psi, ws);
+  for (int i = 0; i < model.nv(); ++i) v[i] -= ws->step(i);
 }
 
 }  // namespace mechflow::mech

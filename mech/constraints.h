@@ -22,6 +22,8 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <Eigen/QR>
 
 #include "mech/kinematics.h"
@@ -81,11 +83,24 @@ class Constraints {
   std::vector<std::vector<bool>> is_ancestor_;
 };
 
+// Per-run solver storage. Until SelectIndependentRows() has run (at
+// assembly), solves use a complete orthogonal decomposition of the full J
+// (allocates; set-up only). Afterwards only the independent rows are used:
+// the KKT matrix is then regular and solved by partial-pivot LU, projections
+// by Cholesky of Jr Jr^T -- both in preallocated storage.
 struct ConstraintWorkspace {
   explicit ConstraintWorkspace(const Model& model, const Constraints& constraints);
-  Eigen::MatrixXd M, J, kkt;
-  Eigen::VectorXd phi, psi, bias, rhs, solution, lambda;
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> kkt_solver, j_solver;
+  // Keeps the rows of J that are independent at the current configuration
+  // (rank-revealing QR); returns how many rows were dropped as redundant.
+  int SelectIndependentRows(const Eigen::MatrixXd& J);
+  bool rows_selected() const { return !active.empty() || selected_none; }
+
+  Eigen::MatrixXd M, J, Jr, kkt, JJt;
+  Eigen::VectorXd phi, psi, bias, rhs, solution, lambda, reduced, step;
+  std::vector<int> active;  // independent rows of J
+  bool selected_none = false;
+  Eigen::PartialPivLU<Eigen::MatrixXd> kkt_lu;
+  Eigen::LLT<Eigen::MatrixXd> jjt_llt;
   std::vector<Vec6> scratch;
   std::vector<Vec6> loads;  // segment loads with the constraint wrenches added
   std::vector<double> h;    // inverse dynamics with v' = 0

@@ -1,0 +1,115 @@
+// Evaluating a mechanism allocates nothing once set up (house rule: no
+// allocation in the right-hand side). Eigen allocates through malloc, not
+// operator new, so this test counts malloc itself: the executable's malloc
+// family replaces the C library's for the whole process (glibc forwards to
+// its __libc_* entry points).
+
+#include <atomic>
+#include <cstddef>
+#include <cstdlib>
+
+#include <gtest/gtest.h>
+
+#include "mech/mechanism.h"
+#include "tests/mech/mech_test_util.h"
+
+extern "C" {
+void* __libc_malloc(std::size_t);
+void* __libc_calloc(std::size_t, std::size_t);
+void* __libc_realloc(void*, std::size_t);
+void* __libc_memalign(std::size_t, std::size_t);
+void __libc_free(void*);
+}
+
+namespace {
+std::atomic<bool> g_counting{false};
+std::atomic<long> g_calls{0};
+void Count() {
+  if (g_counting.load(std::memory_order_relaxed)) g_calls.fetch_add(1, std::memory_order_relaxed);
+}
+}  // namespace
+
+extern "C" {
+void* malloc(std::size_t n) {
+  Count();
+  return __libc_malloc(n);
+}
+void* calloc(std::size_t n, std::size_t size) {
+  Count();
+  return __libc_calloc(n, size);
+}
+void* realloc(void* p, std::size_t n) {
+  Count();
+  return __libc_realloc(p, n);
+}
+void* aligned_alloc(std::size_t alignment, std::size_t n) {
+  Count();
+  return __libc_memalign(alignment, n);
+}
+int posix_memalign(void** out, std::size_t alignment, std::size_t n) {
+  Count();
+  *out = __libc_memalign(alignment, n);
+  return *out ? 0 : 12;  // ENOMEM
+}
+void free(void* p) { __libc_free(p); }
+}
+
+namespace mechflow::mech {
+namespace {
+
+using testing::Et;
+using T = TransformType;
+
+long CountEvaluations(const Mechanism& mech) {
+  MechanismWorkspace ws(mech);
+  std::vector<double> x(mech.num_states()), xdot(mech.num_states());
+  InitialState(mech, {}, x, {}, &ws);
+  ws.want_reactions = true;
+  EvaluateMechanism(mech, 0.0, x, {}, {}, &ws, xdot);  // warm
+  g_calls = 0;
+  g_counting = true;
+  for (int i = 0; i < 100; ++i) {
+    x[0] += 1e-3;
+    EvaluateMechanism(mech, 0.01 * i, x, {}, {}, &ws, xdot);
+    if (!mech.constraints().empty()) {
+      std::span<double> q(x.data(), mech.model().nq()), v(x.data() + mech.model().nq(), mech.model().nv());
+      ProjectPositions(mech.model(), mech.constraints(), 0.0, q, v, 1e-12, 5, &ws.kin, &ws.constraint);
+      ProjectVelocities(mech.model(), mech.constraints(), 0.0, q, v, &ws.kin, &ws.constraint);
+    }
+    JointReaction(mech, ws, 0);
+  }
+  g_counting = false;
+  return g_calls.load();
+}
+
+TEST(MechNoAllocationTest, TheCounterSeesEigenAllocations) {
+  g_calls = 0;
+  g_counting = true;
+  Eigen::VectorXd v(100);
+  v.setZero();
+  g_counting = false;
+  EXPECT_GE(g_calls.load(), 1) << "the malloc replacement is not in effect; the other tests would prove nothing";
+}
+
+TEST(MechNoAllocationTest, TreeEvaluationAllocatesNothing) {
+  Mechanism mech(testing::MixedTree(), {}, {});
+  EXPECT_EQ(CountEvaluations(mech), 0);
+}
+
+TEST(MechNoAllocationTest, LoopEvaluationAndProjectionAllocateNothing) {
+  ModelBuilder m;
+  m.AddBody(testing::Box("Crank", 0.3, {0.01, 0.15, 0.01}, Vec3(0, 0.15, 0)));
+  m.AddBody(testing::Box("Rod", 0.8, {0.01, 0.4, 0.01}, Vec3(0, 0.4, 0)));
+  m.AddBody(testing::Box("Rocker", 0.6, {0.01, 0.3, 0.01}, Vec3(0, 0.3, 0)));
+  m.AddJoint(testing::ChainJoint("j1", "Base0", "Crank", {Et(T::kRv, Vec3::UnitX(), 1.2, 2.0)}));
+  m.AddJoint(testing::ChainJoint("j2", "Crank", "Rod", {Et(T::kTc, Vec3::UnitY(), 0.3), Et(T::kRv, Vec3::UnitX(), -1.0)}));
+  m.AddJoint(testing::ChainJoint("j3", "Base0", "Rocker", {Et(T::kTc, Vec3::UnitY(), 0.7), Et(T::kRv, Vec3::UnitX(), 1.9)}));
+  JointSpec close = testing::ChainJoint("j4", "Rod", "Rocker", {Et(T::kTc, Vec3::UnitY(), 0.8), Et(T::kRv, Vec3::UnitX())});
+  close.frame2 = Pose::Translation(Vec3(0, 0.6, 0));
+  m.AddJoint(close);
+  Mechanism mech(m.Build(), {}, {});
+  EXPECT_EQ(CountEvaluations(mech), 0);
+}
+
+}  // namespace
+}  // namespace mechflow::mech
