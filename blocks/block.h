@@ -75,6 +75,7 @@ class Block {
   int num_zero_crossings() const { return static_cast<int>(crossings_.size()); }
   CrossingDirection crossing_direction(int i) const { return crossings_.at(i); }
   const SampleTime& sample_time() const { return sample_time_; }
+  bool has_projection() const { return has_projection_; }
 
   // --- run time ------------------------------------------------------------
   // Sets initial continuous and discrete states (inputs are not yet valid).
@@ -97,6 +98,16 @@ class Block {
   // current inputs and states (e.g. a saturation whose input jumped).
   // Returns true when a mode changed, so outputs must be recomputed.
   bool UpdateModes(const BlockContext& ctx) const { return DoUpdateModes(ctx); }
+  // Blocks whose states live on a manifold (closed loops, unit quaternions):
+  // after every accepted step the solver asks for `correction`, this block's
+  // slice of the change that puts ctx.state() back on the manifold (states
+  // are read-only here). `error` is its slice of the solver's error estimate
+  // (empty when the solver passes none), which the block may project too.
+  // Must not allocate; throws SimulationError when it cannot project.
+  // The solver projects only after steps: Initialize must start on the manifold.
+  void Project(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const {
+    DoProject(ctx, correction, error);
+  }
 
  protected:
   // Declarations, for constructors only. Return the new port's index.
@@ -111,6 +122,7 @@ class Block {
   void DeclareDiscreteStates(int n) { num_discrete_ += n; }
   int DeclareZeroCrossing(CrossingDirection direction);
   void DeclarePeriodicSampleTime(double period, double offset);
+  void DeclareProjection() { has_projection_ = true; }
 
   virtual void DoInitialize(const BlockContext&) const {}
   virtual void DoCalcOutput(int port, const BlockContext& ctx) const = 0;
@@ -119,6 +131,7 @@ class Block {
   virtual void DoZeroCrossing(int, int, const BlockContext&) const {}
   virtual void DoSampleHit(const BlockContext&) const {}
   virtual bool DoUpdateModes(const BlockContext&) const { return false; }
+  virtual void DoProject(const BlockContext&, std::span<double>, std::span<double>) const {}
 
  private:
   std::string type_;
@@ -132,6 +145,7 @@ class Block {
   int num_discrete_ = 0;
   std::vector<CrossingDirection> crossings_;
   SampleTime sample_time_;
+  bool has_projection_ = false;
 };
 
 }  // namespace mechflow::blocks

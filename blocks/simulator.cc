@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <cvode/cvode_ls.h>
+#include <cvode/cvode_proj.h>
 
 #include "blocks/evaluation.h"
 #include "blocks/sundials.h"
@@ -116,6 +117,31 @@ int Simulator::Rhs(double t, N_Vector y, N_Vector ydot, void* user) {
                                 std::to_string(t);
       return 1;
     }
+  }
+  return 0;
+}
+
+int Simulator::Project(double t, N_Vector y, N_Vector correction, double, N_Vector error, void* user) {
+  auto* self = static_cast<Simulator*>(user);
+  const Diagram& d = self->diagram_;
+  double* corr = N_VGetArrayPointer(correction);
+  double* err = error ? N_VGetArrayPointer(error) : nullptr;
+  for (int i = 0; i < d.num_states(); ++i) corr[i] = 0.0;
+  try {
+    Context& ctx = self->ctx_;
+    ctx.time = t;
+    ctx.x = N_VGetArrayPointer(y);
+    ++ctx.evaluation;
+    for (int b = 0; b < d.num_blocks(); ++b) {
+      if (!d.block(b).has_projection()) continue;
+      const BlockLayout& layout = d.layout(b);
+      const auto n = static_cast<std::size_t>(layout.num_states);
+      d.block(b).Project(BlockContext(&ctx, &layout), std::span<double>(corr + layout.first_state, n),
+                         err ? std::span<double>(err + layout.first_state, n) : std::span<double>());
+    }
+  } catch (const std::exception& e) {
+    self->callback_failure_ = e.what();
+    return ++self->callback_failures_ > kMaxCallbackFailures ? -1 : 1;
   }
   return 0;
 }
@@ -241,6 +267,11 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     Check(CVodeSetMaxNumSteps(mem, options_.max_steps), "CVodeSetMaxNumSteps");
     if (options_.max_step > 0.0) Check(CVodeSetMaxStep(mem, options_.max_step), "CVodeSetMaxStep");
     if (options_.initial_step > 0.0) Check(CVodeSetInitStep(mem, options_.initial_step), "CVodeSetInitStep");
+    for (int b = 0; b < diagram_.num_blocks(); ++b) {
+      if (!diagram_.block(b).has_projection()) continue;
+      Check(CVodeSetProjFn(mem, &Simulator::Project), "CVodeSetProjFn");
+      break;
+    }
     if (diagram_.num_zero_crossings() > 0) {
       Check(CVodeRootInit(mem, diagram_.num_zero_crossings(), &Simulator::Roots), "CVodeRootInit");
       std::vector<int> directions;

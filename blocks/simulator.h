@@ -97,6 +97,7 @@ class Simulator {
   struct Solver;
   static int Rhs(double t, N_Vector y, N_Vector ydot, void* self);
   static int Roots(double t, N_Vector y, double* g, void* self);
+  static int Project(double t, N_Vector y, N_Vector correction, double tolerance, N_Vector error, void* self);
   static void ErrorHandler(int code, const char* module, const char* function, char* msg, void* self);
 
   void EvaluateAt(double t, double* x);

@@ -1,0 +1,136 @@
+#include "blocks/library/mechanism_block.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mechflow::blocks {
+namespace {
+
+std::vector<std::string> StateNames(const mech::Mechanism& mechanism) {
+  const mech::Model& model = mechanism.model();
+  std::vector<std::string> names(mechanism.num_states());
+  for (const mech::Dof& dof : model.dofs()) {
+    names[dof.q_index] = "q:" + dof.name;
+    names[model.nq() + dof.v_index] = "v:" + dof.name;
+  }
+  for (const mech::Segment& seg : model.segments()) {
+    if (seg.motion != mech::SegmentMotion::kFree) continue;
+    const std::string& joint = model.joints()[seg.joint].name;
+    const char* q_names[7] = {"x", "y", "z", "qw", "qx", "qy", "qz"};
+    const char* v_names[6] = {"wx", "wy", "wz", "vx", "vy", "vz"};
+    for (int k = 0; k < 7; ++k) names[seg.q_index + k] = joint + "." + q_names[k];
+    for (int k = 0; k < 6; ++k) names[model.nq() + seg.v_index + k] = joint + "." + v_names[k];
+  }
+  for (int e = 0; e < mechanism.num_elements(); ++e)
+    for (int k = 0; k < mechanism.element(e).num_states(); ++k)
+      names[mechanism.state_offset(e) + k] = mechanism.element(e).name() + ".s" + std::to_string(k);
+  return names;
+}
+
+}  // namespace
+
+MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mechanism> mechanism,
+                               std::vector<mech::SensorSpec> sensors)
+    : Block("mechanism", std::move(name)),
+      mechanism_(std::move(mechanism)),
+      sensors_(std::move(sensors)),
+      ws_(*mechanism_),
+      inputs_(mechanism_->num_inputs(), 0.0),
+      scratch_(mechanism_->num_states(), 0.0),
+      xdot_(mechanism_->num_states(), 0.0) {
+  for (int i = 0; i < mechanism_->num_inputs(); ++i) DeclareInputPort(mechanism_->input_name(i));
+  for (const auto& sensor : sensors_) DeclareOutputPort(sensor.name, mech::SensorWidth(sensor));
+  for (int out = 0; out < num_outputs(); ++out) {
+    if (mech::SensorNeedsAccelerations(sensors_[out])) continue;
+    for (int in = 0; in < num_inputs(); ++in) SetFeedthrough(in, out, false);
+  }
+  const std::vector<std::string> names = StateNames(*mechanism_);
+  for (const std::string& state : names) DeclareContinuousStates(1, state);
+  DeclareDiscreteStates(mechanism_->num_modes());
+  for (int e = 0; e < mechanism_->num_elements(); ++e)
+    for (int k = 0; k < mechanism_->element(e).num_crossings(); ++k) {
+      const mech::Crossing c = mechanism_->element(e).crossing_direction(k);
+      DeclareZeroCrossing(c == mech::Crossing::kRising    ? CrossingDirection::kRising
+                          : c == mech::Crossing::kFalling ? CrossingDirection::kFalling
+                                                          : CrossingDirection::kEither);
+    }
+  if (!mechanism_->constraints().empty() || mechanism_->model().has_quaternions()) DeclareProjection();
+  for (const auto& sensor : sensors_)
+    if (sensor.kind == mech::SensorKind::kReactionForce || sensor.kind == mech::SensorKind::kReactionTorque)
+      ws_.want_reactions = true;
+}
+
+std::span<const double> MechanismBlock::Inputs(const BlockContext& ctx) const {
+  for (int i = 0; i < num_inputs(); ++i) inputs_[i] = ctx.input_scalar(i);
+  return inputs_;
+}
+
+void MechanismBlock::DoInitialize(const BlockContext& ctx) const {
+  // Inputs are not valid yet: elements initialise with inputs at zero.
+  std::fill(inputs_.begin(), inputs_.end(), 0.0);
+  mech::InitialState(*mechanism_, inputs_, ctx.state(), ctx.discrete(), &ws_);
+  positions_at_ = full_at_ = ~std::uint64_t{0};
+  worst_residual_ = 0.0;
+}
+
+void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
+  const std::uint64_t now = ctx.evaluation();
+  if (full) {
+    if (full_at_ == now) return;
+    mech::EvaluateMechanism(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
+    full_at_ = positions_at_ = now;
+  } else {
+    if (positions_at_ == now || full_at_ == now) return;
+    mech::EvaluatePositions(*mechanism_, ctx.time(), ctx.state(), &ws_);
+    positions_at_ = now;
+  }
+}
+
+void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
+  const mech::SensorSpec& sensor = sensors_[port];
+  EnsureEvaluated(ctx, mech::SensorNeedsAccelerations(sensor));
+  mech::EvaluateSensor(*mechanism_, ws_, ctx.state(), sensor, ctx.output(port));
+}
+
+void MechanismBlock::DoCalcDerivatives(const BlockContext& ctx) const {
+  mech::EvaluateMechanism(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_,
+                          ctx.derivative());
+  full_at_ = positions_at_ = ctx.evaluation();
+}
+
+void MechanismBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
+  EnsureEvaluated(ctx, true);
+  mech::EvaluateCrossings(*mechanism_, ctx.state(), ctx.discrete(), &ws_, ctx.zero_crossings());
+}
+
+void MechanismBlock::DoZeroCrossing(int index, int direction, const BlockContext& ctx) const {
+  EnsureEvaluated(ctx, true);
+  mech::ApplyCrossing(*mechanism_, index, direction, ctx.state(), ctx.discrete(), &ws_);
+  positions_at_ = full_at_ = ~std::uint64_t{0};
+}
+
+void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double>) const {
+  const mech::Model& model = mechanism_->model();
+  const std::span<const double> x = ctx.state();
+  std::copy(x.begin(), x.end(), scratch_.begin());
+  std::span<double> q(scratch_.data(), model.nq()), v(scratch_.data() + model.nq(), model.nv());
+  // Unit quaternions first (their projection is exact), then the loops.
+  for (const mech::Segment& seg : model.segments()) {
+    if (seg.motion != mech::SegmentMotion::kFree) continue;
+    double norm = 0.0;
+    for (int k = 3; k < 7; ++k) norm += q[seg.q_index + k] * q[seg.q_index + k];
+    norm = std::sqrt(norm);
+    for (int k = 3; k < 7; ++k) q[seg.q_index + k] /= norm;
+  }
+  if (!mechanism_->constraints().empty()) {
+    mech::UpdateKinematics(model, ctx.time(), q, v, &ws_.kin);
+    mechanism_->constraints().Residual(model, ws_.kin, &ws_.constraint.phi);
+    worst_residual_ = std::max(worst_residual_, ws_.constraint.phi.lpNorm<Eigen::Infinity>());
+    mech::ProjectPositions(model, mechanism_->constraints(), ctx.time(), q, v, 1e-13, 5, &ws_.kin, &ws_.constraint);
+    mech::ProjectVelocities(model, mechanism_->constraints(), ctx.time(), q, v, &ws_.kin, &ws_.constraint);
+  }
+  for (std::size_t i = 0; i < x.size(); ++i) correction[i] = scratch_[i] - x[i];
+  positions_at_ = full_at_ = ~std::uint64_t{0};
+}
+
+}  // namespace mechflow::blocks

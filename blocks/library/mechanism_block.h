@@ -1,0 +1,63 @@
+#pragma once
+// MechanismBlock: a multibody mechanism as one block of a diagram.
+//
+//   inputs:  one scalar port per mechanism input (identifier inputs, applied
+//            force components), named as the mechanism names them
+//   outputs: one port per sensor (width 1, or 3 for vector sensors)
+//   states:  the mechanism's state vector ("q:<dof>", "v:<dof>", quaternion
+//            joints "<joint>.x" ..., element states "<element>.s<k>"), its
+//            elements' modes as discrete states, their crossings as zero
+//            crossings
+//
+// Feedthrough is declared per sensor: positions, velocities and angles come
+// from the state alone, so they may feed back into the same mechanism without
+// an algebraic loop; accelerations, reactions and element forces depend on
+// the inputs at the same instant.
+//
+// Closed loops and quaternion joints declare a projection: after every solver
+// step the positions are moved back onto the loop constraints (Gauss-Newton,
+// least-norm steps), the velocities onto their tangent, and quaternions are
+// normalised. The residual norms seen at projections are kept for reports.
+//
+// The block keeps a per-run workspace (mutable: one run at a time per block
+// instance), shared between its output ports within one evaluation.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "blocks/block.h"
+#include "mech/sensor.h"
+
+namespace mechflow::blocks {
+
+class MechanismBlock final : public Block {
+ public:
+  MechanismBlock(std::string name, std::shared_ptr<const mech::Mechanism> mechanism,
+                 std::vector<mech::SensorSpec> sensors);
+
+  const mech::Mechanism& mechanism() const { return *mechanism_; }
+  // Largest position-constraint residual (max norm) seen before projection
+  // during the run, and at the last projection after it.
+  double worst_constraint_residual() const { return worst_residual_; }
+
+ private:
+  void DoInitialize(const BlockContext& ctx) const override;
+  void DoCalcOutput(int port, const BlockContext& ctx) const override;
+  void DoCalcDerivatives(const BlockContext& ctx) const override;
+  void DoCalcZeroCrossings(const BlockContext& ctx) const override;
+  void DoZeroCrossing(int index, int direction, const BlockContext& ctx) const override;
+  void DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const override;
+
+  std::span<const double> Inputs(const BlockContext& ctx) const;
+  void EnsureEvaluated(const BlockContext& ctx, bool full) const;
+
+  std::shared_ptr<const mech::Mechanism> mechanism_;
+  std::vector<mech::SensorSpec> sensors_;
+  mutable mech::MechanismWorkspace ws_;
+  mutable std::vector<double> inputs_, scratch_, xdot_;
+  mutable std::uint64_t positions_at_ = ~std::uint64_t{0}, full_at_ = ~std::uint64_t{0};
+  mutable double worst_residual_ = 0.0;
+};
+
+}  // namespace mechflow::blocks
