@@ -4,4 +4,5 @@ set(MECHFLOW_SCRIPTING_SOURCES
   scripting/expression_block.cc
   scripting/identifiers.cc
   scripting/lua_state.cc
+  scripting/time_function.cc
 )
