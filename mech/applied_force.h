@@ -1,0 +1,27 @@
+#pragma once
+// Applied force and torque on a body: components are Parameters (constants
+// or functions of the mechanism's inputs, e.g. a controller's output), in
+// global axes or in the body's axes. The force acts at a body point.
+// Sensors: fx fy fz mx my mz (as given).
+
+#include <array>
+
+#include "mech/force_element.h"
+
+namespace mechflow::mech {
+
+class AppliedForce final : public ForceElement {
+ public:
+  AppliedForce(std::string name, std::string origin, int body, Vec3 point, std::array<Parameter, 3> force,
+               std::array<Parameter, 3> torque, bool body_axes);
+  void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
+                std::span<double> sensors) const override;
+
+ private:
+  int body_;
+  Vec3 point_;
+  std::array<Parameter, 3> force_, torque_;
+  bool body_axes_;
+};
+
+}  // namespace mechflow::mech

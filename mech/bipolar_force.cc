@@ -1,0 +1,48 @@
+#include "mech/bipolar_force.h"
+
+#include <sstream>
+
+#include "mech/errors.h"
+
+namespace mechflow::mech {
+
+BipolarForce::BipolarForce(std::string name, std::string origin, int body1, Vec3 point1, int body2, Vec3 point2,
+                           std::unique_ptr<ForceLaw> law)
+    : ForceElement(std::move(name), std::move(origin)),
+      body1_(body1),
+      body2_(body2),
+      point1_(point1),
+      point2_(point2),
+      law_(std::move(law)) {
+  DeclareSensor("force");
+  DeclareSensor("length");
+  DeclareSensor("rate");
+}
+
+double BipolarLength(const Kinematics& kin, int body1, const Vec3& point1, int body2, const Vec3& point2) {
+  return (PointPosition(kin, body2, point2) - PointPosition(kin, body1, point1)).norm();
+}
+
+void BipolarForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
+                            std::span<double> sensors) const {
+  const Kinematics& kin = *ctx.kin;
+  const Vec3 pa = PointPosition(kin, body1_, point1_), pb = PointPosition(kin, body2_, point2_);
+  const Vec3 d = pb - pa;
+  const double x = d.norm();
+  const Vec3 u = x > 0.0 ? Vec3(d / x) : Vec3(Vec3::Zero());
+  const double v = (PointVelocity(kin, body2_, point2_) - PointVelocity(kin, body1_, point1_)).dot(u);
+  const double f = law_->Force(x, v, ctx);
+  if (x == 0.0 && f != 0.0) {
+    std::ostringstream out;
+    out << "force '" << name() << "': zero length with a non-zero force " << f << " at t = " << ctx.t
+        << " (no direction to apply it)";
+    throw SimulationError(out.str());
+  }
+  loads->AddForce(kin, body2_, pb, f * u);
+  loads->AddForce(kin, body1_, pa, -f * u);
+  sensors[0] = f;
+  sensors[1] = x;
+  sensors[2] = v;
+}
+
+}  // namespace mechflow::mech

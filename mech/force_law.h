@@ -1,0 +1,71 @@
+#pragma once
+// Scalar force laws F(x, v, t) shared by bipolar forces (x: length, v: its
+// rate) and joint forces (x: coordinate, v: its velocity), ELEMENTS.md 3.3-3.5.
+//
+//   Linear:     F = -c (x - x0) - d v + F0
+//   Points:     F = table(x) - d v; table piecewise linear or a natural cubic
+//               spline through (x_i, F_i), x strictly increasing; beyond the
+//               ends extended linearly along the end slopes (default) or
+//               clamped to the end values
+//   Expression: F = f(x, v, t, inputs...), a ScalarFunction supplied by the
+//               loader (a compiled Lua expression)
+//
+// Every parameter is a mech::Parameter (constant or a function of the
+// mechanism's inputs).
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mech/force_element.h"
+
+namespace mechflow::mech {
+
+class ForceLaw {
+ public:
+  virtual ~ForceLaw() = default;
+  virtual double Force(double x, double v, const ElementContext& ctx) const = 0;
+};
+
+class LinearLaw final : public ForceLaw {
+ public:
+  LinearLaw(Parameter c, Parameter x0, Parameter d, Parameter f0) : c_(c), x0_(x0), d_(d), f0_(f0) {}
+  double Force(double x, double v, const ElementContext& ctx) const override {
+    return -c_.Get(ctx) * (x - x0_.Get(ctx)) - d_.Get(ctx) * v + f0_.Get(ctx);
+  }
+
+ private:
+  Parameter c_, x0_, d_, f0_;
+};
+
+class PointsLaw final : public ForceLaw {
+ public:
+  enum class Interpolation { kLinear, kSpline };
+  enum class Extrapolation { kLinear, kClamp };
+  // Throws InputError (starting with `origin`) for fewer than two points or x
+  // not strictly increasing.
+  PointsLaw(std::vector<double> x, std::vector<double> f, Interpolation interpolation, Extrapolation extrapolation,
+            Parameter d, const std::string& origin);
+  double Force(double x, double v, const ElementContext& ctx) const override;
+  double Table(double x) const;
+
+ private:
+  std::vector<double> x_, f_, second_;  // second_: spline second derivatives
+  Interpolation interpolation_;
+  Extrapolation extrapolation_;
+  Parameter d_;
+};
+
+class ExpressionLaw final : public ForceLaw {
+ public:
+  static constexpr int kMaxInputs = 32;
+  // `function` takes [x, v, t, inputs...]; at most kMaxInputs inputs.
+  explicit ExpressionLaw(std::shared_ptr<const ScalarFunction> function) : function_(std::move(function)) {}
+  double Force(double x, double v, const ElementContext& ctx) const override;
+
+ private:
+  std::shared_ptr<const ScalarFunction> function_;
+};
+
+}  // namespace mechflow::mech

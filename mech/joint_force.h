@@ -1,0 +1,23 @@
+#pragma once
+// Joint force (ELEMENTS.md 3.2): a scalar law on one coordinate of a joint;
+// x = q, v = q', and a positive value tends to increase q (a force for a
+// translation, a torque for a rotation). Sensors: force, length (= q), rate.
+
+#include <memory>
+
+#include "mech/force_law.h"
+
+namespace mechflow::mech {
+
+class JointForce final : public ForceElement {
+ public:
+  JointForce(std::string name, std::string origin, const Dof& dof, std::unique_ptr<ForceLaw> law);
+  void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
+                std::span<double> sensors) const override;
+
+ private:
+  int q_index_, v_index_;
+  std::unique_ptr<ForceLaw> law_;
+};
+
+}  // namespace mechflow::mech
