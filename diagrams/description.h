@@ -45,11 +45,30 @@ struct LogDesc {
   SourceLoc loc;
 };
 
+// An XML element as written (mechanism content): tag, attributes, children.
+struct ElementDesc {
+  std::string tag;
+  std::vector<Attribute> attributes;
+  std::vector<ElementDesc> children;
+  SourceLoc loc;
+
+  const Attribute* Find(const std::string& name) const {
+    for (const auto& a : attributes)
+      if (a.name == name) return &a;
+    return nullptr;
+  }
+  std::string Text(const std::string& name, const std::string& fallback = "") const {
+    const Attribute* a = Find(name);
+    return a ? a->value : fallback;
+  }
+};
+
 struct DiagramDescription {
   std::string name;     // <diagram name=...>, default: the file's stem
   std::string comment;
   std::string file;     // the path it was read from
   std::vector<IdentifierDesc> identifiers;
+  std::vector<ElementDesc> mechanisms;  // <mechanism>, with src= files read in
   std::vector<BlockDesc> blocks;
   std::vector<ConnectionDesc> connections;
   std::vector<Attribute> solver;  // attributes of <solver>

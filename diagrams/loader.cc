@@ -1,72 +1,19 @@
 #include "diagrams/loader.h"
 
-#include <charconv>
 #include <filesystem>
 #include <map>
 
 #include "blocks/block_factory.h"
 #include "blocks/diagram_builder.h"
 #include "blocks/suggest.h"
+#include "diagrams/evaluator.h"
+#include "diagrams/mechanism_loader.h"
 #include "diagrams/xml_reader.h"
 #include "mech/errors.h"
 #include "scripting/expression_block.h"
 
 namespace mechflow::diagrams {
 namespace {
-
-std::string Trim(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return "";
-  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
-}
-
-// Splits at any of `separators`, dropping empty pieces.
-std::vector<std::string> Split(const std::string& s, const char* separators) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  while (start <= s.size()) {
-    const size_t end = s.find_first_of(separators, start);
-    const std::string piece = Trim(s.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (!piece.empty()) out.push_back(piece);
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  return out;
-}
-
-// Turns the text of attributes into numbers: a plain number as written, or an
-// expression of the diagram's identifiers.
-class Evaluator {
- public:
-  Evaluator(scripting::LuaState* lua, const scripting::IdentifierTable* ids) : lua_(lua), ids_(ids) {}
-
-  double Number(const std::string& text, const std::string& what) const {
-    const std::string t = Trim(text);
-    if (t.empty()) throw InputError(what + ": expected a number or an expression, found nothing");
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), value);
-    if (error == std::errc() && end == t.data() + t.size()) return value;
-    return ids_->EvaluateExpression(*lua_, t, what);
-  }
-
-  std::vector<double> Numbers(const std::string& text, const std::string& what) const {
-    std::vector<double> out;
-    for (const auto& item : Split(text, " \t\r\n,")) out.push_back(Number(item, what));
-    if (out.empty()) throw InputError(what + ": expected at least one number");
-    return out;
-  }
-
-  std::vector<std::vector<double>> Table(const std::string& text, const std::string& what) const {
-    std::vector<std::vector<double>> rows;
-    for (const auto& row : Split(text, ";")) rows.push_back(Numbers(row, what + " row " + std::to_string(rows.size() + 1)));
-    if (rows.empty()) throw InputError(what + ": expected rows separated by ';'");
-    return rows;
-  }
-
- private:
-  scripting::LuaState* lua_;
-  const scripting::IdentifierTable* ids_;
-};
 
 const Attribute* FindAttribute(const std::vector<Attribute>& attributes, const std::string& name) {
   for (const auto& a : attributes)
@@ -213,6 +160,7 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   RegisterAllBlocks(&registry, out.lua.get(), out.identifiers.get());
   const std::string folder = std::filesystem::path(d.file).parent_path().string();
   blocks::DiagramBuilder builder;
+  for (const auto& m : d.mechanisms) builder.AddBlock(BuildMechanismBlock(m, eval, options.t_end), m.loc.str());
   for (const auto& b : d.blocks) {
     const blocks::BlockType* type = registry.Find(b.type);
     if (!type)

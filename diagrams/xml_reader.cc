@@ -29,7 +29,24 @@ struct ElementSchema {
 
 const std::vector<ElementSchema>& Schema() {
   static const std::vector<ElementSchema> schema = {
-      {"diagram", {}, {"name", "comment"}, {"identifiers", "blocks", "connections", "solver", "output"}},
+      {"diagram", {}, {"name", "comment"}, {"identifiers", "mechanism", "blocks", "connections", "solver", "output"}},
+      {"mechanism", {"name"}, {"src", "gravity", "comment"},
+       {"input", "body", "joint", "force", "joint_force", "bushing", "applied_force", "sensor"}},
+      {"input", {"name"}, {}, {}},
+      {"body", {"name", "mass", "inertia"}, {"com", "products", "comment"}, {"point"}},
+      {"point", {"name", "at"}, {}, {}},
+      {"joint", {"name", "type", "body1", "body2"},
+       {"point1", "point2", "rotation1", "rotation2", "axis", "q0", "v0", "locked", "position", "angles", "velocity",
+        "angular_velocity", "axis1", "axis2", "reference1", "reference2"},
+       {"et"}},
+      {"et", {"type"}, {"axis", "value", "vector", "q0", "v0", "locked", "name"}, {}},
+      {"force", {"name", "type", "body1", "body2"},
+       {"point1", "point2", "c", "x0", "d", "f0", "points", "interpolation", "extrapolation", "expression"}, {}},
+      {"joint_force", {"name", "type", "dof"},
+       {"c", "x0", "d", "f0", "points", "interpolation", "extrapolation", "expression"}, {}},
+      {"bushing", {"name", "body1", "body2"}, {"point1", "point2", "c", "d", "ca", "da", "preload", "preload_moment"}, {}},
+      {"applied_force", {"name", "body"}, {"point", "force", "torque", "axes"}, {}},
+      {"sensor", {"name", "kind"}, {"dof", "joint", "element", "quantity", "body", "point", "component"}, {}},
       {"identifiers", {}, {}, {"identifier"}},
       {"identifier", {"name", "value"}, {"comment", "unit"}, {}},
       {"blocks", {}, {}, {"block"}},
@@ -105,6 +122,19 @@ class Reader {
     return e;
   }
 
+  // The element and its children, shapes checked all the way down.
+  ElementDesc ReadTree(const XMLElement* e) const {
+    CheckShape(e);
+    ElementDesc out{e->Name(), Attributes(e), {}, Loc(e)};
+    for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement())
+      out.children.push_back(ReadTree(c));
+    return out;
+  }
+
+  // <mechanism name=... src="file"/>: the file's <mechanism> element (its own
+  // file:line in messages); attributes given here override the file's.
+  ElementDesc ReadMechanism(const XMLElement* e) const;
+
   DiagramDescription Read(const tinyxml2::XMLDocument& doc) const {
     const XMLElement* root = doc.RootElement();
     if (!root) throw InputError(file_ + ":1: the file holds no XML element; expected <diagram>");
@@ -117,7 +147,10 @@ class Reader {
     if (d.name.empty()) d.name = std::filesystem::path(file_).stem().string();
     d.comment = Text(root, "comment");
 
+    for (const XMLElement* m = root->FirstChildElement("mechanism"); m; m = m->NextSiblingElement("mechanism"))
+      d.mechanisms.push_back(ReadMechanism(m));
     for (const XMLElement* group = root->FirstChildElement(); group; group = group->NextSiblingElement()) {
+      if (std::string(group->Name()) == "mechanism") continue;
       CheckShape(group);
       for (const XMLElement* e = group->FirstChildElement(); e; e = e->NextSiblingElement()) CheckShape(e);
     }
@@ -151,14 +184,49 @@ class Reader {
   std::string file_;
 };
 
+tinyxml2::XMLError ParseText(tinyxml2::XMLDocument* doc, const std::string& text, const std::string& file) {
+  if (doc->Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
+    throw InputError(file + ":" + std::to_string(doc->ErrorLineNum()) + ": malformed XML: " +
+                     (doc->ErrorStr() ? doc->ErrorStr() : doc->ErrorName()));
+  }
+  return tinyxml2::XML_SUCCESS;
+}
+
+std::string ReadFileText(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(what + "cannot open '" + path + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+ElementDesc Reader::ReadMechanism(const XMLElement* e) const {
+  const char* src = e->Attribute("src");
+  if (!src) return ReadTree(e);
+  CheckShape(e);
+  if (e->FirstChildElement()) Fail(e, "<mechanism src=...> takes its content from the file; it has no children here");
+  const std::string path =
+      (std::filesystem::path(file_).parent_path() / src).lexically_normal().string();
+  tinyxml2::XMLDocument doc;
+  ParseText(&doc, ReadFileText(path, Loc(e).str() + ": mechanism file: "), path);
+  const XMLElement* root = doc.RootElement();
+  if (!root || std::string(root->Name()) != "mechanism")
+    throw InputError(path + ":1: a mechanism file holds one <mechanism> element");
+  ElementDesc m = Reader(path).ReadTree(root);
+  for (const auto& a : Attributes(e, {"src"})) {
+    bool replaced = false;
+    for (auto& existing : m.attributes)
+      if (existing.name == a.name) existing = a, replaced = true;
+    if (!replaced) m.attributes.push_back(a);
+  }
+  return m;
+}
+
 }  // namespace
 
 DiagramDescription ReadDiagramText(const std::string& text, const std::string& file) {
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
-    throw InputError(file + ":" + std::to_string(doc.ErrorLineNum()) + ": malformed XML: " +
-                     (doc.ErrorStr() ? doc.ErrorStr() : doc.ErrorName()));
-  }
+  ParseText(&doc, text, file);
   return Reader(file).Read(doc);
 }
 
