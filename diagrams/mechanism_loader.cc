@@ -183,9 +183,9 @@ mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
   j.frame1 = Frame(r, e, "point1", "rotation1", body(j.body1));
   j.frame2 = Frame(r, e, "point2", "rotation2", body(j.body2));
   const std::string type = e.Text("type");
-  const bool locked = r.Has(e, "locked") && r.Number(e, "locked", 0) != 0;
   using T = mech::TransformType;
   if (type == "rotational" || type == "translational") {
+    const bool locked = r.Number(e, "locked", 0) != 0;
     const Vec3 axis = r.Vector(e, "axis", Vec3::UnitZ());
     j.chain.push_back(Dof(type == "rotational" ? T::kRv : T::kTv, axis, r.Number(e, "q0", 0), r.Number(e, "v0", 0),
                           locked, "", e.loc.str()));

@@ -1,2 +1,3 @@
 # Tests of regression/.
 mechflow_test(examples_test regression tests/regression/examples_test.cc)
+mechflow_test(mechanism_examples_test regression tests/regression/mechanism_examples_test.cc)

@@ -1,0 +1,241 @@
+// The mechanism example diagrams (seed models of ../shared/ELEMENTS.md 9),
+// each run and checked against an answer computed independently: closed
+// forms, exact kinematics, elliptic integrals, conservation laws.
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "blocks/library/mechanism_block.h"
+#include "blocks/simulator.h"
+#include "diagrams/loader.h"
+
+namespace mechflow {
+namespace {
+
+const double kPi = 3.14159265358979323846;
+
+struct ExampleRun {
+  diagrams::LoadedDiagram loaded;
+  std::unique_ptr<blocks::Simulator> sim;
+  blocks::RunOutcome outcome;
+
+  explicit ExampleRun(const std::string& example, const diagrams::LoadOptions& options = {})
+      : loaded(diagrams::LoadDiagram(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + example, options)) {
+    sim = std::make_unique<blocks::Simulator>(*loaded.diagram, loaded.solver, loaded.logged);
+    outcome = sim->Run();
+  }
+  std::vector<double> Column(const std::string& name) const {
+    const int c = sim->results().FindColumn(name);
+    EXPECT_GE(c, 0) << "no column " << name;
+    return c < 0 ? std::vector<double>() : sim->results().Column(c);
+  }
+  const blocks::MechanismBlock& Mechanism(const std::string& name) const {
+    return dynamic_cast<const blocks::MechanismBlock&>(loaded.diagram->block(loaded.diagram->FindBlock(name)));
+  }
+};
+
+// Times where `x` crosses zero downwards (linear interpolation on the output grid).
+std::vector<double> DownCrossings(const std::vector<double>& t, const std::vector<double>& x) {
+  std::vector<double> out;
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (x[i - 1] > 0 && x[i] <= 0) out.push_back(t[i - 1] + (t[i] - t[i - 1]) * x[i - 1] / (x[i - 1] - x[i]));
+  return out;
+}
+double MeanPeriod(const std::vector<double>& crossings) {
+  return (crossings.back() - crossings.front()) / (crossings.size() - 1);
+}
+
+// Complete elliptic integral of the first kind by the arithmetic-geometric mean.
+double EllipticK(double k) {
+  double a = 1, b = std::sqrt(1 - k * k);
+  for (int i = 0; i < 30; ++i) {
+    const double an = (a + b) / 2;
+    b = std::sqrt(a * b);
+    a = an;
+  }
+  return kPi / (2 * a);
+}
+
+TEST(MechanismExamplesTest, DampingRatioMatchesClosedFormDR1) {
+  ExampleRun run("damping_ratio.xml");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const double beta = 0.1, w = 2 * kPi, wd = w * std::sqrt(1 - beta * beta);
+  const auto t = run.Column("time"), z = run.Column("m.z");
+  double worst = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double ref = 0.5 * std::exp(-beta * w * t[i]) *
+                       (std::cos(wd * t[i]) + beta / std::sqrt(1 - beta * beta) * std::sin(wd * t[i]));
+    worst = std::max(worst, std::abs(z[i] - ref));
+  }
+  EXPECT_LT(worst, 1e-5);
+  // ELEMENTS.md DR-1 table: z(1 s), z(2 s), z(5 s).
+  auto at = [&](double time) { return z[static_cast<std::size_t>(std::lround(time / 0.005))]; };
+  EXPECT_NEAR(at(1.0), 0.26577, 1e-5);
+  EXPECT_NEAR(at(2.0), 0.14112, 1e-5);
+  EXPECT_NEAR(at(5.0), 0.02100, 1e-5);
+}
+
+TEST(MechanismExamplesTest, ForcesSixSpringsAreOneF1) {
+  ExampleRun run("forces.xml");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time");
+  const double w = std::sqrt(500.0 / 10.0);
+  EXPECT_NEAR(2 * kPi / w, 0.888577, 1e-6);
+  std::vector<std::vector<double>> z;
+  for (int i = 1; i <= 6; ++i) z.push_back(run.Column("m.z" + std::to_string(i)));
+  double spread = 0, closed = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    for (int i = 1; i < 6; ++i) spread = std::max(spread, std::abs(z[i][k] - z[0][k]));
+    closed = std::max(closed, std::abs(z[0][k] - 0.1 * std::cos(w * t[k])));
+  }
+  EXPECT_LT(spread, 1e-8);
+  EXPECT_LT(closed, 1e-8);
+  EXPECT_NEAR(MeanPeriod(DownCrossings(t, z[4])), 0.888577, 1e-5);
+}
+
+TEST(MechanismExamplesTest, FrequenciesShowInTheSpectrumOfBody3) {
+  // LA-1's frequencies as peaks of the response (a discrete Fourier transform
+  // of z3 over 2 s, evaluated finely around each expected peak).
+  ExampleRun run("frequencies.xml");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time"), z = run.Column("m.z3");
+  auto power = [&](double f) {
+    double re = 0, im = 0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const double window = 0.5 - 0.5 * std::cos(2 * kPi * i / (t.size() - 1));  // Hann
+      re += window * z[i] * std::cos(2 * kPi * f * t[i]);
+      im += window * z[i] * std::sin(2 * kPi * f * t[i]);
+    }
+    return re * re + im * im;
+  };
+  for (double expected : {17.6613, 43.8189, 67.2512}) {
+    double best_f = 0, best = -1;
+    for (double f = expected - 2; f <= expected + 2; f += 0.005)
+      if (const double p = power(f); p > best) best = p, best_f = f;
+    EXPECT_NEAR(best_f, expected, 0.1) << "spectral peak near " << expected << " Hz";
+  }
+}
+
+TEST(MechanismExamplesTest, PendulumPeriodsSmallAndLargePE1) {
+  const double T0 = 2 * kPi * std::sqrt((1.0 / 3.0) / (9.81 * 0.5));  // I_O / (m g l_c)
+  {
+    ExampleRun run("pendulum.xml");
+    ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+    EXPECT_NEAR(MeanPeriod(DownCrossings(run.Column("time"), run.Column("p.phi"))) / T0, 1.0, 1e-4);
+  }
+  {
+    // Large amplitude: T = 4 sqrt(I_O/(m g l_c)) K(sin(phi0/2)).
+    diagrams::LoadOptions options;
+    options.overrides = {{"phi0", 2.0}};
+    ExampleRun run("pendulum.xml", options);
+    ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+    const double expected = 4 * std::sqrt((1.0 / 3.0) / (9.81 * 0.5)) * EllipticK(std::sin(1.0));
+    EXPECT_NEAR(MeanPeriod(DownCrossings(run.Column("time"), run.Column("p.phi"))) / expected, 1.0, 1e-4);
+  }
+  {
+    ExampleRun run("pendulum_inclined.xml");  // alpha = 60 deg: T = T0 / sqrt(cos alpha)
+    ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+    EXPECT_NEAR(MeanPeriod(DownCrossings(run.Column("time"), run.Column("p.phi"))) / T0, std::sqrt(2.0), 1e-4);
+  }
+}
+
+TEST(MechanismExamplesTest, RoundMovesBody3OnTheCircle) {
+  ExampleRun run("round.xml");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time");
+  const auto y = run.Column("m.p3[1]"), z = run.Column("m.p3[2]");
+  const auto vy = run.Column("m.v3[1]"), vz = run.Column("m.v3[2]");
+  const auto ay = run.Column("m.a3[1]"), az = run.Column("m.a3[2]");
+  EXPECT_NEAR(y[0], 2.0, 1e-12);
+  EXPECT_NEAR(z[0], 0.0, 1e-12);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    ASSERT_NEAR(y[i], 2 * std::cos(t[i]), 1e-12);
+    ASSERT_NEAR(std::hypot(vy[i], vz[i]), 2.0, 1e-12);
+    // 2 m/s^2 toward the centre
+    ASSERT_NEAR(ay[i], -y[i], 1e-9);
+    ASSERT_NEAR(az[i], -z[i], 1e-9);
+  }
+}
+
+TEST(MechanismExamplesTest, SliderCrankFollowsExactKinematicsAndStaysClosed) {
+  ExampleRun run("slider_crank.xml");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const double r = 0.1, l = 0.3, omega = 2 * kPi;
+  const auto t = run.Column("time"), s = run.Column("m.s");
+  double worst = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double th = omega * t[i];
+    worst = std::max(worst, std::abs(s[i] - (r * std::cos(th) + std::sqrt(l * l - r * r * std::sin(th) * std::sin(th)))));
+  }
+  EXPECT_LT(worst, 1e-8);
+  EXPECT_LT(run.Mechanism("m").worst_constraint_residual(), 1e-8);
+}
+
+TEST(MechanismExamplesTest, FourBarStaysClosedOverTenSeconds) {
+  ExampleRun run("four_bar.xml");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  EXPECT_LT(run.Mechanism("m").worst_constraint_residual(), 1e-8);
+  EXPECT_GT(run.Mechanism("m").worst_constraint_residual(), 0.0);
+}
+
+TEST(MechanismExamplesTest, Convel1ShaftsTurnTogetherCV1AndConvel2NearlySo) {
+  const double expected = 0.01 / (0.1 * 0.2) * (1 - std::exp(-1.0));  // 0.316060
+  ExampleRun one("convel1.xml");
+  ASSERT_TRUE(one.outcome.ok) << one.outcome.failure;
+  const auto w1 = one.Column("cv.w1"), w2 = one.Column("cv.w2");
+  for (std::size_t i = 0; i < w1.size(); ++i) ASSERT_NEAR(w1[i], w2[i], 1e-9);
+  EXPECT_NEAR(w1.back(), expected, 1e-7);
+  ExampleRun two("convel2.xml");
+  ASSERT_TRUE(two.outcome.ok) << two.outcome.failure;
+  const auto u1 = two.Column("cv.w1"), u2 = two.Column("cv.w2");
+  double spread = 0;
+  for (std::size_t i = 0; i < u1.size(); ++i) spread = std::max(spread, std::abs(u1[i] - u2[i]));
+  EXPECT_GT(spread, 0.0);
+  EXPECT_LT(spread, 1e-3 * expected);
+  EXPECT_NEAR(u1.back(), expected, 1e-3 * expected);
+}
+
+TEST(MechanismExamplesTest, MathGamePursuerNeverCatchesTheTarget) {
+  ExampleRun run("math_game.xml");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time"), d = run.Column("g.distance");
+  const auto ax = run.Column("g.acceleration[0]"), ay = run.Column("g.acceleration[1]"),
+             az = run.Column("g.acceleration[2]");
+  for (std::size_t i = 0; i < t.size(); ++i)
+    ASSERT_NEAR(std::sqrt(ax[i] * ax[i] + ay[i] * ay[i] + az[i] * az[i]), 50.0 / 3.0, 1e-9);
+  const auto closest = std::min_element(d.begin(), d.end());
+  EXPECT_GT(*closest, 0.05 + 0.05);
+  // ELEMENTS.md 9.13: 0.402 m at about 11.7 s (on the 0.01 s output grid).
+  EXPECT_NEAR(*closest, 0.402, 1e-3);
+  EXPECT_NEAR(t[closest - d.begin()], 11.7, 0.05);
+}
+
+TEST(MechanismExamplesTest, PendulumChainConservesEnergy) {
+  ExampleRun run("pendulum_chain.xml");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time");
+  std::vector<double> energy(t.size(), 0.0), kinetic(t.size(), 0.0);
+  for (int i = 1; i <= 5; ++i) {
+    const std::string n = std::to_string(i);
+    const auto z = run.Column("chain.p" + n + "[2]");
+    const auto vx = run.Column("chain.v" + n + "[0]"), vy = run.Column("chain.v" + n + "[1]"),
+               vz = run.Column("chain.v" + n + "[2]"), wx = run.Column("chain.w" + n + "[0]");
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      const double ke = 0.5 * (vx[k] * vx[k] + vy[k] * vy[k] + vz[k] * vz[k]) + 0.5 / 12.0 * wx[k] * wx[k];
+      kinetic[k] += ke;
+      energy[k] += ke + 9.81 * z[k];
+    }
+  }
+  // Relative to the largest kinetic energy reached (the energy itself starts at 0).
+  const double scale = *std::max_element(kinetic.begin(), kinetic.end());
+  double drift = 0;
+  for (double e : energy) drift = std::max(drift, std::abs(e - energy[0]));
+  EXPECT_LT(drift / scale, 1e-6) << "scale " << scale;
+}
+
+}  // namespace
+}  // namespace mechflow
