@@ -9,7 +9,7 @@
 namespace mechflow::cli {
 namespace {
 
-const std::vector<std::string> kCommands = {"run", "check", "graph", "help"};
+const std::vector<std::string> kCommands = {"run", "check", "graph", "modes", "help"};
 
 double ParseNumber(const std::string& text, const std::string& option) {
   double value = 0.0;
@@ -50,6 +50,16 @@ std::string HelpText(const std::string& command) {
            "Prints the diagram as a Graphviz DOT graph on standard output, e.g.\n"
            "  mechflow graph d.xml | dot -Tsvg > d.svg\n"
            "Edges drawn bold carry direct feedthrough (they order the evaluation).\n";
+  if (command == "modes")
+    return "usage: mechflow modes FILE [--set NAME=VALUE]... [--equilibrium] [--out DIR]\n"
+           "\n"
+           "Linearises the diagram at its initial state (or, with --equilibrium, at the\n"
+           "static equilibrium found first by Newton's method) and prints its natural\n"
+           "frequencies [Hz], damping ratios, eigenvalues [rad/s] and mode shapes per\n"
+           "state; writes the same as modes.csv into DIR. Real eigenvalues (rigid-body\n"
+           "and overdamped motions) are listed with frequency 0.\n"
+           "\n"
+           "Exit codes: 0 done, 1 no equilibrium found, 2 bad input.\n";
   return "usage: mechflow COMMAND FILE [options]\n"
          "\n"
          "mechflow simulates mechanisms with friction and contact described, with signal\n"
@@ -59,6 +69,7 @@ std::string HelpText(const std::string& command) {
          "  run     simulate a diagram and write CSV and plot\n"
          "  check   validate a diagram and print its schedule and state layout\n"
          "  graph   print the diagram as Graphviz DOT\n"
+         "  modes   natural frequencies, damping ratios and mode shapes\n"
          "  help    help on a command: mechflow help run\n"
          "\n"
          "Options: --help (also after a command), --version.\n";
@@ -84,7 +95,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
   }
   if (std::find(kCommands.begin(), kCommands.end(), first) == kCommands.end())
     throw UsageError("unknown command '" + first + "'" + blocks::DidYouMean(first, kCommands) +
-                     "; commands: run, check, graph, help");
+                     "; commands: run, check, graph, modes, help");
   a.command = first;
   for (i = 1; i < args.size(); ++i) {
     const std::string& arg = args[i];
@@ -103,6 +114,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.t_end = ParseNumber(value(arg), arg);
     } else if (arg == "--out") {
       a.out_dir = value(arg);
+    } else if (arg == "--equilibrium" && a.command == "modes") {
+      a.equilibrium = true;
     } else if (arg == "--unsafe-lua") {
       a.unsafe_lua = true;
     } else if (arg.rfind("--", 0) == 0) {

@@ -10,12 +10,13 @@
 namespace mechflow::cli {
 
 struct Arguments {
-  std::string command;  // run, check, graph, help
+  std::string command;  // run, check, graph, modes, help
   std::string file;
   std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE
   std::optional<double> t_end;                            // --t-end T
   std::string out_dir = ".";                              // --out DIR
   bool unsafe_lua = false;                                // --unsafe-lua
+  bool equilibrium = false;                               // modes --equilibrium
   bool help = false;                                      // help for `command` (or general)
   bool version = false;
 };

@@ -2,12 +2,15 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
+#include "cli/modes_report.h"
 #include "cli/plot.h"
 #include "cli/report.h"
+#include "blocks/linearization.h"
 #include "diagrams/loader.h"
 #include "mech/errors.h"
 
@@ -118,6 +121,32 @@ int GraphCommand(const Arguments& args, std::ostream& out, std::ostream&) {
   return 0;
 }
 
+int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
+  const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
+  const blocks::Diagram& diagram = *loaded.diagram;
+  if (diagram.num_states() == 0) {
+    err << args.file << ": the diagram has no continuous states; nothing to analyse\n";
+    return 2;
+  }
+  blocks::Context ctx;
+  std::vector<double> x;
+  blocks::PrepareContext(diagram, loaded.solver.t_start, &ctx, &x);
+  if (args.equilibrium) blocks::FindEquilibrium(diagram, &ctx, &x);
+  const std::vector<std::string> states = blocks::StateNames(diagram);
+  // Mechanism coordinates ("block.q:dof") carry the mode shapes when present.
+  std::vector<bool> coordinates(states.size());
+  for (std::size_t i = 0; i < states.size(); ++i) coordinates[i] = states[i].find(".q:") != std::string::npos;
+  if (std::find(coordinates.begin(), coordinates.end(), true) == coordinates.end()) coordinates.clear();
+  const std::vector<blocks::Mode> modes =
+      blocks::ModalAnalysis(blocks::StateJacobian(diagram, &ctx, x), coordinates);
+  PrintModes(modes, states, x, args.equilibrium, out);
+  std::filesystem::create_directories(args.out_dir);
+  const std::string csv = (std::filesystem::path(args.out_dir) / "modes.csv").string();
+  WriteModesCsv(modes, states, csv);
+  out << "wrote " << csv << "\n";
+  return 0;
+}
+
 int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   Arguments args;
   try {
@@ -138,6 +167,7 @@ int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& 
     if (args.command == "run") return RunCommand(args, out, err);
     if (args.command == "check") return CheckCommand(args, out, err);
     if (args.command == "graph") return GraphCommand(args, out, err);
+    if (args.command == "modes") return ModesCommand(args, out, err);
   } catch (const InputError& e) {
     err << e.what() << "\n";
     return 2;

@@ -11,6 +11,7 @@ namespace mechflow::cli {
 int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err);
 int CheckCommand(const Arguments& args, std::ostream& out, std::ostream& err);
 int GraphCommand(const Arguments& args, std::ostream& out, std::ostream& err);
+int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err);
 
 // Parses `argv` and dispatches; catches every error and maps it to an exit code.
 int Main(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);

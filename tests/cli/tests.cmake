@@ -1,2 +1,3 @@
 # Tests of cli/.
 mechflow_test(cli_test unit tests/cli/cli_test.cc)
+mechflow_test(modes_test unit tests/cli/modes_test.cc)
