@@ -4,6 +4,7 @@
 #include <cctype>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "blocks/library/mechanism_block.h"
 #include "blocks/suggest.h"
@@ -34,6 +35,17 @@ class MechanismReader {
                          " (its value there is the value before the first evaluation)");
       inputs_.push_back(scripting::ToLower(name));
     }
+    // Expressions that follow inputs take them as arguments; Lua arguments may
+    // not share a name with an identifier, so those expressions see the
+    // identifiers without the inputs.
+    const scripting::IdentifierTable& ids = *eval.identifiers();
+    for (int i = 0; i < ids.size(); ++i) {
+      if (std::find(inputs_.begin(), inputs_.end(), ids.name(i)) != inputs_.end()) continue;
+      char value[32];
+      std::snprintf(value, sizeof value, "%.17g", ids.value(i));
+      non_inputs_.Add(ids.name(i), value, ids.origin(i));
+    }
+    non_inputs_.Evaluate(*eval.lua());
   }
 
   const std::vector<std::string>& inputs() const { return inputs_; }
@@ -92,12 +104,7 @@ class MechanismReader {
   std::shared_ptr<const mech::ScalarFunction> Function(const std::string& text, std::vector<std::string> leading,
                                                        const std::string& what) const {
     for (const std::string& input : inputs_) leading.push_back(SpellingIn(text, input));
-    try {
-      return std::make_shared<scripting::LuaScalarFunction>(*eval_.lua(), text, leading, *eval_.identifiers(),
-                                                            "=" + what);
-    } catch (const InputError& e) {
-      throw InputError(what + ": " + e.what());
-    }
+    return std::make_shared<scripting::LuaScalarFunction>(*eval_.lua(), text, leading, non_inputs_, "=" + what);
   }
 
  private:
@@ -138,6 +145,7 @@ class MechanismReader {
   const ElementDesc& m_;
   const Evaluator& eval_;
   std::vector<std::string> inputs_;
+  scripting::IdentifierTable non_inputs_;
 };
 
 mech::Pose Frame(const MechanismReader& r, const ElementDesc& e, const std::string& point,
@@ -373,8 +381,9 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
     const std::vector<std::string> parts = Split(e.Text(attribute), " \t,");
     if (parts.size() != 3) throw InputError(r.What(e, attribute) + ": expected three components");
     for (int i = 0; i < 3; ++i) {
-      ElementDesc one{e.tag, {{"c", parts[i], e.Find(attribute)->loc}, {"name", name, e.loc}}, {}, e.loc};
-      out[i] = r.Param(one, "c", 0.0);
+      const std::string component = std::string(attribute) + "[" + std::to_string(i) + "]";
+      ElementDesc one{e.tag, {{component, parts[i], e.Find(attribute)->loc}, {"name", name, e.loc}}, {}, e.loc};
+      out[i] = r.Param(one, component, 0.0);
     }
     return out;
   };

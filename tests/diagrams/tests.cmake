@@ -1,2 +1,3 @@
 # Tests of diagrams/.
 mechflow_test(loader_test unit tests/diagrams/loader_test.cc)
+mechflow_test(mechanism_loader_test unit tests/diagrams/mechanism_loader_test.cc)
