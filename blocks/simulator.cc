@@ -212,8 +212,10 @@ void Simulator::AccumulateStats() {
   };
   add(CVodeGetNumSteps(mem, &v), &stats_.steps);
   add(CVodeGetNumRhsEvals(mem, &v), &stats_.rhs_evals);
-  add(CVodeGetNumLinRhsEvals(mem, &v), &stats_.jac_rhs_evals);
-  add(CVodeGetNumJacEvals(mem, &v), &stats_.jac_evals);
+  if (linear_solver_attached_) {  // otherwise CVLS would complain on stderr
+    add(CVodeGetNumLinRhsEvals(mem, &v), &stats_.jac_rhs_evals);
+    add(CVodeGetNumJacEvals(mem, &v), &stats_.jac_evals);
+  }
   add(CVodeGetNumNonlinSolvIters(mem, &v), &stats_.newton_iters);
   add(CVodeGetNumNonlinSolvConvFails(mem, &v), &stats_.newton_failures);
   add(CVodeGetNumErrTestFails(mem, &v), &stats_.error_test_failures);
@@ -240,6 +242,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   events_.clear();
   stats_ = SolverStats();
   callback_failures_ = 0;
+  linear_solver_attached_ = false;
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
 
@@ -264,6 +267,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     Check(CVodeSStolerances(mem, options_.rtol, options_.atol), "CVodeSStolerances");
     Check(CVodeSetLinearSolver(mem, solver_->linear.solver(), solver_->linear.matrix()),
           "CVodeSetLinearSolver");
+    linear_solver_attached_ = true;
     Check(CVodeSetMaxNumSteps(mem, options_.max_steps), "CVodeSetMaxNumSteps");
     if (options_.max_step > 0.0) Check(CVodeSetMaxStep(mem, options_.max_step), "CVodeSetMaxStep");
     if (options_.initial_step > 0.0) Check(CVodeSetInitStep(mem, options_.initial_step), "CVodeSetInitStep");
@@ -295,6 +299,9 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
 
     long next_output = 1;
     double t = t0;
+    // events at one instant, to stop a block whose crossing keeps firing
+    double last_event_time = t0 - 1.0;
+    int events_at_instant = 0;
     // output times are computed from an integer index: no drift over long runs
     auto output_time = [&](long k) { return std::min(t0 + k * options_.output_interval, t_end); };
     while (t < t_end) {
@@ -335,6 +342,14 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
         std::copy(interpolated.begin(), interpolated.end(), y);
         t = t_ret;
         ctx_.x = y;
+        events_at_instant = t == last_event_time ? events_at_instant + 1 : 1;
+        last_event_time = t;
+        if (events_at_instant > kMaxEventsPerInstant) {
+          const EventRecord& e = events_.back();
+          throw SimulationError("block '" + diagram_.block(e.block).name() + "' crossing " +
+                                std::to_string(e.crossing) + " keeps firing at t = " + std::to_string(t) + " (" +
+                                std::to_string(kMaxEventsPerInstant) + " events at one instant)");
+        }
         HandleCrossings(t);
         Reinitialize(t);
         continue;

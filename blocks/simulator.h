@@ -121,6 +121,9 @@ class Simulator {
   std::vector<long> next_hit_;           // per periodic block: next k
   std::string callback_failure_;         // reason stored by a failed callback
   int callback_failures_ = 0;
+  bool linear_solver_attached_ = false;
+  // A crossing that fires again and again at one instant is a modelling error.
+  static constexpr int kMaxEventsPerInstant = 100;
   std::string solver_message_;           // last message from CVODE's error handler
   std::unique_ptr<Solver> solver_;
 };

@@ -6,20 +6,22 @@
 namespace mechflow::blocks {
 
 int EditDistance(std::string_view a, std::string_view b) {
-  std::vector<int> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = static_cast<int>(j);
-  for (size_t i = 1; i <= a.size(); ++i) {
-    int diagonal = row[0];
-    row[0] = static_cast<int>(i);
+  // Optimal string alignment: insertions, deletions, substitutions and swaps
+  // of neighbours ("rnu" -> "run") each count one.
+  auto same = [&](size_t i, size_t j) {
+    return std::tolower(static_cast<unsigned char>(a[i])) == std::tolower(static_cast<unsigned char>(b[j]));
+  };
+  const size_t n = b.size() + 1;
+  std::vector<int> d((a.size() + 1) * n);
+  for (size_t i = 0; i <= a.size(); ++i) d[i * n] = static_cast<int>(i);
+  for (size_t j = 0; j <= b.size(); ++j) d[j] = static_cast<int>(j);
+  for (size_t i = 1; i <= a.size(); ++i)
     for (size_t j = 1; j <= b.size(); ++j) {
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                        std::tolower(static_cast<unsigned char>(b[j - 1]));
-      const int next = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
-      diagonal = row[j];
-      row[j] = next;
+      int v = std::min({d[(i - 1) * n + j] + 1, d[i * n + j - 1] + 1, d[(i - 1) * n + j - 1] + (same(i - 1, j - 1) ? 0 : 1)});
+      if (i > 1 && j > 1 && same(i - 1, j - 2) && same(i - 2, j - 1)) v = std::min(v, d[(i - 2) * n + j - 2] + 1);
+      d[i * n + j] = v;
     }
-  }
-  return row[b.size()];
+  return d[a.size() * n + b.size()];
 }
 
 std::string ClosestName(std::string_view name, const std::vector<std::string>& candidates) {
@@ -32,7 +34,8 @@ std::string ClosestName(std::string_view name, const std::vector<std::string>& c
       best_distance = d;
     }
   }
-  const int limit = std::max<int>(2, static_cast<int>(std::max(name.size(), best.size())) / 3);
+  // Short names are only one typo away from many others: allow one edit there.
+  const int limit = name.size() <= 3 ? 1 : std::max<int>(2, static_cast<int>(std::max(name.size(), best.size())) / 3);
   return best_distance <= limit ? best : std::string();
 }
 

@@ -7,11 +7,12 @@
 
 namespace mechflow::blocks {
 
-// Levenshtein edit distance, case-insensitive.
+// Edit distance (insert, delete, substitute, swap neighbours), case-insensitive.
 int EditDistance(std::string_view a, std::string_view b);
 
 // The candidate closest to `name`, or "" when none is close enough to be a
-// plausible typo (distance more than a third of the longer name, at least 2).
+// plausible typo (distance more than a third of the longer name, at least 2;
+// names of up to three letters: more than 1).
 std::string ClosestName(std::string_view name, const std::vector<std::string>& candidates);
 
 // " (did you mean 'x'?)" or "" — ready to append to a message.
