@@ -10,6 +10,7 @@
 #include "cli/modes_report.h"
 #include "cli/plot.h"
 #include "cli/report.h"
+#include "blocks/library/mechanism_block.h"
 #include "blocks/linearization.h"
 #include "diagrams/loader.h"
 #include "mech/errors.h"
@@ -74,6 +75,12 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     err << "simulation failed at t = " << outcome.t_reached << " s: " << outcome.failure << "\n";
   }
   PrintStats(sim.stats(), out);
+  for (int b = 0; b < loaded.diagram->num_blocks(); ++b) {
+    const auto* mechanism = dynamic_cast<const blocks::MechanismBlock*>(&loaded.diagram->block(b));
+    if (mechanism && !mechanism->mechanism().constraints().empty())
+      out << "mechanism '" << mechanism->name() << "': largest loop-constraint residual before projection "
+          << mechanism->worst_constraint_residual() << "\n";
+  }
 
   // results are written whether or not the run finished
   namespace fs = std::filesystem;
