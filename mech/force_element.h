@@ -82,6 +82,12 @@ class ForceElement {
   // reset internal states.
   virtual void OnCrossing(int /*index*/, int /*direction*/, const ElementContext&, std::span<double> /*state*/,
                           std::span<double> /*modes*/) const {}
+  // After initialisation and every event: make the modes agree with the
+  // current state (e.g. a slip direction the velocity contradicts). Returns
+  // true when a mode changed.
+  virtual bool UpdateModes(const ElementContext&, std::span<double> /*state*/, std::span<double> /*modes*/) const {
+    return false;
+  }
 
  protected:
   void DeclareSensor(std::string sensor) { sensors_.push_back(std::move(sensor)); }

@@ -260,6 +260,21 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
   }
 }
 
+bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
+                        std::span<double> modes, MechanismWorkspace* ws) {
+  EvaluatePositions(mechanism, t, x, ws);
+  SetParameterArgs(t, inputs, ws);
+  bool changed = false;
+  for (int e = 0; e < mechanism.num_elements(); ++e) {
+    const ForceElement& element = mechanism.element(e);
+    if (element.num_modes() == 0) continue;
+    const ElementContext ctx = MakeContext(mechanism, t, x, modes, *ws, e);
+    changed |= element.UpdateModes(ctx, x.subspan(mechanism.state_offset(e), element.num_states()),
+                                   modes.subspan(mechanism.mode_offset(e), element.num_modes()));
+  }
+  return changed;
+}
+
 Wrench JointReaction(const Mechanism& mechanism, const MechanismWorkspace& ws, int j) {
   const Model& model = mechanism.model();
   const Joint& joint = model.joints()[j];

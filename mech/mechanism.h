@@ -107,6 +107,11 @@ void EvaluateCrossings(const Mechanism& mechanism, std::span<const double> x, st
 void ApplyCrossing(const Mechanism& mechanism, int crossing, int direction, std::span<double> x,
                    std::span<double> modes, MechanismWorkspace* ws);
 
+// Lets every element reconcile its modes with the state (after an event or
+// at the start); returns true when any mode changed.
+bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
+                        std::span<double> modes, MechanismWorkspace* ws);
+
 // Reaction of joint j after EvaluateMechanism: the force and moment (global
 // components, moment about the joint's attachment point on body 2) that body
 // 1's side applies to body 2 through the joint.
