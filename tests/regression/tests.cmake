@@ -1,3 +1,4 @@
 # Tests of regression/.
 mechflow_test(examples_test regression tests/regression/examples_test.cc)
 mechflow_test(mechanism_examples_test regression tests/regression/mechanism_examples_test.cc)
+mechflow_test(friction_examples_test regression tests/regression/friction_examples_test.cc)

@@ -1,0 +1,94 @@
+#include "mech/frictional_force.h"
+
+#include <cmath>
+
+namespace mechflow::mech {
+namespace {
+
+enum Crossing { kSlipPlusStops, kSlipMinusStops, kBreaksForward, kBreaksBackward };
+constexpr double kStick = 0.0, kSlipPlus = 1.0, kSlipMinus = -1.0;
+
+}  // namespace
+
+FrictionalForce::FrictionalForce(std::string name, std::string origin, int body1, Vec3 point1, int body2,
+                                 Vec3 point2, FrictionalParameters parameters)
+    : ForceElement(std::move(name), std::move(origin)),
+      body1_(body1),
+      body2_(body2),
+      point1_(point1),
+      point2_(point2),
+      p_(parameters) {
+  DeclareSensor("force");
+  DeclareSensor("length");
+  DeclareSensor("rate");
+  DeclareSensor("mode");
+  DeclareModes(2);  // mode, anchor
+  DeclareCrossing(mech::Crossing::kFalling);  // kSlipPlusStops: v
+  DeclareCrossing(mech::Crossing::kRising);   // kSlipMinusStops: v
+  DeclareCrossing(mech::Crossing::kRising);   // kBreaksForward: holding - ratio F
+  DeclareCrossing(mech::Crossing::kRising);   // kBreaksBackward: -holding - ratio F
+}
+
+FrictionalForce::Geometry FrictionalForce::Measure(const ElementContext& ctx) const {
+  const Kinematics& kin = *ctx.kin;
+  Geometry g;
+  g.pa = PointPosition(kin, body1_, point1_);
+  g.pb = PointPosition(kin, body2_, point2_);
+  const Vec3 d = g.pb - g.pa;
+  g.x = d.norm();
+  g.u = g.x > 0 ? Vec3(d / g.x) : Vec3(Vec3::Zero());
+  g.v = (PointVelocity(kin, body2_, point2_) - PointVelocity(kin, body1_, point1_)).dot(g.u);
+  return g;
+}
+
+void FrictionalForce::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+  const Geometry g = Measure(ctx);
+  modes[0] = g.v > 0 ? kSlipPlus : g.v < 0 ? kSlipMinus : kStick;
+  modes[1] = g.x;
+}
+
+void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
+                               std::span<double> sensors) const {
+  const Geometry g = Measure(ctx);
+  const double mode = ctx.modes[0];
+  const double f = mode == kStick ? -p_.stiffness.Get(ctx) * (g.x - ctx.modes[1]) - p_.damping.Get(ctx) * g.v
+                                  : -mode * p_.friction.Get(ctx);
+  loads->AddForce(*ctx.kin, body2_, g.pb, f * g.u);
+  loads->AddForce(*ctx.kin, body1_, g.pa, -f * g.u);
+  sensors[0] = f;
+  sensors[1] = g.x;
+  sensors[2] = g.v;
+  sensors[3] = mode;
+}
+
+void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
+  const Geometry g = Measure(ctx);
+  const double mode = ctx.modes[0];
+  // Inactive functions sit at a constant away from zero, on the side that
+  // cannot trigger.
+  values[kSlipPlusStops] = mode == kSlipPlus ? g.v : 1.0;
+  values[kSlipMinusStops] = mode == kSlipMinus ? g.v : -1.0;
+  const double limit = p_.ratio.Get(ctx) * p_.friction.Get(ctx);
+  const double holding = p_.stiffness.Get(ctx) * (g.x - ctx.modes[1]) + p_.damping.Get(ctx) * g.v;
+  values[kBreaksForward] = mode == kStick ? holding - limit : -1.0;
+  values[kBreaksBackward] = mode == kStick ? -holding - limit : -1.0;
+}
+
+void FrictionalForce::OnCrossing(int index, int, const ElementContext& ctx, std::span<double>,
+                                 std::span<double> modes) const {
+  switch (index) {
+    case kSlipPlusStops:
+    case kSlipMinusStops:
+      modes[0] = kStick;
+      modes[1] = Measure(ctx).x;
+      break;
+    case kBreaksForward:
+      modes[0] = kSlipPlus;
+      break;
+    case kBreaksBackward:
+      modes[0] = kSlipMinus;
+      break;
+  }
+}
+
+}  // namespace mechflow::mech

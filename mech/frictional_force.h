@@ -1,0 +1,53 @@
+#pragma once
+// Frictional element (ELEMENTS.md 3.6): dry friction between point A on body
+// 1 and point B on body 2, along the line between them, with a stiffness and
+// damping that hold it while it sticks.
+//
+//   modes: STICK (0), SLIP+ (+1, lengthening), SLIP- (-1); the anchor x_s is
+//          the length when sticking began (second discrete value)
+//   force on body 2 (positive pushes apart):
+//     STICK: -c (x - x_s) - d v      SLIP+: -F      SLIP-: +F
+//   switches are events (zero crossings), never `if`s inside a step:
+//     SLIP+ -> STICK when v falls through 0, SLIP- -> STICK when v rises
+//     through 0 (x_s := x); STICK -> SLIP+/- when the holding force
+//     +-(c (x - x_s) + d v) rises through ratio * F.
+// Entering STICK at v = 0 starts with no spring force, so the element does
+// not ring. F = c = d = 0 makes it inactive. Parameters may follow inputs
+// (LeafSpring feeds F from a normal force).
+// Sensors: force, length, rate, mode.
+
+#include "mech/force_element.h"
+
+namespace mechflow::mech {
+
+struct FrictionalParameters {
+  Parameter friction;     // sliding force F [N], >= 0
+  Parameter ratio = 1.2;  // static / dynamic
+  Parameter stiffness;    // c at sticking [N/m]
+  Parameter damping;      // d at sticking [N s/m]
+};
+
+class FrictionalForce final : public ForceElement {
+ public:
+  FrictionalForce(std::string name, std::string origin, int body1, Vec3 point1, int body2, Vec3 point2,
+                  FrictionalParameters parameters);
+  void Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+  void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
+                std::span<double> sensors) const override;
+  void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
+  void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
+                  std::span<double> modes) const override;
+
+ private:
+  struct Geometry {
+    Vec3 pa, pb, u;
+    double x, v;
+  };
+  Geometry Measure(const ElementContext& ctx) const;
+
+  int body1_, body2_;
+  Vec3 point1_, point2_;
+  FrictionalParameters p_;
+};
+
+}  // namespace mechflow::mech

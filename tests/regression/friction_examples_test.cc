@@ -1,0 +1,94 @@
+// Friction elements with memory in the seed model ElastFriction
+// (../shared/ELEMENTS.md 3.6, tests FR-1, FR-2, FR-3), against the piecewise
+// analytic Coulomb solution.
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "blocks/simulator.h"
+#include "diagrams/loader.h"
+
+namespace mechflow {
+namespace {
+
+struct FrictionRun {
+  diagrams::LoadedDiagram loaded;
+  std::unique_ptr<blocks::Simulator> sim;
+  blocks::RunOutcome outcome;
+  explicit FrictionRun(const std::vector<std::pair<std::string, double>>& overrides) {
+    diagrams::LoadOptions options;
+    options.overrides = overrides;
+    loaded = diagrams::LoadDiagram(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/elast_friction.xml", options);
+    sim = std::make_unique<blocks::Simulator>(*loaded.diagram, loaded.solver, loaded.logged);
+    outcome = sim->Run();
+  }
+  std::vector<double> Column(const std::string& name) const {
+    return sim->results().Column(sim->results().FindColumn(name));
+  }
+};
+
+TEST(FrictionExamplesTest, FreeSlideStopsAndStaysFR1) {
+  FrictionRun run({});
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  // One event: slip ends at t = m v / F = 1.5 s, x = m v^2 / (2 F) = 1.125 m.
+  ASSERT_EQ(run.sim->events().size(), 1u);
+  EXPECT_NEAR(run.sim->events()[0].time, 1.5, 1.5e-3);
+  const auto t = run.Column("time"), x = run.Column("m.x"), v = run.Column("m.v");
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < 1.5) ASSERT_NEAR(v[i], 1.5 - t[i], 1e-8);
+    if (t[i] > 1.5) ASSERT_NEAR(x[i], 1.125, 1.125e-3);
+  }
+  // No creep while stuck: the box does not move at all after stopping (the
+  // element enters STICK with zero spring force).
+  const std::size_t stop = static_cast<std::size_t>(1.51 / 0.001);
+  EXPECT_LT(std::abs(x.back() - x[stop]), 1e-12);
+}
+
+TEST(FrictionExamplesTest, CoulombDampedOscillatorFR2) {
+  FrictionRun run({{"cspring", 1000}, {"v0", 0}, {"x_start", 0.105}});
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time"), x = run.Column("m.x"), mode = run.Column("m.mode");
+  // Turning points every pi sqrt(m/k) = 0.314159 s, losing 2F/k = 0.02 m each half cycle.
+  const double half = M_PI * std::sqrt(10.0 / 1000.0);
+  const double turning[5] = {-0.085, 0.065, -0.045, 0.025, -0.005};
+  for (int k = 0; k < 5; ++k) {
+    const std::size_t i = static_cast<std::size_t>(std::lround((k + 1) * half / 0.001));
+    EXPECT_NEAR(x[i], turning[k], 5e-5) << "turning point " << k + 1;
+  }
+  // Stuck for good after 1.5708 s at -0.005 m (5 N < 12 N static limit).
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] > 1.58) {
+      ASSERT_EQ(mode[i], 0.0) << t[i];
+      ASSERT_NEAR(x[i], -0.005, 1e-5);
+    }
+}
+
+TEST(FrictionExamplesTest, SubThresholdPushDoesNotMoveTheBoxFR3) {
+  FrictionRun run({{"v0", 0}, {"push", 11}});
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto x = run.Column("m.x"), mode = run.Column("m.mode");
+  const double c = 10 * 50.0 * 50.0 * 4 * M_PI * M_PI;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    ASSERT_EQ(mode[i], 0.0);
+    ASSERT_LE(x[i], 11.0 / c * 1.05);  // the stick deflection, with the small overshoot of the ramp
+  }
+  EXPECT_NEAR(x.back(), 11.0 / c, 1e-3 * 11.0 / c);
+}
+
+TEST(FrictionExamplesTest, AboveThresholdPushBreaksAway) {
+  FrictionRun run({{"v0", 0}, {"push", 13}});
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  // F(t) = 13 (1 - exp(-t/0.2)) breaks away when it reaches 12 N; then
+  // m v' = F(t) - 10, so v(T) = [0.3 t + 0.26 exp(-t/0.2)] from t_b to T
+  // (the stick deflection, ~1e-6 m, is neglected).
+  const auto t = run.Column("time"), v = run.Column("m.v");
+  const double tb = -0.2 * std::log(1 - 12.0 / 13.0), T = t.back();
+  const double expected = 0.3 * (T - tb) + 0.26 * (std::exp(-T / 0.2) - std::exp(-tb / 0.2));
+  EXPECT_NEAR(v.back(), expected, 1e-3 * expected);
+}
+
+}  // namespace
+}  // namespace mechflow
