@@ -23,14 +23,18 @@ double ParseNumber(const std::string& text, const std::string& option) {
 
 std::string HelpText(const std::string& command) {
   if (command == "run")
-    return "usage: mechflow run FILE [--set NAME=VALUE]... [--t-end T] [--out DIR] [--unsafe-lua]\n"
+    return "usage: mechflow run FILE [--variant NAME]... [--set NAME=VALUE]... [--t-end T] [--out DIR]\n"
+           "                    [--unsafe-lua]\n"
            "\n"
            "Simulates the diagram FILE and writes its logged signals as CSV (and the plot\n"
            "named in <output plot=...>) into DIR. Prints solver counters and the range of\n"
            "every logged signal.\n"
            "\n"
+           "  --variant NAME    apply a named set of identifier values from the diagram's\n"
+           "                    <variants> (repeatable, in order; `mechflow check` lists them)\n"
            "  --set NAME=VALUE  override an identifier defined by a number (repeatable,\n"
-           "                    applied in order; dependent identifiers follow)\n"
+           "                    applied in order, after the variants; dependent\n"
+           "                    identifiers follow)\n"
            "  --t-end T         end time [s], overrides <solver t_end>\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
@@ -38,10 +42,10 @@ std::string HelpText(const std::string& command) {
            "Exit codes: 0 finished, 1 simulation failed (results up to the failure are\n"
            "written), 2 bad input.\n";
   if (command == "check")
-    return "usage: mechflow check FILE [--set NAME=VALUE]...\n"
+    return "usage: mechflow check FILE [--variant NAME]... [--set NAME=VALUE]...\n"
            "\n"
            "Reads and builds the diagram without running it, then prints the identifiers,\n"
-           "the evaluation order of output ports, the continuous-state layout, the\n"
+           "the variants, the evaluation order of output ports, the continuous-state layout, the\n"
            "zero-crossing functions and the sampled blocks. Exit 0 when the diagram is\n"
            "valid, 2 otherwise.\n";
   if (command == "graph")
@@ -110,6 +114,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       const auto eq = kv.find('=');
       if (eq == std::string::npos || eq == 0) throw UsageError("--set expects NAME=VALUE, got '" + kv + "'");
       a.overrides.push_back({kv.substr(0, eq), ParseNumber(kv.substr(eq + 1), "--set " + kv.substr(0, eq))});
+    } else if (arg == "--variant") {
+      a.variants.push_back(value(arg));
     } else if (arg == "--t-end") {
       a.t_end = ParseNumber(value(arg), arg);
     } else if (arg == "--out") {
@@ -120,7 +126,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.unsafe_lua = true;
     } else if (arg.rfind("--", 0) == 0) {
       throw UsageError("unknown option '" + arg + "'" +
-                       blocks::DidYouMean(arg, {"--set", "--t-end", "--out", "--unsafe-lua", "--help"}) +
+                       blocks::DidYouMean(arg, {"--set", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"}) +
                        "; see mechflow help " + a.command);
     } else if (a.file.empty()) {
       a.file = arg;

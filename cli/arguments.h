@@ -12,6 +12,7 @@ namespace mechflow::cli {
 struct Arguments {
   std::string command;  // run, check, graph, modes, help
   std::string file;
+  std::vector<std::string> variants;                      // --variant NAME
   std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE
   std::optional<double> t_end;                            // --t-end T
   std::string out_dir = ".";                              // --out DIR

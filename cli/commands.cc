@@ -20,6 +20,7 @@ namespace {
 
 diagrams::LoadOptions ToLoadOptions(const Arguments& args) {
   diagrams::LoadOptions o;
+  o.variants = args.variants;
   o.overrides = args.overrides;
   o.t_end = args.t_end;
   o.unsafe_lua = args.unsafe_lua;

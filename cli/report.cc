@@ -75,6 +75,14 @@ void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
           << (ids.unit(i).empty() ? "" : "  [" + ids.unit(i) + "]")
           << (ids.comment(i).empty() ? "" : "  " + ids.comment(i)) << "\n";
   }
+  if (!loaded.description.variants.empty()) {
+    out << "\nvariants (--variant NAME):\n";
+    for (const auto& v : loaded.description.variants) {
+      out << "  " << v.group << " / " << v.name << ":";
+      for (const auto& a : v.assignments) out << " " << a.name << " = " << a.value;
+      out << "\n";
+    }
+  }
   out << "\nevaluation order (output ports):\n";
   int step = 1;
   for (const auto& node : d.schedule()) {

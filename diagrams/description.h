@@ -63,11 +63,21 @@ struct ElementDesc {
   }
 };
 
+// A named set of identifier values (a variant of a macro-command,
+// ELEMENTS.md 1.2), selected with `mechflow run --variant NAME`.
+struct VariantDesc {
+  std::string group;  // <variants name=...>
+  std::string name;
+  std::vector<Attribute> assignments;  // name = identifier, value = its text
+  SourceLoc loc;
+};
+
 struct DiagramDescription {
   std::string name;     // <diagram name=...>, default: the file's stem
   std::string comment;
   std::string file;     // the path it was read from
   std::vector<IdentifierDesc> identifiers;
+  std::vector<VariantDesc> variants;
   std::vector<ElementDesc> mechanisms;  // <mechanism>, with src= files read in
   std::vector<BlockDesc> blocks;
   std::vector<ConnectionDesc> connections;

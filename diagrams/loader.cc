@@ -129,6 +129,38 @@ void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
   }
 }
 
+// --variant NAME: the named sets of identifier values, in the order given. A
+// name is the variant's own, or "group/variant" when two groups share it.
+void ApplyVariants(const DiagramDescription& d, const std::vector<std::string>& selected,
+                   scripting::IdentifierTable* ids) {
+  std::vector<std::string> names;
+  for (const auto& v : d.variants) names.push_back(v.name);
+  for (const std::string& wanted : selected) {
+    std::vector<const VariantDesc*> matches;
+    for (const auto& v : d.variants)
+      if (v.name == wanted || v.group + "/" + v.name == wanted) matches.push_back(&v);
+    if (matches.empty())
+      throw InputError("--variant " + wanted + ": " + d.file + " has no such variant" +
+                       blocks::DidYouMean(wanted, names) +
+                       (names.empty() ? " (it defines none)" : "; variants: " + blocks::JoinNames(names)));
+    if (matches.size() > 1)
+      throw InputError("--variant " + wanted + ": ambiguous (" + matches[0]->loc.str() + " and " +
+                       matches[1]->loc.str() + "); write it as group/variant, e.g. '" + matches[0]->group + "/" +
+                       wanted + "'");
+    for (const Attribute& a : matches[0]->assignments) {
+      double value = 0.0;
+      if (!scripting::ParseNumber(a.value, &value))
+        throw InputError(a.loc.str() + ": variant '" + wanted + "': the value of '" + a.name +
+                         "' must be a number (got '" + a.value + "')");
+      try {
+        ids->Override(a.name, value);
+      } catch (const InputError& e) {
+        throw InputError(a.loc.str() + ": variant '" + wanted + "': " + e.what());
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void RegisterAllBlocks(blocks::BlockRegistry* registry, scripting::LuaState* lua,
@@ -145,6 +177,7 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
 
   // identifiers: definitions, then command-line overrides, then top-to-bottom evaluation
   for (const auto& id : d.identifiers) ids.Add(id.name, id.value, id.loc.str(), id.comment, id.unit);
+  ApplyVariants(d, options.variants, &ids);
   for (const auto& [name, value] : options.overrides) {
     try {
       ids.Override(name, value);

@@ -24,7 +24,8 @@
 namespace mechflow::diagrams {
 
 struct LoadOptions {
-  std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE, in order
+  std::vector<std::string> variants;                      // --variant NAME, applied in order
+  std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE, in order, after the variants
   std::optional<double> t_end;                            // --t-end
   bool unsafe_lua = false;
 };

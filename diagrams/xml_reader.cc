@@ -29,7 +29,11 @@ struct ElementSchema {
 
 const std::vector<ElementSchema>& Schema() {
   static const std::vector<ElementSchema> schema = {
-      {"diagram", {}, {"name", "comment"}, {"identifiers", "mechanism", "blocks", "connections", "solver", "output"}},
+      {"diagram", {}, {"name", "comment"},
+       {"identifiers", "variants", "mechanism", "blocks", "connections", "solver", "output"}},
+      {"variants", {"name"}, {"comment"}, {"variant"}},
+      {"variant", {"name"}, {"comment"}, {"set"}},
+      {"set", {"identifier", "value"}, {}, {}},
       {"mechanism", {"name"}, {"src", "gravity", "comment"},
        {"input", "body", "joint", "force", "joint_force", "bushing", "applied_force", "sensor"}},
       {"input", {"name"}, {}, {}},
@@ -159,6 +163,15 @@ class Reader {
     for (const XMLElement* g = root->FirstChildElement("identifiers"); g; g = g->NextSiblingElement("identifiers"))
       for (const XMLElement* e = g->FirstChildElement("identifier"); e; e = e->NextSiblingElement("identifier"))
         d.identifiers.push_back({Text(e, "name"), Text(e, "value"), Text(e, "comment"), Text(e, "unit"), Loc(e)});
+    for (const XMLElement* g = root->FirstChildElement("variants"); g; g = g->NextSiblingElement("variants"))
+      for (const XMLElement* e = g->FirstChildElement("variant"); e; e = e->NextSiblingElement("variant")) {
+        VariantDesc v{Text(g, "name"), Text(e, "name"), {}, Loc(e)};
+        for (const XMLElement* a = e->FirstChildElement("set"); a; a = a->NextSiblingElement("set")) {
+          CheckShape(a);
+          v.assignments.push_back({Text(a, "identifier"), Text(a, "value"), Loc(a)});
+        }
+        d.variants.push_back(std::move(v));
+      }
     for (const XMLElement* g = root->FirstChildElement("blocks"); g; g = g->NextSiblingElement("blocks"))
       for (const XMLElement* e = g->FirstChildElement("block"); e; e = e->NextSiblingElement("block"))
         d.blocks.push_back({Text(e, "type"), Text(e, "name"), Attributes(e, {"type", "name"}), Loc(e)});

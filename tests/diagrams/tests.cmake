@@ -1,3 +1,4 @@
 # Tests of diagrams/.
 mechflow_test(loader_test unit tests/diagrams/loader_test.cc)
 mechflow_test(mechanism_loader_test unit tests/diagrams/mechanism_loader_test.cc)
+mechflow_test(variants_test unit tests/diagrams/variants_test.cc)

@@ -18,9 +18,11 @@ struct FrictionRun {
   diagrams::LoadedDiagram loaded;
   std::unique_ptr<blocks::Simulator> sim;
   blocks::RunOutcome outcome;
-  explicit FrictionRun(const std::vector<std::pair<std::string, double>>& overrides) {
+  explicit FrictionRun(const std::vector<std::pair<std::string, double>>& overrides,
+                       const std::vector<std::string>& variants = {}) {
     diagrams::LoadOptions options;
     options.overrides = overrides;
+    options.variants = variants;
     loaded = diagrams::LoadDiagram(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/elast_friction.xml", options);
     sim = std::make_unique<blocks::Simulator>(*loaded.diagram, loaded.solver, loaded.logged);
     outcome = sim->Run();
@@ -48,7 +50,7 @@ TEST(FrictionExamplesTest, FreeSlideStopsAndStaysFR1) {
 }
 
 TEST(FrictionExamplesTest, CoulombDampedOscillatorFR2) {
-  FrictionRun run({{"cspring", 1000}, {"v0", 0}, {"x_start", 0.105}});
+  FrictionRun run({}, {"Simple spring"});
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
   const auto t = run.Column("time"), x = run.Column("m.x"), mode = run.Column("m.mode");
   // Turning points every pi sqrt(m/k) = 0.314159 s, losing 2F/k = 0.02 m each half cycle.
@@ -76,6 +78,17 @@ TEST(FrictionExamplesTest, SubThresholdPushDoesNotMoveTheBoxFR3) {
     ASSERT_LE(x[i], 11.0 / c * 1.05);  // the stick deflection, with the small overshoot of the ramp
   }
   EXPECT_NEAR(x.back(), 11.0 / c, 1e-3 * 11.0 / c);
+}
+
+TEST(FrictionExamplesTest, ExcitationBelowTheStaticLimitKeepsTheBoxStuck) {
+  FrictionRun run({}, {"Excitation"});
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto x = run.Column("m.x"), mode = run.Column("m.mode");
+  const double c = 10 * 50.0 * 50.0 * 4 * M_PI * M_PI;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    ASSERT_EQ(mode[i], 0.0);
+    ASSERT_LE(std::abs(x[i]), 12.0 / c);
+  }
 }
 
 TEST(FrictionExamplesTest, AboveThresholdPushBreaksAway) {
