@@ -40,8 +40,11 @@ TEST(FrictionExamplesTest, FreeSlideStopsAndStaysFR1) {
   EXPECT_NEAR(run.sim->events()[0].time, 1.5, 1.5e-3);
   const auto t = run.Column("time"), x = run.Column("m.x"), v = run.Column("m.v");
   for (std::size_t i = 0; i < t.size(); ++i) {
-    if (t[i] < 1.5) ASSERT_NEAR(v[i], 1.5 - t[i], 1e-8);
-    if (t[i] > 1.5) ASSERT_NEAR(x[i], 1.125, 1.125e-3);
+    if (t[i] < 1.5) {
+      ASSERT_NEAR(v[i], 1.5 - t[i], 1e-8);
+    } else if (t[i] > 1.5) {
+      ASSERT_NEAR(x[i], 1.125, 1.125e-3);
+    }
   }
   // No creep while stuck: the box does not move at all after stopping (the
   // element enters STICK with zero spring force).
