@@ -382,6 +382,29 @@ double ProjectPositions(const Model& model, const Constraints& constraints, doub
   return norm;
 }
 
+double AssembleCutCoordinates(const Model& model, const Constraints& constraints, std::span<double> q,
+                              std::span<const double> v, Kinematics* kin, ConstraintWorkspace* ws) {
+  std::vector<int> ghost_columns;
+  for (const Segment& seg : model.segments())
+    if (seg.ghost && seg.drive == SegmentDrive::kDof) ghost_columns.push_back(seg.v_index);
+  double norm = 0.0;
+  for (int it = 0;; ++it) {
+    UpdateKinematics(model, 0.0, q, v, kin);
+    constraints.Residual(model, *kin, &ws->phi);
+    norm = ws->phi.size() ? ws->phi.lpNorm<Eigen::Infinity>() : 0.0;
+    if (norm <= 1e-12 || it >= 30 || ghost_columns.empty() || !std::isfinite(norm)) break;
+    constraints.Jacobian(model, *kin, &ws->J);
+    Eigen::MatrixXd Jg(ws->J.rows(), ghost_columns.size());
+    for (std::size_t c = 0; c < ghost_columns.size(); ++c) Jg.col(c) = ws->J.col(ghost_columns[c]);
+    const Eigen::VectorXd step = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jg).solve(ws->phi);
+    for (std::size_t c = 0; c < ghost_columns.size(); ++c) {
+      for (const Dof& dof : model.dofs())
+        if (dof.v_index == ghost_columns[c]) q[dof.q_index] -= step(c);
+    }
+  }
+  return norm;
+}
+
 void ProjectVelocities(const Model& model, const Constraints& constraints, double t, std::span<const double> q,
                        std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws) {
   UpdateKinematics(model, t, q, v, kin);

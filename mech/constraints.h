@@ -113,6 +113,12 @@ struct ConstraintWorkspace {
 double ProjectPositions(const Model& model, const Constraints& constraints, double t, std::span<double> q,
                         std::span<const double> v, double tolerance, int max_iterations, Kinematics* kin,
                         ConstraintWorkspace* ws);
+// Assembly, first phase: closes the loops by moving only the coordinates of
+// the loop-closing joints themselves (their ghost segments), so consistent
+// user coordinates are kept exactly. Returns the residual norm reached.
+double AssembleCutCoordinates(const Model& model, const Constraints& constraints, std::span<double> q,
+                              std::span<const double> v, Kinematics* kin, ConstraintWorkspace* ws);
+
 void ProjectVelocities(const Model& model, const Constraints& constraints, double t, std::span<const double> q,
                        std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws);
 

@@ -237,6 +237,7 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
   if (!constraints.empty()) {
     ws->constraint.active.clear();  // a new run selects its own independent rows
     ws->constraint.selected_none = false;
+    AssembleCutCoordinates(model, constraints, q, v, &ws->kin, &ws->constraint);
     const double residual = ProjectPositions(model, constraints, 0.0, q, v, 1e-12, 50, &ws->kin, &ws->constraint);
     if (!(residual <= 1e-9)) {
       std::ostringstream out;

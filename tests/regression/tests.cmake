@@ -2,3 +2,4 @@
 mechflow_test(examples_test regression tests/regression/examples_test.cc)
 mechflow_test(mechanism_examples_test regression tests/regression/mechanism_examples_test.cc)
 mechflow_test(friction_examples_test regression tests/regression/friction_examples_test.cc)
+mechflow_test(tension_mechanism_test regression tests/regression/tension_mechanism_test.cc)
