@@ -11,6 +11,7 @@
 #include "mech/applied_force.h"
 #include "mech/bipolar_force.h"
 #include "mech/bushing.h"
+#include "mech/elastic_friction_force.h"
 #include "mech/frictional_force.h"
 #include "mech/joint_force.h"
 #include "mech/model_builder.h"
@@ -292,7 +293,7 @@ std::unique_ptr<mech::ForceLaw> ReadLaw(const MechanismReader& r, const ElementD
     if (!r.Has(e, "expression")) r.Fail(e, "an expression law needs expression=\"...\" (of x, v, t)");
     return std::make_unique<mech::ExpressionLaw>(r.Function(e.Text("expression"), {"x", "v", "t"}, r.What(e, "expression")));
   }
-  const std::vector<std::string> laws = {"linear", "points", "expression", "frictional"};
+  const std::vector<std::string> laws = {"linear", "points", "expression", "frictional", "elastic_friction"};
   throw InputError(r.What(e, "type") + ": unknown law '" + type + "'" + blocks::DidYouMean(type, laws) +
                    "; expected one of " + blocks::JoinNames(laws));
 }
@@ -347,12 +348,14 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
   if (e.tag == "force") {
     const int b1 = BodyIndex(model, e, "body1"), b2 = BodyIndex(model, e, "body2");
     const Vec3 p1 = BodyPoint(r, model, e, "point1", b1), p2 = BodyPoint(r, model, e, "point2", b2);
-    if (e.Text("type") == "frictional") {
+    if (e.Text("type") == "frictional" || e.Text("type") == "elastic_friction") {
       mech::FrictionalParameters p;
       p.friction = r.Param(e, "friction", 0.0);
       p.ratio = r.Param(e, "ratio", 1.2);
       p.stiffness = r.Param(e, "c", 0.0);
       p.damping = r.Param(e, "d", 0.0);
+      if (e.Text("type") == "elastic_friction")
+        return std::make_unique<mech::ElasticFrictionForce>(name, e.loc.str(), b1, p1, b2, p2, p);
       return std::make_unique<mech::FrictionalForce>(name, e.loc.str(), b1, p1, b2, p2, p);
     }
     return std::make_unique<mech::BipolarForce>(name, e.loc.str(), b1, p1, b2, p2,

@@ -94,6 +94,29 @@ TEST(FrictionExamplesTest, ExcitationBelowTheStaticLimitKeepsTheBoxStuck) {
   }
 }
 
+TEST(FrictionExamplesTest, ElasticFrictionStopsRingsAndReleasesItsPreloadEF1) {
+  FrictionRun run({}, {"Elastic"});
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const double c = 10 * 50.0 * 50.0 * 4 * M_PI * M_PI;
+  const auto t = run.Column("time"), x = run.Column("m.x"), delta = run.Column("m.deflection");
+  // While sliding the link carries F: deflection F/c = 1.013e-5 m.
+  EXPECT_NEAR(delta[static_cast<std::size_t>(1.0 / 0.001)], 10.0 / c, 1e-9);
+  // Sticks at 1.5 s, then the preload is released backwards: x -> 1.125 - F/c.
+  const auto& events = run.sim->events();
+  ASSERT_FALSE(events.empty());
+  EXPECT_NEAR(events.front().time, 1.5, 1e-3);
+  EXPECT_NEAR(x.back(), 1.125 - 10.0 / c, 1e-7);
+  // It rings at sqrt(c/m) with damping ratio 0.1: deflection zero crossings
+  // half a damped period apart (10.05 ms).
+  std::vector<double> crossings;
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (t[i] > 1.5 && delta[i - 1] * delta[i] < 0)
+      crossings.push_back(t[i - 1] + (t[i] - t[i - 1]) * delta[i - 1] / (delta[i - 1] - delta[i]));
+  ASSERT_GE(crossings.size(), 4u);
+  const double half_period = 0.5 / (50.0 * std::sqrt(1 - 0.01));
+  EXPECT_NEAR((crossings[3] - crossings[1]) / 2, half_period, 5e-4);
+}
+
 TEST(FrictionExamplesTest, AboveThresholdPushBreaksAway) {
   FrictionRun run({{"v0", 0}, {"push", 13}});
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;

@@ -1,0 +1,91 @@
+#include "mech/elastic_friction_force.h"
+
+#include "mech/errors.h"
+
+namespace mechflow::mech {
+namespace {
+
+enum Crossing { kBreaksForward, kBreaksBackward, kSlipPlusStops, kSlipMinusStops };
+
+}  // namespace
+
+ElasticFrictionForce::ElasticFrictionForce(std::string name, std::string origin, int body1, Vec3 point1, int body2,
+                                           Vec3 point2, FrictionalParameters parameters)
+    : ForceElement(std::move(name), std::move(origin)),
+      body1_(body1),
+      body2_(body2),
+      point1_(point1),
+      point2_(point2),
+      p_(parameters) {
+  if (p_.damping.is_constant() && p_.damping.value <= 0.0 &&
+      !(p_.friction.is_constant() && p_.friction.value == 0.0 && p_.stiffness.is_constant() &&
+        p_.stiffness.value == 0.0))
+    throw InputError(this->origin() + (this->origin().empty() ? "" : ": ") + "elastic-friction element '" +
+                     this->name() + "' needs a positive damping d (the relaxation time while sliding is d/c)");
+  for (const char* s : {"force", "length", "rate", "mode", "deflection"}) DeclareSensor(s);
+  DeclareStates(1);
+  DeclareModes(1);
+  DeclareCrossing(mech::Crossing::kRising);   // kBreaksForward: T - ratio F
+  DeclareCrossing(mech::Crossing::kRising);   // kBreaksBackward: -T - ratio F
+  DeclareCrossing(mech::Crossing::kFalling);  // kSlipPlusStops: u
+  DeclareCrossing(mech::Crossing::kRising);   // kSlipMinusStops: u
+}
+
+ElasticFrictionForce::Values ElasticFrictionForce::Compute(const ElementContext& ctx, double mode) const {
+  const Kinematics& kin = *ctx.kin;
+  Values r;
+  r.pa = PointPosition(kin, body1_, point1_);
+  r.pb = PointPosition(kin, body2_, point2_);
+  const Vec3 d = r.pb - r.pa;
+  r.x = d.norm();
+  r.u = r.x > 0 ? Vec3(d / r.x) : Vec3(Vec3::Zero());
+  r.v = (PointVelocity(kin, body2_, point2_) - PointVelocity(kin, body1_, point1_)).dot(r.u);
+  const double delta = ctx.state[0];
+  const double c = p_.stiffness.Get(ctx), damping = p_.damping.Get(ctx), f = p_.friction.Get(ctx);
+  if (mode == 0.0 || damping <= 0.0) {  // stuck (or switched off)
+    r.delta_rate = r.v;
+    r.tension = c * delta + damping * r.v;
+  } else {
+    r.tension = mode * f;
+    r.delta_rate = (r.tension - c * delta) / damping;
+  }
+  return r;
+}
+
+void ElasticFrictionForce::Initialize(const ElementContext& ctx, std::span<double> state,
+                                      std::span<double> modes) const {
+  state[0] = 0.0;
+  const double v = Compute(ctx, 0.0).v;
+  modes[0] = v > 0 ? 1.0 : v < 0 ? -1.0 : 0.0;
+}
+
+void ElasticFrictionForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
+                                    std::span<double> sensors) const {
+  const Values r = Compute(ctx, ctx.modes[0]);
+  loads->AddForce(*ctx.kin, body2_, r.pb, -r.tension * r.u);
+  loads->AddForce(*ctx.kin, body1_, r.pa, r.tension * r.u);
+  if (!state_rate.empty()) state_rate[0] = r.delta_rate;
+  sensors[0] = -r.tension;
+  sensors[1] = r.x;
+  sensors[2] = r.v;
+  sensors[3] = ctx.modes[0];
+  sensors[4] = ctx.state[0];
+}
+
+void ElasticFrictionForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
+  const double mode = ctx.modes[0];
+  const Values r = Compute(ctx, mode);
+  const double limit = p_.ratio.Get(ctx) * p_.friction.Get(ctx);
+  const bool active = p_.damping.Get(ctx) > 0.0;
+  values[kBreaksForward] = active && mode == 0.0 ? r.tension - limit : -1.0;
+  values[kBreaksBackward] = active && mode == 0.0 ? -r.tension - limit : -1.0;
+  values[kSlipPlusStops] = active && mode == 1.0 ? r.v - r.delta_rate : 1.0;
+  values[kSlipMinusStops] = active && mode == -1.0 ? r.v - r.delta_rate : -1.0;
+}
+
+void ElasticFrictionForce::OnCrossing(int index, int, const ElementContext&, std::span<double>,
+                                      std::span<double> modes) const {
+  modes[0] = index == kBreaksForward ? 1.0 : index == kBreaksBackward ? -1.0 : 0.0;
+}
+
+}  // namespace mechflow::mech

@@ -1,0 +1,47 @@
+#pragma once
+// Elastic-friction element (ELEMENTS.md 3.7): a spring c with a damper d in
+// series with a Coulomb slider (a Jenkins element), between point A on body 1
+// and point B on body 2 along the line between them.
+//
+//   state: delta, the deflection of the elastic link [m]
+//   tension T = c delta + d delta'; force on body 2 (positive apart) = -T
+//   modes:  STICK (0): delta' = v,                   T = c delta + d v
+//           SLIP+ (+1): delta' = (F - c delta) / d,   T = +F
+//           SLIP- (-1): delta' = (-F - c delta) / d,  T = -F
+//   events: STICK -> SLIP+/- when +-T rises through ratio * F;
+//           SLIP+/- -> STICK when the slider velocity u = v - delta' crosses 0.
+// Unlike the Frictional element it is stiff while sliding too (relaxation
+// time d/c) and rings after it sticks. d must be positive unless the element
+// is switched off (F = c = d = 0). Sensors: force, length, rate, mode,
+// deflection.
+
+#include "mech/frictional_force.h"
+
+namespace mechflow::mech {
+
+class ElasticFrictionForce final : public ForceElement {
+ public:
+  // Throws InputError when d is a constant 0 while F or c is not.
+  ElasticFrictionForce(std::string name, std::string origin, int body1, Vec3 point1, int body2, Vec3 point2,
+                       FrictionalParameters parameters);
+  void Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+  void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
+                std::span<double> sensors) const override;
+  void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
+  void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
+                  std::span<double> modes) const override;
+
+ private:
+  struct Values {
+    Vec3 pa, pb, u;
+    double x, v;
+    double delta_rate, tension;
+  };
+  Values Compute(const ElementContext& ctx, double mode) const;
+
+  int body1_, body2_;
+  Vec3 point1_, point2_;
+  FrictionalParameters p_;
+};
+
+}  // namespace mechflow::mech
