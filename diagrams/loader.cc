@@ -193,7 +193,7 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   RegisterAllBlocks(&registry, out.lua.get(), out.identifiers.get());
   const std::string folder = std::filesystem::path(d.file).parent_path().string();
   blocks::DiagramBuilder builder;
-  for (const auto& m : d.mechanisms) builder.AddBlock(BuildMechanismBlock(m, eval, options.t_end), m.loc.str());
+  for (const auto& m : d.mechanisms) builder.AddBlock(BuildMechanismBlock(m, eval), m.loc.str());
   for (const auto& b : d.blocks) {
     const blocks::BlockType* type = registry.Find(b.type);
     if (!type)

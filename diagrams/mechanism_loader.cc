@@ -27,7 +27,7 @@ using mech::Vec3;
 // that turn attribute text into numbers, vectors and parameters.
 class MechanismReader {
  public:
-  MechanismReader(const ElementDesc& m, const Evaluator& eval) : m_(m), eval_(eval) {
+  MechanismReader(const ElementDesc& m, const Evaluator& eval) : eval_(eval) {
     for (const ElementDesc& e : m.children) {
       if (e.tag != "input") continue;
       const std::string name = e.Text("name");
@@ -144,7 +144,6 @@ class MechanismReader {
                          "parameters and applied forces)");
   }
 
-  const ElementDesc& m_;
   const Evaluator& eval_;
   std::vector<std::string> inputs_;
   scripting::IdentifierTable non_inputs_;
@@ -465,8 +464,7 @@ mech::SensorSpec ReadSensor(const MechanismReader& r, const ElementDesc& e, cons
 
 }  // namespace
 
-std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const Evaluator& eval,
-                                                   std::optional<double>) {
+std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const Evaluator& eval) {
   const MechanismReader r(m, eval);
   mech::ModelBuilder builder;
   builder.SetGravity(r.Vector(m, "gravity", Vec3(0, 0, -9.81)));

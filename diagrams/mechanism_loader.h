@@ -4,7 +4,6 @@
 // sensors -- with every error naming file:line.
 
 #include <memory>
-#include <optional>
 
 #include "blocks/block.h"
 #include "diagrams/description.h"
@@ -12,7 +11,6 @@
 
 namespace mechflow::diagrams {
 
-std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& mechanism, const Evaluator& eval,
-                                                   std::optional<double> t_end);
+std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& mechanism, const Evaluator& eval);
 
 }  // namespace mechflow::diagrams
