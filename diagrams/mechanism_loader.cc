@@ -15,6 +15,7 @@
 #include "mech/frictional_force.h"
 #include "mech/joint_force.h"
 #include "mech/model_builder.h"
+#include "mech/points_plane_contact.h"
 #include "scripting/lua_scalar_function.h"
 #include "scripting/time_function.h"
 
@@ -384,6 +385,27 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
     p.preload_moment = r.Vector(e, "preload_moment", Vec3::Zero());
     return std::make_unique<mech::Bushing>(name, e.loc.str(), b1, p1, b2, p2, p, kin0);
   }
+  if (e.tag == "contact") {
+    if (e.Text("type") != "points_plane")
+      throw InputError(r.What(e, "type") + ": unknown contact type '" + e.Text("type") + "'; expected points_plane");
+    const int b1 = BodyIndex(model, e, "body1"), b2 = BodyIndex(model, e, "body2");
+    std::vector<Vec3> points;
+    for (const auto& row : Split(e.Text("points"), ";")) {
+      const auto v = r.eval().Numbers(row, r.What(e, "points"));
+      if (v.size() != 3) throw InputError(r.What(e, "points") + ": each point is 'x y z', separated by ';'");
+      points.push_back({v[0], v[1], v[2]});
+    }
+    mech::ContactLaw law;
+    law.stiffness = r.Number(e, "stiffness", 0.0);
+    law.exponent = r.Number(e, "exponent", 1.0);
+    law.damping = r.Number(e, "damping", 0.0);
+    law.damping_depth = r.Number(e, "damping_depth", 0.0);
+    law.mu = r.Number(e, "mu", 0.0);
+    law.v_eps = r.Number(e, "v_eps", 1e-4);
+    return std::make_unique<mech::PointsPlaneContact>(name, e.loc.str(), b1, points, b2,
+                                                      r.Vector(e, "plane_point", Vec3::Zero()),
+                                                      r.Vector(e, "normal", Vec3::UnitZ()), law);
+  }
   // applied_force: components may follow inputs
   const int body = BodyIndex(model, e, "body");
   auto components = [&](const char* attribute) {
@@ -483,7 +505,9 @@ std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const E
   std::vector<std::unique_ptr<mech::ForceElement>> elements;
   std::vector<std::string> element_names;
   for (const ElementDesc& e : m.children) {
-    if (e.tag != "force" && e.tag != "joint_force" && e.tag != "bushing" && e.tag != "applied_force") continue;
+    if (e.tag != "force" && e.tag != "joint_force" && e.tag != "bushing" && e.tag != "applied_force" &&
+        e.tag != "contact")
+      continue;
     if (std::find(element_names.begin(), element_names.end(), e.Text("name")) != element_names.end())
       r.Fail(e, "a second element with this name");
     element_names.push_back(e.Text("name"));

@@ -1,0 +1,103 @@
+#include "mech/points_plane_contact.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mech/errors.h"
+
+namespace mechflow::mech {
+
+PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int body1, std::vector<Vec3> points,
+                                       int body2, Vec3 plane_point, Vec3 normal, ContactLaw law)
+    : ForceElement(std::move(name), std::move(origin)),
+      body1_(body1),
+      body2_(body2),
+      points_(std::move(points)),
+      plane_point_(plane_point),
+      law_(law) {
+  const std::string where = this->origin() + (this->origin().empty() ? "" : ": ") + "contact '" + this->name() + "': ";
+  if (points_.empty()) throw InputError(where + "needs at least one point");
+  if (!(normal.norm() > 0)) throw InputError(where + "the plane normal must be non-zero");
+  if (!(law_.exponent >= 1.0)) throw InputError(where + "the stiffness exponent must be at least 1");
+  if (law_.stiffness < 0 || law_.damping < 0 || law_.damping_depth < 0 || law_.mu < 0 || !(law_.v_eps > 0))
+    throw InputError(where + "stiffness, damping, depth and mu must be >= 0, v_eps > 0");
+  normal_ = normal.normalized();
+  for (const char* s : {"normal", "penetration", "slip", "friction"}) DeclareSensor(s);
+  DeclareModes(static_cast<int>(points_.size()));
+  for (std::size_t i = 0; i < points_.size(); ++i) DeclareCrossing(mech::Crossing::kEither);
+}
+
+double PointsPlaneContact::NormalForce(double delta, double rate) const {
+  if (delta <= 0) return 0.0;
+  double damping = law_.damping;
+  if (law_.damping_depth > 0) {
+    const double s = std::min(delta / law_.damping_depth, 1.0);
+    damping *= s * s * (3 - 2 * s);
+  }
+  return std::max(0.0, law_.stiffness * std::pow(delta, law_.exponent) + damping * rate);
+}
+
+double PointsPlaneContact::Penetration(const ElementContext& ctx, int i, Vec3* p) const {
+  *p = PointPosition(*ctx.kin, body1_, points_[i]);
+  const Pose& plane = ctx.kin->body_pose[body2_];
+  return -(*p - plane * plane_point_).dot(plane.R * normal_);
+}
+
+void PointsPlaneContact::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+  Vec3 p;
+  for (std::size_t i = 0; i < points_.size(); ++i) modes[i] = Penetration(ctx, static_cast<int>(i), &p) > 0 ? 1 : 0;
+}
+
+void PointsPlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
+                                  std::span<double> sensors) const {
+  const Kinematics& kin = *ctx.kin;
+  const Vec3 n = kin.body_pose[body2_].R * normal_;
+  double total_normal = 0, deepest = -1e300, slip = 0, loaded = -1;
+  Vec3 friction = Vec3::Zero();
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    Vec3 p;
+    const double delta = Penetration(ctx, static_cast<int>(i), &p);
+    deepest = std::max(deepest, delta);
+    if (ctx.modes[i] == 0.0) continue;
+    const Vec3 w = PointVelocity(kin, body1_, points_[i]) - MaterialVelocityAt(kin, body2_, p);
+    const double force = NormalForce(std::max(delta, 0.0), -w.dot(n));
+    const Vec3 wt = w - w.dot(n) * n;
+    const Vec3 ft = -law_.mu * force * wt / std::sqrt(wt.squaredNorm() + law_.v_eps * law_.v_eps);
+    const Vec3 load = force * n + ft;
+    loads->AddForce(kin, body1_, p, load);
+    loads->AddForce(kin, body2_, p, -load);
+    total_normal += force;
+    friction += ft;
+    if (force > loaded) loaded = force, slip = wt.norm();
+  }
+  sensors[0] = total_normal;
+  sensors[1] = deepest;
+  sensors[2] = slip;
+  sensors[3] = friction.norm();
+}
+
+void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
+  Vec3 p;
+  for (std::size_t i = 0; i < points_.size(); ++i) values[i] = Penetration(ctx, static_cast<int>(i), &p);
+}
+
+bool PointsPlaneContact::UpdateModes(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+  const Vec3 n = ctx.kin->body_pose[body2_].R * normal_;
+  bool changed = false;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    Vec3 p;
+    const double delta = Penetration(ctx, static_cast<int>(i), &p);
+    const Vec3 w = PointVelocity(*ctx.kin, body1_, points_[i]) - MaterialVelocityAt(*ctx.kin, body2_, p);
+    const double mode = delta > 0 || (delta == 0 && -w.dot(n) > 0) ? 1.0 : delta < 0 ? 0.0 : modes[i];
+    changed |= mode != modes[i];
+    modes[i] = mode;
+  }
+  return changed;
+}
+
+void PointsPlaneContact::OnCrossing(int index, int direction, const ElementContext&, std::span<double>,
+                                    std::span<double> modes) const {
+  modes[index] = direction > 0 ? 1.0 : 0.0;
+}
+
+}  // namespace mechflow::mech

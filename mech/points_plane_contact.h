@@ -1,0 +1,60 @@
+#pragma once
+// Points-plane contact (ELEMENTS.md 5.1, 5.2, 5.4): points fixed on body 1
+// against an unbounded plane fixed on body 2 (a point P0 and the external
+// normal N, normalised).
+//
+//   penetration  delta_i = -(p_i - P0) . N,   rate delta_i' = -w . N
+//   normal force N_i = max(0, c delta^n + D(delta) delta')    (never pulls)
+//   D(delta) = d                                  when depth = 0
+//            = d * STEP(delta; 0 -> depth)        otherwise (no jump at touch)
+//   friction F_t = -mu N_i w_t / sqrt(|w_t|^2 + v_eps^2)  (regularised
+//            Coulomb: a loaded body creeps at about v_eps tan(theta)/mu)
+// w is the velocity of the point relative to the material point of body 2
+// under it. Touching and leaving are events: each point has a mode (in
+// contact or not) switched when its penetration crosses zero, so the force
+// (and a constant damping's jump) never switches inside a step.
+// Sensors: normal (sum of N_i), penetration (largest), slip (speed of the
+// most loaded point), friction (size of the summed friction force).
+
+#include <vector>
+
+#include "mech/force_element.h"
+
+namespace mechflow::mech {
+
+struct ContactLaw {
+  double stiffness = 0.0;      // c [N/m^n]
+  double exponent = 1.0;       // n >= 1
+  double damping = 0.0;        // d, or the maximum of the ramp [N s/m]
+  double damping_depth = 0.0;  // penetration over which damping builds up [m]; 0: constant
+  double mu = 0.0;             // friction coefficient
+  double v_eps = 1e-4;         // regularisation velocity [m/s]
+};
+
+class PointsPlaneContact final : public ForceElement {
+ public:
+  PointsPlaneContact(std::string name, std::string origin, int body1, std::vector<Vec3> points, int body2,
+                     Vec3 plane_point, Vec3 normal, ContactLaw law);
+  void Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+  void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
+                std::span<double> sensors) const override;
+  void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
+  void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
+                  std::span<double> modes) const override;
+  // A point exactly on the plane and moving into it is in contact: the solver
+  // would not see a crossing that starts at zero.
+  bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+
+  // The normal force law alone (also used by tests).
+  double NormalForce(double delta, double rate) const;
+
+ private:
+  double Penetration(const ElementContext& ctx, int i, Vec3* p) const;
+
+  int body1_, body2_;
+  std::vector<Vec3> points_;
+  Vec3 plane_point_, normal_;
+  ContactLaw law_;
+};
+
+}  // namespace mechflow::mech
