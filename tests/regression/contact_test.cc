@@ -5,9 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "blocks/simulator.h"
+#include "diagrams/loader.h"
 #include "tests/test_util.h"
 
 namespace mechflow {
@@ -39,6 +42,32 @@ TEST(ContactTest, ReboundOfTheClippedLinearLawCT1) {
     // touching and leaving are events
     EXPECT_EQ(run.sim->events().size(), 2u);
   }
+}
+
+TEST(ContactTest, OscillationsSelfExcitedStickSlipCT4) {
+  diagrams::LoadOptions options;
+  const auto loaded =
+      diagrams::LoadDiagram(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/oscillations.xml", options);
+  blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
+  ASSERT_TRUE(sim.Run().ok);
+  const auto& r = sim.results();
+  const auto t = r.Column(0), v = r.Column(r.FindColumn("m.v")), f = r.Column(r.FindColumn("m.spring_force"));
+  // initial stick: until the spring pulls mu m g = 2.943 N, at 0.2943 s
+  // (the body creeps at about v_eps meanwhile: regularised friction)
+  std::size_t start = 0;
+  while (-f[start] < 2.94) ++start;
+  EXPECT_NEAR(t[start], 0.2943, 2e-3);
+  EXPECT_LT(v[start], 3e-4);  // creep of the regularised law (v_eps = 1e-5) near the limit
+  // then velocity peaks 2 v_leader, one period 2 pi sqrt(m/k) apart
+  std::vector<double> peaks;
+  for (std::size_t i = start + 1; i + 1 < t.size(); ++i)
+    if (v[i] > v[i - 1] && v[i] >= v[i + 1] && v[i] > 0.1) peaks.push_back(t[i]);
+  ASSERT_GE(peaks.size(), 5u);
+  EXPECT_NEAR((peaks.back() - peaks.front()) / (peaks.size() - 1), 2 * M_PI * std::sqrt(1.0 / 100.0), 2e-3);
+  double vmax = 0, fmax = 0;
+  for (std::size_t i = start; i < t.size(); ++i) vmax = std::max(vmax, v[i]), fmax = std::max(fmax, -f[i]);
+  EXPECT_NEAR(vmax, 0.2, 2e-3);
+  EXPECT_NEAR(fmax, 3.943, 5e-3);
 }
 
 }  // namespace
