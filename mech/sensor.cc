@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "mech/errors.h"
 
 namespace mechflow::mech {
 namespace {
@@ -39,11 +42,48 @@ bool SensorNeedsAccelerations(const SensorSpec& spec) {
     case SensorKind::kReactionForce:
     case SensorKind::kReactionTorque:
     case SensorKind::kPointAcceleration:
-    case SensorKind::kElement:  // element forces may depend on inputs
       return true;
     default:
       return false;
   }
+}
+
+bool SensorNeedsFullEvaluation(const SensorSpec& spec) {
+  return SensorNeedsAccelerations(spec) || spec.kind == SensorKind::kElement;
+}
+
+void CheckSensor(const Mechanism& mechanism, const SensorSpec& spec) {
+  const Model& model = mechanism.model();
+  const std::string where = (spec.origin.empty() ? "" : spec.origin + ": ") + "sensor '" + spec.name + "'";
+  auto in_range = [](int i, std::size_t n) { return i >= 0 && static_cast<std::size_t>(i) < n; };
+  bool ok = true;
+  const char* what = "";
+  switch (spec.kind) {
+    case SensorKind::kCoordinate:
+    case SensorKind::kVelocity:
+    case SensorKind::kAcceleration:
+      ok = in_range(spec.index, model.dofs().size());
+      what = "degree of freedom";
+      break;
+    case SensorKind::kReactionForce:
+    case SensorKind::kReactionTorque:
+      ok = in_range(spec.index, model.joints().size());
+      what = "joint";
+      break;
+    case SensorKind::kElement:
+      ok = in_range(spec.index, static_cast<std::size_t>(mechanism.num_elements()));
+      what = "element";
+      if (ok && !in_range(spec.element_sensor, static_cast<std::size_t>(mechanism.element(spec.index).num_sensors())))
+        throw InputError(where + ": element '" + mechanism.element(spec.index).name() + "' has no output " +
+                         std::to_string(spec.element_sensor));
+      break;
+    default:
+      ok = in_range(spec.index, model.bodies().size());
+      what = "body";
+  }
+  if (!ok) throw InputError(where + ": no " + what + " with index " + std::to_string(spec.index));
+  if (spec.component < -1 || spec.component > 2)
+    throw InputError(where + ": component " + std::to_string(spec.component) + " is not x, y or z");
 }
 
 void EvaluateSensor(const Mechanism& mechanism, const MechanismWorkspace& ws, std::span<const double> x,

@@ -1,9 +1,12 @@
 #pragma once
 // Sensors: the named outputs of a mechanism (ELEMENTS.md, issue 3 item 6).
 //
-// A sensor reads the workspace after an evaluation. Positions and velocities
-// need only kinematics; accelerations and reactions need the full evaluation
-// (so in a diagram they depend directly on the mechanism's inputs).
+// A sensor reads the workspace after an evaluation. Positions, velocities and
+// angles need only kinematics; accelerations, reactions and element sensors
+// need the full evaluation (so in a diagram they depend directly on the
+// mechanism's inputs). Body angles are the principal values: b in [-90, 90]
+// deg, a and c in (-180, 180] deg, so a and c wrap when they pass 180 deg and
+// the set is continuous otherwise as long as |b| < 90 deg.
 // Vector sensors are 3 wide (global components) unless one component is
 // chosen.
 
@@ -39,7 +42,16 @@ struct SensorSpec {
 };
 
 int SensorWidth(const SensorSpec& spec);
+// Acceleration, reaction and point-acceleration sensors read the solved
+// accelerations (they depend directly on the mechanism's inputs).
 bool SensorNeedsAccelerations(const SensorSpec& spec);
+// Those, and element sensors (written by the elements during
+// EvaluateMechanism; an element's force may depend on the inputs through its
+// parameters), need the full evaluation; the others only EvaluatePositions.
+bool SensorNeedsFullEvaluation(const SensorSpec& spec);
+// Throws InputError (starting with spec.origin, naming the sensor) when the
+// sensor's index, element sensor or component does not exist in `mechanism`.
+void CheckSensor(const Mechanism& mechanism, const SensorSpec& spec);
 // Writes the sensor's value(s). For acceleration/reaction sensors the
 // workspace must hold a full EvaluateMechanism at the current state.
 void EvaluateSensor(const Mechanism& mechanism, const MechanismWorkspace& ws, std::span<const double> x,

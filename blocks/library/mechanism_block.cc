@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mech/errors.h"
+
 namespace mechflow::blocks {
 namespace {
 
@@ -39,9 +41,20 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
       scratch_(mechanism_->num_states(), 0.0),
       xdot_(mechanism_->num_states(), 0.0) {
   for (int i = 0; i < mechanism_->num_inputs(); ++i) DeclareInputPort(mechanism_->input_name(i));
-  for (const auto& sensor : sensors_) DeclareOutputPort(sensor.name, mech::SensorWidth(sensor));
+  for (std::size_t i = 0; i < sensors_.size(); ++i) {
+    const mech::SensorSpec& sensor = sensors_[i];
+    mech::CheckSensor(*mechanism_, sensor);
+    for (std::size_t j = 0; j < i; ++j)
+      if (sensors_[j].name == sensor.name)
+        throw InputError((sensor.origin.empty() ? "" : sensor.origin + ": ") + "mechanism '" + this->name() +
+                         "' has a second sensor named '" + sensor.name + "'");
+    DeclareOutputPort(sensor.name, mech::SensorWidth(sensor));
+  }
+  // Positions, velocities and angles come from the state alone. Element
+  // sensors are declared as depending on every input: an element's parameters
+  // may be functions of the inputs (safe, if sometimes pessimistic).
   for (int out = 0; out < num_outputs(); ++out) {
-    if (mech::SensorNeedsAccelerations(sensors_[out])) continue;
+    if (mech::SensorNeedsFullEvaluation(sensors_[out])) continue;
     for (int in = 0; in < num_inputs(); ++in) SetFeedthrough(in, out, false);
   }
   const std::vector<std::string> names = StateNames(*mechanism_);
@@ -77,7 +90,8 @@ void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
   const std::uint64_t now = ctx.evaluation();
   if (full) {
     if (full_at_ == now) return;
-    mech::EvaluateMechanism(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
+    // x' is kept: CalcDerivatives in the same evaluation reuses it
+    mech::EvaluateMechanism(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, xdot_);
     full_at_ = positions_at_ = now;
   } else {
     if (positions_at_ == now || full_at_ == now) return;
@@ -88,13 +102,21 @@ void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
 
 void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
   const mech::SensorSpec& sensor = sensors_[port];
-  EnsureEvaluated(ctx, mech::SensorNeedsAccelerations(sensor));
+  EnsureEvaluated(ctx, mech::SensorNeedsFullEvaluation(sensor));
   mech::EvaluateSensor(*mechanism_, ws_, ctx.state(), sensor, ctx.output(port));
 }
 
 void MechanismBlock::DoCalcDerivatives(const BlockContext& ctx) const {
+  // An output port of this evaluation may have solved the same system already
+  // (the inputs cannot have changed: every output is computed before any
+  // derivative).
+  if (full_at_ == ctx.evaluation()) {
+    std::copy(xdot_.begin(), xdot_.end(), ctx.derivative().begin());
+    return;
+  }
   mech::EvaluateMechanism(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_,
                           ctx.derivative());
+  std::copy(ctx.derivative().begin(), ctx.derivative().end(), xdot_.begin());
   full_at_ = positions_at_ = ctx.evaluation();
 }
 
@@ -109,6 +131,14 @@ void MechanismBlock::DoZeroCrossing(int index, int direction, const BlockContext
   positions_at_ = full_at_ = ~std::uint64_t{0};
 }
 
+bool MechanismBlock::DoUpdateModes(const BlockContext& ctx) const {
+  if (mechanism_->num_modes() == 0) return false;
+  const bool changed =
+      mech::UpdateElementModes(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_);
+  positions_at_ = full_at_ = ~std::uint64_t{0};
+  return changed;
+}
+
 void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double>) const {
   const mech::Model& model = mechanism_->model();
   const std::span<const double> x = ctx.state();
@@ -120,16 +150,29 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
     double norm = 0.0;
     for (int k = 3; k < 7; ++k) norm += q[seg.q_index + k] * q[seg.q_index + k];
     norm = std::sqrt(norm);
+    if (!(norm > 0.0) || !std::isfinite(norm))
+      throw SimulationError("mechanism '" + name() + "': the quaternion of joint '" +
+                            model.joints()[seg.joint].name + "' cannot be normalised (norm " +
+                            std::to_string(norm) + ")");
     for (int k = 3; k < 7; ++k) q[seg.q_index + k] /= norm;
   }
   if (!mechanism_->constraints().empty()) {
     mech::UpdateKinematics(model, ctx.time(), q, v, &ws_.kin);
     mechanism_->constraints().Residual(model, ws_.kin, &ws_.constraint.phi);
     worst_residual_ = std::max(worst_residual_, ws_.constraint.phi.lpNorm<Eigen::Infinity>());
-    mech::ProjectPositions(model, mechanism_->constraints(), ctx.time(), q, v, 1e-13, 5, &ws_.kin, &ws_.constraint);
+    const double after =
+        mech::ProjectPositions(model, mechanism_->constraints(), ctx.time(), q, v, 1e-13, 5, &ws_.kin, &ws_.constraint);
+    if (!std::isfinite(after))
+      throw SimulationError("mechanism '" + name() + "': projection onto the loop constraints failed at t = " +
+                            std::to_string(ctx.time()));
     mech::ProjectVelocities(model, mechanism_->constraints(), ctx.time(), q, v, &ws_.kin, &ws_.constraint);
   }
-  for (std::size_t i = 0; i < x.size(); ++i) correction[i] = scratch_[i] - x[i];
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    correction[i] = scratch_[i] - x[i];
+    if (!std::isfinite(correction[i]))
+      throw SimulationError("mechanism '" + name() + "': projection gave a non-finite state at t = " +
+                            std::to_string(ctx.time()));
+  }
   positions_at_ = full_at_ = ~std::uint64_t{0};
 }
 

@@ -19,8 +19,18 @@
 // least-norm steps), the velocities onto their tangent, and quaternions are
 // normalised. The residual norms seen at projections are kept for reports.
 //
+// Sensors are checked against the mechanism at construction (InputError for
+// an index that does not exist or a repeated sensor name).
+//
+// Initialize runs mech::InitialState with every input at zero: inputs are not
+// valid yet when a diagram initialises (blocks/block.h), so elements whose
+// initial state depends on an input see it as zero.
+//
 // The block keeps a per-run workspace (mutable: one run at a time per block
-// instance), shared between its output ports within one evaluation.
+// instance), shared within one evaluation (Context::evaluation) between its
+// output ports, its derivatives and its zero crossings: the mechanism is
+// solved at most once per evaluation, and only its kinematics when every
+// port read is a position, velocity or angle.
 
 #include <cstdint>
 #include <memory>
@@ -47,6 +57,7 @@ class MechanismBlock final : public Block {
   void DoCalcDerivatives(const BlockContext& ctx) const override;
   void DoCalcZeroCrossings(const BlockContext& ctx) const override;
   void DoZeroCrossing(int index, int direction, const BlockContext& ctx) const override;
+  bool DoUpdateModes(const BlockContext& ctx) const override;
   void DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const override;
 
   std::span<const double> Inputs(const BlockContext& ctx) const;
