@@ -99,6 +99,7 @@ class MechanismReader {
     if (!MentionsInputOrTime(text)) return eval_.Number(text, What(e, attribute));
     mech::Parameter p;
     p.function = Function(text, {"t"}, What(e, attribute));
+    p.uses_inputs = MentionsInput(text);
     return p;
   }
 
@@ -110,7 +111,6 @@ class MechanismReader {
     return std::make_shared<scripting::LuaScalarFunction>(*eval_.lua(), text, leading, non_inputs_, "=" + what);
   }
 
- private:
   static std::vector<std::string> Names(const std::string& text) {
     std::vector<std::string> names;
     for (std::size_t i = 0; i < text.size();) {
@@ -125,6 +125,11 @@ class MechanismReader {
     }
     return names;
   }
+  bool MentionsInput(const std::string& text) const {
+    for (const std::string& n : Names(text))
+      if (std::find(inputs_.begin(), inputs_.end(), scripting::ToLower(n)) != inputs_.end()) return true;
+    return false;
+  }
   bool MentionsInputOrTime(const std::string& text) const {
     for (const std::string& n : Names(text)) {
       if (n == "t") return true;
@@ -137,6 +142,8 @@ class MechanismReader {
       if (scripting::ToLower(n) == lower) return n;
     return lower;
   }
+
+ private:
   void RejectInputs(const ElementDesc& e, const std::string& attribute) const {
     for (const std::string& n : Names(e.Text(attribute)))
       if (std::find(inputs_.begin(), inputs_.end(), scripting::ToLower(n)) != inputs_.end())
@@ -291,7 +298,8 @@ std::unique_ptr<mech::ForceLaw> ReadLaw(const MechanismReader& r, const ElementD
   }
   if (type == "expression") {
     if (!r.Has(e, "expression")) r.Fail(e, "an expression law needs expression=\"...\" (of x, v, t)");
-    return std::make_unique<mech::ExpressionLaw>(r.Function(e.Text("expression"), {"x", "v", "t"}, r.What(e, "expression")));
+    return std::make_unique<mech::ExpressionLaw>(r.Function(e.Text("expression"), {"x", "v", "t"}, r.What(e, "expression")),
+                                                 r.MentionsInput(e.Text("expression")));
   }
   const std::vector<std::string> laws = {"linear", "points", "expression", "frictional", "elastic_friction"};
   throw InputError(r.What(e, "type") + ": unknown law '" + type + "'" + blocks::DidYouMean(type, laws) +

@@ -17,6 +17,8 @@ ElasticFrictionForce::ElasticFrictionForce(std::string name, std::string origin,
       point1_(point1),
       point2_(point2),
       p_(parameters) {
+  DeclareDependsOnInputs(p_.friction.uses_inputs || p_.ratio.uses_inputs || p_.stiffness.uses_inputs ||
+                         p_.damping.uses_inputs);
   if (p_.damping.is_constant() && p_.damping.value <= 0.0 &&
       !(p_.friction.is_constant() && p_.friction.value == 0.0 && p_.stiffness.is_constant() &&
         p_.stiffness.value == 0.0))
@@ -64,7 +66,7 @@ void ElasticFrictionForce::Evaluate(const ElementContext& ctx, Loads* loads, std
   const Values r = Compute(ctx, ctx.modes[0]);
   loads->AddForce(*ctx.kin, body2_, r.pb, -r.tension * r.u);
   loads->AddForce(*ctx.kin, body1_, r.pa, r.tension * r.u);
-  if (!state_rate.empty()) state_rate[0] = r.delta_rate;
+  state_rate[0] = r.delta_rate;
   sensors[0] = -r.tension;
   sensors[1] = r.x;
   sensors[2] = r.v;

@@ -43,6 +43,7 @@ struct ElementContext {
 struct Parameter {
   double value = 0.0;
   std::shared_ptr<const ScalarFunction> function;
+  bool uses_inputs = false;  // the function reads inputs (not just t)
 
   Parameter() = default;
   Parameter(double v) : value(v) {}  // NOLINT: a constant reads naturally
@@ -66,6 +67,10 @@ class ForceElement {
       if (sensors_[i] == sensor) return i;
     return -1;
   }
+  // True when the element's loads and sensors depend on the mechanism's
+  // inputs at the same instant (a parameter follows an input); its sensors
+  // then feed through from the inputs.
+  bool depends_on_inputs() const { return depends_on_inputs_; }
   int num_states() const { return num_states_; }
   int num_modes() const { return num_modes_; }
   int num_crossings() const { return static_cast<int>(crossings_.size()); }
@@ -92,6 +97,7 @@ class ForceElement {
  protected:
   void DeclareSensor(std::string sensor) { sensors_.push_back(std::move(sensor)); }
   void DeclareStates(int n) { num_states_ += n; }
+  void DeclareDependsOnInputs(bool depends) { depends_on_inputs_ = depends_on_inputs_ || depends; }
   void DeclareModes(int n) { num_modes_ += n; }
   int DeclareCrossing(Crossing direction) {
     crossings_.push_back(direction);
@@ -102,6 +108,7 @@ class ForceElement {
   std::string name_, origin_;
   std::vector<std::string> sensors_;
   int num_states_ = 0, num_modes_ = 0;
+  bool depends_on_inputs_ = false;
   std::vector<Crossing> crossings_;
 };
 

@@ -26,6 +26,7 @@ class ForceLaw {
  public:
   virtual ~ForceLaw() = default;
   virtual double Force(double x, double v, const ElementContext& ctx) const = 0;
+  virtual bool depends_on_inputs() const = 0;
 };
 
 class LinearLaw final : public ForceLaw {
@@ -33,6 +34,9 @@ class LinearLaw final : public ForceLaw {
   LinearLaw(Parameter c, Parameter x0, Parameter d, Parameter f0) : c_(c), x0_(x0), d_(d), f0_(f0) {}
   double Force(double x, double v, const ElementContext& ctx) const override {
     return -c_.Get(ctx) * (x - x0_.Get(ctx)) - d_.Get(ctx) * v + f0_.Get(ctx);
+  }
+  bool depends_on_inputs() const override {
+    return c_.uses_inputs || x0_.uses_inputs || d_.uses_inputs || f0_.uses_inputs;
   }
 
  private:
@@ -48,6 +52,7 @@ class PointsLaw final : public ForceLaw {
   PointsLaw(std::vector<double> x, std::vector<double> f, Interpolation interpolation, Extrapolation extrapolation,
             Parameter d, const std::string& origin);
   double Force(double x, double v, const ElementContext& ctx) const override;
+  bool depends_on_inputs() const override { return d_.uses_inputs; }
   double Table(double x) const;
 
  private:
@@ -61,11 +66,15 @@ class ExpressionLaw final : public ForceLaw {
  public:
   static constexpr int kMaxInputs = 32;
   // `function` takes [x, v, t, inputs...]; at most kMaxInputs inputs.
-  explicit ExpressionLaw(std::shared_ptr<const ScalarFunction> function) : function_(std::move(function)) {}
+  // `uses_inputs`: whether the expression reads any input.
+  ExpressionLaw(std::shared_ptr<const ScalarFunction> function, bool uses_inputs)
+      : function_(std::move(function)), uses_inputs_(uses_inputs) {}
   double Force(double x, double v, const ElementContext& ctx) const override;
+  bool depends_on_inputs() const override { return uses_inputs_; }
 
  private:
   std::shared_ptr<const ScalarFunction> function_;
+  bool uses_inputs_;
 };
 
 }  // namespace mechflow::mech

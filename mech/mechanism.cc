@@ -162,6 +162,7 @@ MechanismWorkspace::MechanismWorkspace(const Mechanism& mechanism)
       constraint(mechanism.model(), mechanism.constraints()),
       vdot(mechanism.model().nv(), 0.0),
       sensors(mechanism.num_sensor_values(), 0.0),
+      rates(mechanism.num_states(), 0.0),
       parameter_args(1 + mechanism.num_inputs(), 0.0) {}
 
 void EvaluatePositions(const Mechanism& mechanism, double t, std::span<const double> x, MechanismWorkspace* ws) {
@@ -170,22 +171,28 @@ void EvaluatePositions(const Mechanism& mechanism, double t, std::span<const dou
   ws->accelerations_valid = false;
 }
 
+void EvaluateElements(const Mechanism& mechanism, double t, std::span<const double> x,
+                      std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
+                      std::span<double> xdot) {
+  EvaluatePositions(mechanism, t, x, ws);
+  SetParameterArgs(t, inputs, ws);
+  ws->loads.Clear();
+  // Elements always get somewhere to write their state rates.
+  std::span<double> all_rates = xdot.empty() ? std::span<double>(ws->rates) : xdot;
+  for (int e = 0; e < mechanism.num_elements(); ++e) {
+    const ForceElement& element = mechanism.element(e);
+    const ElementContext ctx = MakeContext(mechanism, t, x, modes, *ws, e);
+    std::span<double> rates = all_rates.subspan(mechanism.state_offset(e), element.num_states());
+    element.Evaluate(ctx, &ws->loads,  rates,
+                     std::span<double>(ws->sensors).subspan(mechanism.sensor_offset(e), element.num_sensors()));
+  }
+}
+
 void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const double> x,
                        std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
                        std::span<double> xdot) {
   const Model& model = mechanism.model();
-  EvaluatePositions(mechanism, t, x, ws);
-  SetParameterArgs(t, inputs, ws);
-  ws->loads.Clear();
-  std::span<double> all_rates = xdot.empty() ? std::span<double>() : xdot;
-  for (int e = 0; e < mechanism.num_elements(); ++e) {
-    const ForceElement& element = mechanism.element(e);
-    const ElementContext ctx = MakeContext(mechanism, t, x, modes, *ws, e);
-    std::span<double> rates =
-        all_rates.empty() ? std::span<double>() : all_rates.subspan(mechanism.state_offset(e), element.num_states());
-    element.Evaluate(ctx, &ws->loads,  rates,
-                     std::span<double>(ws->sensors).subspan(mechanism.sensor_offset(e), element.num_sensors()));
-  }
+  EvaluateElements(mechanism, t, x, inputs, modes, ws, xdot);
   if (mechanism.constraints().empty()) {
     ForwardDynamics(model, ws->kin, ws->loads.generalized(), ws->loads.segment_loads(), ws->vdot, &ws->dyn);
     if (ws->want_reactions)

@@ -75,6 +75,7 @@ struct MechanismWorkspace {
   ConstraintWorkspace constraint;
   std::vector<double> vdot;            // nv, after Evaluate
   std::vector<double> sensors;         // element sensor values, after Evaluate
+  std::vector<double> rates;           // scratch x' when the caller wants none
   std::vector<double> parameter_args;  // [t, inputs...]
   bool accelerations_valid = false;
   // Set when reaction sensors are read: trees then also run Newton-Euler
@@ -92,6 +93,12 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
 // Kinematics only (positions, velocities), for outputs that need no
 // accelerations.
 void EvaluatePositions(const Mechanism& mechanism, double t, std::span<const double> x, MechanismWorkspace* ws);
+
+// Kinematics and the elements' loads, state rates and sensors, without the
+// dynamics (for element outputs that do not depend on the inputs).
+void EvaluateElements(const Mechanism& mechanism, double t, std::span<const double> x,
+                      std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
+                      std::span<double> xdot);
 
 // Full evaluation: kinematics, element loads and sensors, accelerations,
 // constraint multipliers. Writes x' into `xdot` (may be empty to skip).

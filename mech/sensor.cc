@@ -52,6 +52,11 @@ bool SensorNeedsFullEvaluation(const SensorSpec& spec) {
   return SensorNeedsAccelerations(spec) || spec.kind == SensorKind::kElement;
 }
 
+bool SensorDependsOnInputs(const Mechanism& mechanism, const SensorSpec& spec) {
+  if (SensorNeedsAccelerations(spec)) return true;
+  return spec.kind == SensorKind::kElement && mechanism.element(spec.index).depends_on_inputs();
+}
+
 void CheckSensor(const Mechanism& mechanism, const SensorSpec& spec) {
   const Model& model = mechanism.model();
   const std::string where = (spec.origin.empty() ? "" : spec.origin + ": ") + "sensor '" + spec.name + "'";

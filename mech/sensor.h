@@ -49,6 +49,10 @@ bool SensorNeedsAccelerations(const SensorSpec& spec);
 // EvaluateMechanism; an element's force may depend on the inputs through its
 // parameters), need the full evaluation; the others only EvaluatePositions.
 bool SensorNeedsFullEvaluation(const SensorSpec& spec);
+// True when the sensor's value depends on the mechanism's inputs at the same
+// instant: accelerations, reactions, and outputs of elements whose
+// parameters follow inputs.
+bool SensorDependsOnInputs(const Mechanism& mechanism, const SensorSpec& spec);
 // Throws InputError (starting with spec.origin, naming the sensor) when the
 // sensor's index, element sensor or component does not exist in `mechanism`.
 void CheckSensor(const Mechanism& mechanism, const SensorSpec& spec);

@@ -50,11 +50,11 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
                          "' has a second sensor named '" + sensor.name + "'");
     DeclareOutputPort(sensor.name, mech::SensorWidth(sensor));
   }
-  // Positions, velocities and angles come from the state alone. Element
-  // sensors are declared as depending on every input: an element's parameters
-  // may be functions of the inputs (safe, if sometimes pessimistic).
+  // Positions, velocities and angles come from the state alone; element
+  // outputs depend on the inputs only when the element's parameters follow
+  // them (a spring force may feed a friction force back without a loop).
   for (int out = 0; out < num_outputs(); ++out) {
-    if (mech::SensorNeedsFullEvaluation(sensors_[out])) continue;
+    if (mech::SensorDependsOnInputs(*mechanism_, sensors_[out])) continue;
     for (int in = 0; in < num_inputs(); ++in) SetFeedthrough(in, out, false);
   }
   const std::vector<std::string> names = StateNames(*mechanism_);
@@ -82,7 +82,7 @@ void MechanismBlock::DoInitialize(const BlockContext& ctx) const {
   // Inputs are not valid yet: elements initialise with inputs at zero.
   std::fill(inputs_.begin(), inputs_.end(), 0.0);
   mech::InitialState(*mechanism_, inputs_, ctx.state(), ctx.discrete(), &ws_);
-  positions_at_ = full_at_ = ~std::uint64_t{0};
+  positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
   worst_residual_ = 0.0;
 }
 
@@ -102,7 +102,16 @@ void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
 
 void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
   const mech::SensorSpec& sensor = sensors_[port];
-  EnsureEvaluated(ctx, mech::SensorNeedsFullEvaluation(sensor));
+  if (sensor.kind == mech::SensorKind::kElement && !mech::SensorDependsOnInputs(*mechanism_, sensor)) {
+    // Its inputs may not be computed yet in this evaluation (it does not feed
+    // through): evaluate the elements only, and keep no solve cached.
+    if (full_at_ != ctx.evaluation() && elements_at_ != ctx.evaluation()) {
+      mech::EvaluateElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
+      elements_at_ = positions_at_ = ctx.evaluation();
+    }
+  } else {
+    EnsureEvaluated(ctx, mech::SensorNeedsFullEvaluation(sensor));
+  }
   mech::EvaluateSensor(*mechanism_, ws_, ctx.state(), sensor, ctx.output(port));
 }
 
@@ -128,14 +137,14 @@ void MechanismBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
 void MechanismBlock::DoZeroCrossing(int index, int direction, const BlockContext& ctx) const {
   EnsureEvaluated(ctx, true);
   mech::ApplyCrossing(*mechanism_, index, direction, ctx.state(), ctx.discrete(), &ws_);
-  positions_at_ = full_at_ = ~std::uint64_t{0};
+  positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
 }
 
 bool MechanismBlock::DoUpdateModes(const BlockContext& ctx) const {
   if (mechanism_->num_modes() == 0) return false;
   const bool changed =
       mech::UpdateElementModes(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_);
-  positions_at_ = full_at_ = ~std::uint64_t{0};
+  positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
   return changed;
 }
 
@@ -173,7 +182,7 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
       throw SimulationError("mechanism '" + name() + "': projection gave a non-finite state at t = " +
                             std::to_string(ctx.time()));
   }
-  positions_at_ = full_at_ = ~std::uint64_t{0};
+  positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
 }
 
 }  // namespace mechflow::blocks

@@ -67,7 +67,8 @@ class MechanismBlock final : public Block {
   std::vector<mech::SensorSpec> sensors_;
   mutable mech::MechanismWorkspace ws_;
   mutable std::vector<double> inputs_, scratch_, xdot_;
-  mutable std::uint64_t positions_at_ = ~std::uint64_t{0}, full_at_ = ~std::uint64_t{0};
+  mutable std::uint64_t positions_at_ = ~std::uint64_t{0}, full_at_ = ~std::uint64_t{0},
+                        elements_at_ = ~std::uint64_t{0};
   mutable double worst_residual_ = 0.0;
 };
 

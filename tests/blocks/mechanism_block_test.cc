@@ -126,6 +126,7 @@ class ScaledInput final : public mech::ScalarFunction {
 mech::Parameter InputParameter(double k) {
   mech::Parameter p;
   p.function = std::make_shared<ScaledInput>(k);
+  p.uses_inputs = true;
   return p;
 }
 
@@ -399,7 +400,7 @@ TEST(MechanismBlockTest, FeedthroughIsDeclaredPerSensor) {
       {Sensor("a", K::kAcceleration, 0), true},
       {Sensor("rf", K::kReactionForce, 0), true},
       {Sensor("rt", K::kReactionTorque, 0, 2), true},
-      {ElementSensor("fz", 0, 2), true},  // element forces may be functions of the inputs
+      {ElementSensor("fz", 0, 2), true},  // this element's force follows the input
       {PointSensor("p", K::kPointPosition, 1, mech::Vec3(0.1, 0, 0)), false},
       {PointSensor("pv", K::kPointVelocity, 1, mech::Vec3(0.1, 0, 0)), false},
       {PointSensor("pa", K::kPointAcceleration, 1, mech::Vec3(0.1, 0, 0)), true},
