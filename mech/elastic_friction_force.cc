@@ -77,7 +77,7 @@ void ElasticFrictionForce::Evaluate(const ElementContext& ctx, Loads* loads, std
 void ElasticFrictionForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
   const double mode = ctx.modes[0];
   const Values r = Compute(ctx, mode);
-  const double limit = p_.ratio.Get(ctx) * p_.friction.Get(ctx);
+  const double limit = BreakawayLimit(p_.ratio.Get(ctx) * p_.friction.Get(ctx));
   const bool active = p_.damping.Get(ctx) > 0.0;
   values[kBreaksForward] = active && mode == 0.0 ? r.tension - limit : -1.0;
   values[kBreaksBackward] = active && mode == 0.0 ? -r.tension - limit : -1.0;

@@ -70,7 +70,7 @@ void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double>
   // cannot trigger.
   values[kSlipPlusStops] = mode == kSlipPlus ? g.v : 1.0;
   values[kSlipMinusStops] = mode == kSlipMinus ? g.v : -1.0;
-  const double limit = p_.ratio.Get(ctx) * p_.friction.Get(ctx);
+  const double limit = BreakawayLimit(p_.ratio.Get(ctx) * p_.friction.Get(ctx));
   const double holding = p_.stiffness.Get(ctx) * (g.x - ctx.modes[1]) + p_.damping.Get(ctx) * g.v;
   values[kBreaksForward] = mode == kStick ? holding - limit : -1.0;
   values[kBreaksBackward] = mode == kStick ? -holding - limit : -1.0;

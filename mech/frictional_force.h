@@ -20,6 +20,12 @@
 
 namespace mechflow::mech {
 
+// The static limit the break-away crossings use: never below 1e-9 N, so that
+// a limit that starts at exactly zero (friction fed from a force that is
+// zero at the start) still gives a crossing the solver can see -- one that
+// starts at zero is not reported.
+inline double BreakawayLimit(double limit) { return limit > 1e-9 ? limit : 1e-9; }
+
 struct FrictionalParameters {
   Parameter friction;     // sliding force F [N], >= 0
   Parameter ratio = 1.2;  // static / dynamic

@@ -2,6 +2,7 @@
 // (../shared/ELEMENTS.md 3.6, tests FR-1, FR-2, FR-3), against the piecewise
 // analytic Coulomb solution.
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -127,6 +128,38 @@ TEST(FrictionExamplesTest, AboveThresholdPushBreaksAway) {
   const double tb = -0.2 * std::log(1 - 12.0 / 13.0), T = t.back();
   const double expected = 0.3 * (T - tb) + 0.26 * (std::exp(-T / 0.2) - std::exp(-tb / 0.2));
   EXPECT_NEAR(v.back(), expected, 1e-3 * expected);
+}
+
+// LS-1: friction fed from the leaf's force through blocks (abs, gain mu).
+TEST(FrictionExamplesTest, LeafSpringSettlesIntoStickingLS1) {
+  const std::string path = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/leaf_spring.xml";
+  const double m = 1, c = 100, g = 9.81;
+  for (double mu : {0.3, 0.5}) {
+    diagrams::LoadOptions options;
+    options.overrides = {{"mu", mu}};
+    const auto loaded = diagrams::LoadDiagram(path, options);
+    blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
+    ASSERT_TRUE(sim.Run().ok);
+    const auto& r = sim.results();
+    const auto z = r.Column(r.FindColumn("m.z")), mode = r.Column(r.FindColumn("m.mode"));
+    const std::size_t last = z.size() - 1, one_second_before = last - 1000;
+    EXPECT_EQ(mode[last], 0.0) << "mu " << mu;
+    EXPECT_GE(-z[last], m * g / (c * (1 + mu)));
+    EXPECT_LE(-z[last], m * g / (c * (1 - mu)));
+    EXPECT_NEAR(z[last], z[one_second_before], 1e-6) << "at rest for the last second";
+  }
+  // mu = 0: undamped about m g / c, between 0 and 2 m g / c
+  diagrams::LoadOptions options;
+  options.overrides = {{"mu", 0}};
+  const auto loaded = diagrams::LoadDiagram(path, options);
+  blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
+  ASSERT_TRUE(sim.Run().ok);
+  const auto z = sim.results().Column(sim.results().FindColumn("m.z"));
+  const auto [lo, hi] = std::minmax_element(z.begin(), z.end());
+  EXPECT_NEAR(*lo, -2 * m * g / c, 1e-5);
+  EXPECT_NEAR(*hi, 0.0, 1e-5);
+  const std::size_t tail = z.size() - 700;  // the last 0.7 s hold a full period (0.628 s)
+  EXPECT_NEAR(*std::min_element(z.begin() + tail, z.end()), -2 * m * g / c, 1e-4);
 }
 
 }  // namespace
