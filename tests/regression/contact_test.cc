@@ -70,5 +70,44 @@ TEST(ContactTest, OscillationsSelfExcitedStickSlipCT4) {
   EXPECT_NEAR(fmax, 3.943, 5e-3);
 }
 
+TEST(ContactTest, FallingCubeSlidesDownTheInclineAndStopsCT2) {
+  const auto loaded =
+      diagrams::LoadDiagram(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/falling.xml", {});
+  blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
+  const auto outcome = sim.Run();
+  ASSERT_TRUE(outcome.ok) << outcome.failure;
+  const auto& r = sim.results();
+  auto column = [&](const std::string& name) { return r.Column(r.FindColumn(name)); };
+  const auto t = column("time"), vy = column("m.v[1]"), vz = column("m.v[2]"), z = column("m.p[2]");
+  const auto vx = column("m.v[0]"), wx = column("m.w[0]"), wy = column("m.w[1]"), wz = column("m.w[2]");
+  // Sliding: the speed down the incline grows at g (sin - mu cos) (least
+  // squares over 0.35 .. 0.7 s, while it slides on its face).
+  const double theta = std::atan(0.5 / 0.86), expected = 9.81 * (std::sin(theta) - 0.3 * std::cos(theta));
+  const double dy = std::cos(theta), dz = -std::sin(theta);
+  double st = 0, sv = 0, stt = 0, stv = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < 0.35 || t[i] > 0.7) continue;
+    const double v = vy[i] * dy + vz[i] * dz;
+    st += t[i], sv += v, stt += t[i] * t[i], stv += t[i] * v, ++n;
+  }
+  const double slope = (n * stv - st * sv) / (n * stt - st * st);
+  EXPECT_NEAR(slope, expected, 0.01 * expected);
+  // Comes to rest on the floor, resting on its face.
+  EXPECT_LT(std::abs(vy.back()) + std::abs(vz.back()), 1e-3);
+  EXPECT_NEAR(z.back(), 0.1, 1e-3);
+  // Mechanical energy never exceeds its start (no external work; the contact
+  // springs only store what they later give back, less their damping).
+  const double inertia = 1.0 * 0.2 * 0.2 / 6;
+  double e0 = 0, worst = -1e300;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double e = 0.5 * (vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]) +
+                     0.5 * inertia * (wx[i] * wx[i] + wy[i] * wy[i] + wz[i] * wz[i]) + 9.81 * z[i];
+    if (i == 0) e0 = e;
+    worst = std::max(worst, e - e0);
+  }
+  EXPECT_LE(worst, 1e-9);
+}
+
 }  // namespace
 }  // namespace mechflow
