@@ -4,3 +4,4 @@ mechflow_test(mechanism_examples_test regression tests/regression/mechanism_exam
 mechflow_test(friction_examples_test regression tests/regression/friction_examples_test.cc)
 mechflow_test(tension_mechanism_test regression tests/regression/tension_mechanism_test.cc)
 mechflow_test(contact_test regression tests/regression/contact_test.cc)
+mechflow_test(bushing_test regression tests/regression/bushing_test.cc)
