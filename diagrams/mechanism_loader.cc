@@ -11,6 +11,7 @@
 #include "mech/applied_force.h"
 #include "mech/bipolar_force.h"
 #include "mech/bushing.h"
+#include "mech/circle_plane_contact.h"
 #include "mech/elastic_friction_force.h"
 #include "mech/frictional_force.h"
 #include "mech/joint_force.h"
@@ -394,15 +395,10 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
     return std::make_unique<mech::Bushing>(name, e.loc.str(), b1, p1, b2, p2, p, kin0);
   }
   if (e.tag == "contact") {
-    if (e.Text("type") != "points_plane")
-      throw InputError(r.What(e, "type") + ": unknown contact type '" + e.Text("type") + "'; expected points_plane");
+    const std::string type = e.Text("type");
+    if (type != "points_plane" && type != "circle_plane")
+      throw InputError(r.What(e, "type") + ": unknown contact type '" + type + "'; expected points_plane or circle_plane");
     const int b1 = BodyIndex(model, e, "body1"), b2 = BodyIndex(model, e, "body2");
-    std::vector<Vec3> points;
-    for (const auto& row : Split(e.Text("points"), ";")) {
-      const auto v = r.eval().Numbers(row, r.What(e, "points"));
-      if (v.size() != 3) throw InputError(r.What(e, "points") + ": each point is 'x y z', separated by ';'");
-      points.push_back({v[0], v[1], v[2]});
-    }
     mech::ContactLaw law;
     law.stiffness = r.Number(e, "stiffness", 0.0);
     law.exponent = r.Number(e, "exponent", 1.0);
@@ -410,6 +406,17 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
     law.damping_depth = r.Number(e, "damping_depth", 0.0);
     law.mu = r.Number(e, "mu", 0.0);
     law.v_eps = r.Number(e, "v_eps", 1e-4);
+    if (type == "circle_plane")
+      return std::make_unique<mech::CirclePlaneContact>(
+          name, e.loc.str(), b1, BodyPoint(r, model, e, "centre", b1), r.Vector(e, "circle_normal", Vec3::UnitX()),
+          r.Number(e, "radius", 0.0), b2, r.Vector(e, "plane_point", Vec3::Zero()), r.Vector(e, "normal", Vec3::UnitZ()),
+          law);
+    std::vector<Vec3> points;
+    for (const auto& row : Split(e.Text("points"), ";")) {
+      const auto v = r.eval().Numbers(row, r.What(e, "points"));
+      if (v.size() != 3) throw InputError(r.What(e, "points") + ": each point is 'x y z', separated by ';'");
+      points.push_back({v[0], v[1], v[2]});
+    }
     return std::make_unique<mech::PointsPlaneContact>(name, e.loc.str(), b1, points, b2,
                                                       r.Vector(e, "plane_point", Vec3::Zero()),
                                                       r.Vector(e, "normal", Vec3::UnitZ()), law);

@@ -7,6 +7,36 @@
 
 namespace mechflow::mech {
 
+double ContactNormalForce(const ContactLaw& law, double delta, double rate) {
+  if (delta <= 0) return 0.0;
+  double damping = law.damping;
+  if (law.damping_depth > 0) {
+    const double s = std::min(delta / law.damping_depth, 1.0);
+    damping *= s * s * (3 - 2 * s);
+  }
+  return std::max(0.0, law.stiffness * std::pow(delta, law.exponent) + damping * rate);
+}
+
+void CheckContactLaw(const ContactLaw& law, const std::string& where) {
+  if (!(law.exponent >= 1.0)) throw InputError(where + "the stiffness exponent must be at least 1");
+  if (law.stiffness < 0 || law.damping < 0 || law.damping_depth < 0 || law.mu < 0 || !(law.v_eps > 0))
+    throw InputError(where + "stiffness, damping, depth and mu must be >= 0, v_eps > 0");
+}
+
+PointContactLoad ApplyPointContact(const Kinematics& kin, const ContactLaw& law, int body1, int body2,
+                                   const Vec3& p, const Vec3& n, double delta, Loads* loads) {
+  const Vec3 w = MaterialVelocityAt(kin, body1, p) - MaterialVelocityAt(kin, body2, p);
+  PointContactLoad out;
+  out.normal = ContactNormalForce(law, std::max(delta, 0.0), -w.dot(n));
+  const Vec3 wt = w - w.dot(n) * n;
+  out.slip = wt.norm();
+  out.friction = -law.mu * out.normal * wt / std::sqrt(wt.squaredNorm() + law.v_eps * law.v_eps);
+  const Vec3 load = out.normal * n + out.friction;
+  loads->AddForce(kin, body1, p, load);
+  loads->AddForce(kin, body2, p, -load);
+  return out;
+}
+
 PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int body1, std::vector<Vec3> points,
                                        int body2, Vec3 plane_point, Vec3 normal, ContactLaw law)
     : ForceElement(std::move(name), std::move(origin)),
@@ -18,23 +48,11 @@ PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int
   const std::string where = this->origin() + (this->origin().empty() ? "" : ": ") + "contact '" + this->name() + "': ";
   if (points_.empty()) throw InputError(where + "needs at least one point");
   if (!(normal.norm() > 0)) throw InputError(where + "the plane normal must be non-zero");
-  if (!(law_.exponent >= 1.0)) throw InputError(where + "the stiffness exponent must be at least 1");
-  if (law_.stiffness < 0 || law_.damping < 0 || law_.damping_depth < 0 || law_.mu < 0 || !(law_.v_eps > 0))
-    throw InputError(where + "stiffness, damping, depth and mu must be >= 0, v_eps > 0");
+  CheckContactLaw(law_, where);
   normal_ = normal.normalized();
   for (const char* s : {"normal", "penetration", "slip", "friction"}) DeclareSensor(s);
   DeclareModes(static_cast<int>(points_.size()));
   for (std::size_t i = 0; i < points_.size(); ++i) DeclareCrossing(mech::Crossing::kEither);
-}
-
-double PointsPlaneContact::NormalForce(double delta, double rate) const {
-  if (delta <= 0) return 0.0;
-  double damping = law_.damping;
-  if (law_.damping_depth > 0) {
-    const double s = std::min(delta / law_.damping_depth, 1.0);
-    damping *= s * s * (3 - 2 * s);
-  }
-  return std::max(0.0, law_.stiffness * std::pow(delta, law_.exponent) + damping * rate);
 }
 
 double PointsPlaneContact::Penetration(const ElementContext& ctx, int i, Vec3* p) const {
@@ -59,16 +77,10 @@ void PointsPlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::
     const double delta = Penetration(ctx, static_cast<int>(i), &p);
     deepest = std::max(deepest, delta);
     if (ctx.modes[i] == 0.0) continue;
-    const Vec3 w = PointVelocity(kin, body1_, points_[i]) - MaterialVelocityAt(kin, body2_, p);
-    const double force = NormalForce(std::max(delta, 0.0), -w.dot(n));
-    const Vec3 wt = w - w.dot(n) * n;
-    const Vec3 ft = -law_.mu * force * wt / std::sqrt(wt.squaredNorm() + law_.v_eps * law_.v_eps);
-    const Vec3 load = force * n + ft;
-    loads->AddForce(kin, body1_, p, load);
-    loads->AddForce(kin, body2_, p, -load);
-    total_normal += force;
-    friction += ft;
-    if (force > loaded) loaded = force, slip = wt.norm();
+    const PointContactLoad c = ApplyPointContact(kin, law_, body1_, body2_, p, n, delta, loads);
+    total_normal += c.normal;
+    friction += c.friction;
+    if (c.normal > loaded) loaded = c.normal, slip = c.slip;
   }
   sensors[0] = total_normal;
   sensors[1] = deepest;

@@ -31,6 +31,20 @@ struct ContactLaw {
   double v_eps = 1e-4;         // regularisation velocity [m/s]
 };
 
+// The normal and friction loads of one contact point p (global) of body 1
+// against body 2 with outward normal n (global, unit) at penetration delta.
+struct PointContactLoad {
+  double normal = 0.0;
+  double slip = 0.0;  // tangential speed
+  Vec3 friction = Vec3::Zero();
+};
+PointContactLoad ApplyPointContact(const Kinematics& kin, const ContactLaw& law, int body1, int body2,
+                                   const Vec3& p, const Vec3& n, double delta, Loads* loads);
+// The normal force law alone: max(0, c delta^n + D(delta) rate), 0 when delta <= 0.
+double ContactNormalForce(const ContactLaw& law, double delta, double rate);
+// Checks a law's numbers; throws InputError starting with `where`.
+void CheckContactLaw(const ContactLaw& law, const std::string& where);
+
 class PointsPlaneContact final : public ForceElement {
  public:
   PointsPlaneContact(std::string name, std::string origin, int body1, std::vector<Vec3> points, int body2,
@@ -45,8 +59,6 @@ class PointsPlaneContact final : public ForceElement {
   // would not see a crossing that starts at zero.
   bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
 
-  // The normal force law alone (also used by tests).
-  double NormalForce(double delta, double rate) const;
 
  private:
   double Penetration(const ElementContext& ctx, int i, Vec3* p) const;

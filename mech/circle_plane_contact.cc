@@ -1,0 +1,77 @@
+#include "mech/circle_plane_contact.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "mech/errors.h"
+
+namespace mechflow::mech {
+
+CirclePlaneContact::CirclePlaneContact(std::string name, std::string origin, int body1, Vec3 centre,
+                                       Vec3 circle_normal, double radius, int body2, Vec3 plane_point, Vec3 normal,
+                                       ContactLaw law)
+    : ForceElement(std::move(name), std::move(origin)),
+      body1_(body1),
+      body2_(body2),
+      centre_(centre),
+      radius_(radius),
+      plane_point_(plane_point),
+      law_(law) {
+  const std::string where = this->origin() + (this->origin().empty() ? "" : ": ") + "contact '" + this->name() + "': ";
+  if (!(circle_normal.norm() > 0) || !(normal.norm() > 0))
+    throw InputError(where + "the circle and plane normals must be non-zero");
+  if (!(radius > 0)) throw InputError(where + "the radius must be positive");
+  CheckContactLaw(law_, where);
+  circle_normal_ = circle_normal.normalized();
+  normal_ = normal.normalized();
+  for (const char* s : {"normal", "penetration", "slip", "friction"}) DeclareSensor(s);
+  DeclareModes(1);
+  DeclareCrossing(mech::Crossing::kEither);
+}
+
+double CirclePlaneContact::Geometry(const ElementContext& ctx, Vec3* q, Vec3* n) const {
+  const Kinematics& kin = *ctx.kin;
+  const Pose& plane = kin.body_pose[body2_];
+  *n = plane.R * normal_;
+  const Vec3 c = PointPosition(kin, body1_, centre_);
+  const Vec3 nc = kin.body_pose[body1_].R * circle_normal_;
+  const Vec3 in_plane = *n - n->dot(nc) * nc;
+  const double size = in_plane.norm();
+  if (!(size > 1e-12)) {
+    std::ostringstream out;
+    out << "contact '" << name() << "': the circle lies flat on the plane at t = " << ctx.t
+        << " (no single deepest point)";
+    throw SimulationError(out.str());
+  }
+  *q = c - radius_ * in_plane / size;
+  return radius_ * size - (c - plane * plane_point_).dot(*n);
+}
+
+void CirclePlaneContact::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+  Vec3 q, n;
+  modes[0] = Geometry(ctx, &q, &n) > 0 ? 1.0 : 0.0;
+}
+
+void CirclePlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
+                                  std::span<double> sensors) const {
+  Vec3 q, n;
+  const double delta = Geometry(ctx, &q, &n);
+  PointContactLoad c;
+  if (ctx.modes[0] != 0.0) c = ApplyPointContact(*ctx.kin, law_, body1_, body2_, q, n, delta, loads);
+  sensors[0] = c.normal;
+  sensors[1] = delta;
+  sensors[2] = c.slip;
+  sensors[3] = c.friction.norm();
+}
+
+void CirclePlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
+  Vec3 q, n;
+  values[0] = Geometry(ctx, &q, &n);
+}
+
+void CirclePlaneContact::OnCrossing(int, int direction, const ElementContext&, std::span<double>,
+                                    std::span<double> modes) const {
+  modes[0] = direction > 0 ? 1.0 : 0.0;
+}
+
+}  // namespace mechflow::mech

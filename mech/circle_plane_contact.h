@@ -1,0 +1,39 @@
+#pragma once
+// Circle-plane contact (ELEMENTS.md 5.3): a circle on body 1 (centre C,
+// radius R, circle normal n_c of either sign) against an unbounded plane on
+// body 2 (point P0, external normal N). The deepest rim point
+//   Q = C + R u,   u = -(N - (N.n_c) n_c) / |N - (N.n_c) n_c|
+// carries the contact, with penetration delta = R sqrt(1 - (N.n_c)^2) -
+// (C - P0).N and the law of the points-plane contact; body 1's material
+// velocity at Q includes w1 x (Q - C), which is how a spinning roller drives
+// what it touches. A circle lying flat on the plane (N parallel to n_c) has
+// no single deepest point: the evaluation fails with a message.
+// Touch and release are events. Sensors: normal, penetration, slip, friction.
+
+#include "mech/points_plane_contact.h"
+
+namespace mechflow::mech {
+
+class CirclePlaneContact final : public ForceElement {
+ public:
+  CirclePlaneContact(std::string name, std::string origin, int body1, Vec3 centre, Vec3 circle_normal, double radius,
+                     int body2, Vec3 plane_point, Vec3 normal, ContactLaw law);
+  void Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+  void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
+                std::span<double> sensors) const override;
+  void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
+  void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
+                  std::span<double> modes) const override;
+
+ private:
+  // Penetration, deepest point Q and the plane normal (global).
+  double Geometry(const ElementContext& ctx, Vec3* q, Vec3* n) const;
+
+  int body1_, body2_;
+  Vec3 centre_, circle_normal_;
+  double radius_;
+  Vec3 plane_point_, normal_;
+  ContactLaw law_;
+};
+
+}  // namespace mechflow::mech
