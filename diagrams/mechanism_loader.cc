@@ -14,6 +14,7 @@
 #include "mech/circle_plane_contact.h"
 #include "mech/elastic_friction_force.h"
 #include "mech/frictional_force.h"
+#include "mech/gearing.h"
 #include "mech/joint_force.h"
 #include "mech/model_builder.h"
 #include "mech/points_plane_contact.h"
@@ -394,6 +395,17 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
     p.preload_moment = r.Vector(e, "preload_moment", Vec3::Zero());
     return std::make_unique<mech::Bushing>(name, e.loc.str(), b1, p1, b2, p2, p, kin0);
   }
+  if (e.tag == "gearing") {
+    const int b1 = BodyIndex(model, e, "body1"), b2 = BodyIndex(model, e, "body2");
+    mech::GearParameters p;
+    p.ratio = r.Number(e, "ratio", 1.0);
+    p.clearance = r.Number(e, "clearance", 0.0);
+    p.stiffness = r.Number(e, "stiffness", 0.0);
+    p.damping = r.Number(e, "damping", 0.0);
+    return std::make_unique<mech::Gearing>(name, e.loc.str(), b1, BodyPoint(r, model, e, "centre1", b1),
+                                           r.Vector(e, "axis1", Vec3::UnitX()), b2,
+                                           BodyPoint(r, model, e, "centre2", b2), p);
+  }
   if (e.tag == "contact") {
     const std::string type = e.Text("type");
     if (type != "points_plane" && type != "circle_plane")
@@ -521,7 +533,7 @@ std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const E
   std::vector<std::string> element_names;
   for (const ElementDesc& e : m.children) {
     if (e.tag != "force" && e.tag != "joint_force" && e.tag != "bushing" && e.tag != "applied_force" &&
-        e.tag != "contact")
+        e.tag != "contact" && e.tag != "gearing")
       continue;
     if (std::find(element_names.begin(), element_names.end(), e.Text("name")) != element_names.end())
       r.Fail(e, "a second element with this name");
