@@ -4,3 +4,11 @@ mechflow_test(constraints_test unit tests/mech/constraints_test.cc)
 mechflow_test(quaternion_joint_test unit tests/mech/quaternion_joint_test.cc)
 mechflow_test(mech_no_allocation_test unit tests/mech/no_allocation_test.cc)
 mechflow_test(force_elements_test unit tests/mech/force_elements_test.cc)
+
+# the P4 reference (bench/pendulum_chain_direct.*) checked against closed forms; its library is
+# defined in bench/, which is added here, excluded from all, when the benchmarks are off
+if(NOT MECHFLOW_BUILD_BENCH)
+  add_subdirectory(${PROJECT_SOURCE_DIR}/bench ${PROJECT_BINARY_DIR}/bench EXCLUDE_FROM_ALL)
+endif()
+mechflow_test(pendulum_chain_reference_test unit tests/mech/pendulum_chain_reference_test.cc)
+target_link_libraries(pendulum_chain_reference_test PRIVATE mechflow_bench_reference)
