@@ -12,6 +12,46 @@
 #include "mech/errors.h"
 
 namespace mechflow::blocks {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+// Index of the largest |f_i| (0 when f is empty).
+int LargestEntry(const std::vector<double>& f, int n) {
+  int largest = 0;
+  for (int i = 1; i < n; ++i)
+    if (std::abs(f[i]) > std::abs(f[largest])) largest = i;
+  return largest;
+}
+
+// Index of the first non-finite f_i, or -1.
+int FirstNonFinite(const std::vector<double>& f, int n) {
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(f[i])) return i;
+  return -1;
+}
+
+double Norm2(const std::vector<double>& f, int n) {
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) sum += f[i] * f[i];
+  return std::sqrt(sum);
+}
+
+// Evaluates the outputs at x and leaves the context pointing at x itself, with
+// no derivative buffer: the probes' buffers do not outlive the caller.
+void EvaluateAt(const Diagram& diagram, Context* ctx, const std::vector<double>& x) {
+  ctx->x = const_cast<double*>(x.data());  // blocks only read states while evaluating outputs
+  ctx->xdot = nullptr;
+  ++ctx->evaluation;
+  EvaluateOutputs(diagram, ctx);
+}
+
+std::string StateName(const Diagram& diagram, int i) {
+  const std::vector<std::string> names = StateNames(diagram);
+  return i >= 0 && i < static_cast<int>(names.size()) ? names[i] : "?";
+}
+
+}  // namespace
 
 void PrepareContext(const Diagram& diagram, double t, Context* ctx, std::vector<double>* x) {
   ctx->time = t;
@@ -36,71 +76,150 @@ Eigen::MatrixXd StateJacobian(const Diagram& diagram, Context* ctx, const std::v
   const int n = diagram.num_states();
   Eigen::MatrixXd A(n, n);
   std::vector<double> probe(x), plus, minus;
-  const double root_eps = std::cbrt(std::numeric_limits<double>::epsilon());  // central differences
+  const double root_eps = std::cbrt(std::numeric_limits<double>::epsilon());
   for (int j = 0; j < n; ++j) {
     const double h = root_eps * std::max(1.0, std::abs(x[j]));
     probe[j] = x[j] + h;
+    const double x_plus = probe[j];
     StateDerivative(diagram, ctx, &probe, &plus);
     probe[j] = x[j] - h;
+    const double x_minus = probe[j];
     StateDerivative(diagram, ctx, &probe, &minus);
     probe[j] = x[j];
-    for (int i = 0; i < n; ++i) A(i, j) = (plus[i] - minus[i]) / (2 * h);
+    const int bad = std::max(FirstNonFinite(plus, n), FirstNonFinite(minus, n));
+    if (bad >= 0) {
+      std::ostringstream out;
+      out << "linearisation: the rate of state '" << StateName(diagram, bad) << "' is not finite when state '"
+          << StateName(diagram, j) << "' is moved by " << h << " from " << x[j];
+      throw SimulationError(out.str());
+    }
+    for (int i = 0; i < n; ++i) A(i, j) = (plus[i] - minus[i]) / (x_plus - x_minus);
   }
+  EvaluateAt(diagram, ctx, x);
   return A;
 }
 
-void FindEquilibrium(const Diagram& diagram, Context* ctx, std::vector<double>* x, double tolerance,
-                     int max_iterations) {
-  std::vector<double> f;
+EquilibriumResult FindEquilibrium(const Diagram& diagram, Context* ctx, std::vector<double>* x, double tolerance,
+                                  int max_iterations) {
   const int n = diagram.num_states();
-  double residual = 0.0;
-  for (int it = 0; it <= max_iterations; ++it) {
-    StateDerivative(diagram, ctx, x, &f);
-    residual = 0.0;
-    for (int i = 0; i < n; ++i) residual = std::max(residual, std::abs(f[i]));
-    if (residual <= tolerance) return;
-    if (it == max_iterations) break;
+  constexpr int kMaxHalvings = 10;
+  std::vector<double> f, trial, f_trial;
+  StateDerivative(diagram, ctx, x, &f);
+  if (const int bad = FirstNonFinite(f, n); bad >= 0) {
+    EvaluateAt(diagram, ctx, *x);
+    throw SimulationError("no static equilibrium found: the rate of state '" + StateName(diagram, bad) +
+                          "' is not finite at the initial state");
+  }
+  auto failure = [&](const std::string& what, int steps) {
+    const int worst = LargestEntry(f, n);
+    std::ostringstream out;
+    out << "no static equilibrium found: " << what << " after " << steps << " Newton step"
+        << (steps == 1 ? "" : "s") << "; the largest rate is " << f[worst] << " (state '"
+        << StateName(diagram, worst) << "'). Is the diagram driven, or free to drift at a constant rate?";
+    return SimulationError(out.str());
+  };
+  for (int it = 0;; ++it) {
     const Eigen::MatrixXd A = StateJacobian(diagram, ctx, *x);
+    // converged: every rate is zero relative to the terms that balance in it
+    bool converged = true;
+    for (int i = 0; i < n && converged; ++i) {
+      double terms = 1.0;
+      for (int j = 0; j < n; ++j) terms += std::abs(A(i, j)) * std::abs((*x)[j]);
+      converged = std::abs(f[i]) <= tolerance * terms;
+    }
+    if (converged) return {it, std::abs(f[LargestEntry(f, n)])};
+    if (it == max_iterations) throw failure("not converged", it);  // the context is at x
+
+    // least-norm Newton step: neutral directions (free coordinates) stay put
     const Eigen::VectorXd step =
         Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A).solve(Eigen::Map<Eigen::VectorXd>(f.data(), n));
-    for (int i = 0; i < n; ++i) (*x)[i] -= step(i);
+    // damping: halve the step until |f| decreases enough
+    const double norm = Norm2(f, n);
+    double alpha = 1.0;
+    for (int halvings = 0;; ++halvings) {
+      trial = *x;
+      for (int i = 0; i < n; ++i) trial[i] -= alpha * step(i);
+      StateDerivative(diagram, ctx, &trial, &f_trial);
+      if (FirstNonFinite(f_trial, n) < 0 && Norm2(f_trial, n) < (1 - 1e-4 * alpha) * norm) break;
+      if (halvings == kMaxHalvings) {
+        EvaluateAt(diagram, ctx, *x);
+        throw failure("Newton stalled (no step along the Newton direction reduces the rates)", it);
+      }
+      alpha /= 2;
+    }
+    std::swap(*x, trial);
+    std::swap(f, f_trial);
+    ctx->x = x->data();
   }
-  std::ostringstream out;
-  out << "no static equilibrium found: largest |x'| is " << residual << " after " << max_iterations
-      << " Newton steps (is the diagram free to drift, or driven?)";
-  throw SimulationError(out.str());
 }
 
 std::vector<Mode> ModalAnalysis(const Eigen::MatrixXd& A, const std::vector<bool>& normalise_on) {
   std::vector<Mode> modes;
   if (A.rows() == 0) return modes;
   Eigen::EigenSolver<Eigen::MatrixXd> solver(A);
-  const auto values = solver.eigenvalues();
-  const auto vectors = solver.eigenvectors();
+  const Eigen::VectorXcd values = solver.eigenvalues();
+  const Eigen::MatrixXcd vectors = solver.eigenvectors();
   const double scale = std::max(1.0, A.cwiseAbs().maxCoeff());
+  const double fastest = std::max(1.0, values.cwiseAbs().maxCoeff());
   for (int k = 0; k < values.size(); ++k) {
     const std::complex<double> lambda = values(k);
     if (lambda.imag() < -1e-12 * scale) continue;  // keep one of each conjugate pair
     Mode m;
     m.eigenvalue = lambda;
     const double magnitude = std::abs(lambda);
-    m.frequency_hz = std::abs(lambda.imag()) / (2 * M_PI);
-    m.natural_frequency_hz = magnitude / (2 * M_PI);
-    m.damping_ratio = magnitude > 0 ? -lambda.real() / magnitude : 0.0;
-    if (std::abs(m.damping_ratio) < 1e-9) m.damping_ratio = 0.0;  // undamped, up to differencing noise
-    // Shape: phase so that the largest component is real and 1.
+    const bool real = std::abs(lambda.imag()) <= 1e-12 * scale;
+    m.frequency_hz = real ? 0.0 : std::abs(lambda.imag()) / kTwoPi;
+    m.natural_frequency_hz = magnitude / kTwoPi;
+    m.decay_rate = -lambda.real();
+    if (magnitude <= 1e-9 * fastest) {
+      m.kind = ModeKind::kRigidBody;
+      m.damping_ratio = 0.0;
+    } else {
+      m.kind = !real ? ModeKind::kOscillating : lambda.real() < 0 ? ModeKind::kDecaying : ModeKind::kGrowing;
+      m.damping_ratio = -lambda.real() / magnitude;
+      if (std::abs(m.damping_ratio) < 1e-9) m.damping_ratio = 0.0;  // undamped, up to differencing noise
+    }
+    // shape: divide by the largest normalising component (makes it exactly 1)
     Eigen::VectorXcd v = vectors.col(k);
-    Eigen::Index largest = 0;
+    Eigen::Index largest = -1;
     double best = -1.0;
     for (Eigen::Index i = 0; i < v.size(); ++i)
       if ((normalise_on.empty() || normalise_on[i]) && std::abs(v(i)) > best) best = std::abs(v(i)), largest = i;
-    if (std::abs(v(largest)) > 0) v /= v(largest);
-    for (int i = 0; i < v.size(); ++i) m.shape.push_back(v(i).real());
+    if (largest < 0 || best == 0.0) {  // no normalising state takes part: use them all
+      for (Eigen::Index i = 0; i < v.size(); ++i)
+        if (std::abs(v(i)) > best) best = std::abs(v(i)), largest = i;
+    }
+    if (best > 0) v /= v(largest);
+    m.shape.resize(v.size());
+    for (Eigen::Index i = 0; i < v.size(); ++i) m.shape[i] = v(i).real();
     modes.push_back(std::move(m));
   }
-  std::sort(modes.begin(), modes.end(),
-            [](const Mode& a, const Mode& b) { return a.natural_frequency_hz < b.natural_frequency_hz; });
+  std::stable_sort(modes.begin(), modes.end(),
+                   [](const Mode& a, const Mode& b) { return a.natural_frequency_hz < b.natural_frequency_hz; });
   return modes;
+}
+
+StateRoles FindStateRoles(const Eigen::MatrixXd& A) {
+  const Eigen::Index n = A.rows();
+  StateRoles roles{std::vector<bool>(n, false), std::vector<bool>(n, false)};
+  constexpr double kTolerance = 1e-9;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::Index unit = -1;
+    bool other = false;
+    for (Eigen::Index j = 0; j < n && !other; ++j) {
+      if (std::abs(A(i, j)) <= kTolerance) continue;
+      if (j != i && unit < 0 && std::abs(A(i, j) - 1.0) <= kTolerance) {
+        unit = j;
+      } else {
+        other = true;
+      }
+    }
+    if (unit >= 0 && !other) {
+      roles.coordinate[i] = true;
+      roles.rate[unit] = true;
+    }
+  }
+  return roles;
 }
 
 std::vector<std::string> StateNames(const Diagram& diagram) {

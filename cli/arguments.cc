@@ -55,15 +55,26 @@ std::string HelpText(const std::string& command) {
            "  mechflow graph d.xml | dot -Tsvg > d.svg\n"
            "Edges drawn bold carry direct feedthrough (they order the evaluation).\n";
   if (command == "modes")
-    return "usage: mechflow modes FILE [--set NAME=VALUE]... [--equilibrium] [--out DIR]\n"
+    return "usage: mechflow modes FILE [--variant NAME]... [--set NAME=VALUE]... [--equilibrium]\n"
+           "                      [--out DIR] [--unsafe-lua]\n"
            "\n"
            "Linearises the diagram at its initial state (or, with --equilibrium, at the\n"
-           "static equilibrium found first by Newton's method) and prints its natural\n"
-           "frequencies [Hz], damping ratios, eigenvalues [rad/s] and mode shapes per\n"
-           "state; writes the same as modes.csv into DIR. Real eigenvalues (rigid-body\n"
-           "and overdamped motions) are listed with frequency 0.\n"
+           "static equilibrium found first by damped Newton on x' = 0) and prints its\n"
+           "natural frequencies: damped f = |Im lambda| / 2 pi and undamped |lambda| / 2 pi\n"
+           "[Hz], damping ratios -Re lambda / |lambda|, eigenvalues lambda [rad/s] and the\n"
+           "mode shapes per state (coordinates and rates marked). Real eigenvalues\n"
+           "(overdamped and rigid-body motions) are listed with frequency 0 and their\n"
+           "decay rate. Writes the same as modes.csv into DIR.\n"
            "\n"
-           "Exit codes: 0 done, 1 no equilibrium found, 2 bad input.\n";
+           "  --variant NAME    apply a named set of identifier values (repeatable)\n"
+           "  --set NAME=VALUE  override an identifier (repeatable, after the variants)\n"
+           "  --equilibrium     linearise at the static equilibrium instead of the initial state\n"
+           "  --out DIR         output folder for modes.csv (created if missing; default:\n"
+           "                    current folder)\n"
+           "  --unsafe-lua      give Lua code the io, os and package libraries\n"
+           "\n"
+           "Exit codes: 0 done, 1 no equilibrium found (or the rates are not finite),\n"
+           "2 bad input.\n";
   return "usage: mechflow COMMAND FILE [options]\n"
          "\n"
          "mechflow simulates mechanisms with friction and contact described, with signal\n"
@@ -125,9 +136,10 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
     } else if (arg == "--unsafe-lua") {
       a.unsafe_lua = true;
     } else if (arg.rfind("--", 0) == 0) {
-      throw UsageError("unknown option '" + arg + "'" +
-                       blocks::DidYouMean(arg, {"--set", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"}) +
-                       "; see mechflow help " + a.command);
+      std::vector<std::string> options = {"--set", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
+      if (a.command == "modes") options.push_back("--equilibrium");
+      throw UsageError("unknown option '" + arg + "'" + blocks::DidYouMean(arg, options) + "; see mechflow help " +
+                       a.command);
     } else if (a.file.empty()) {
       a.file = arg;
     } else {

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "cli/modes_report.h"
 #include "cli/plot.h"
@@ -136,22 +137,45 @@ int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     err << args.file << ": the diagram has no continuous states; nothing to analyse\n";
     return 2;
   }
+  // where: the initial state, or the static equilibrium found from it
+  ModesReport report;
+  report.time = loaded.solver.t_start;
   blocks::Context ctx;
-  std::vector<double> x;
-  blocks::PrepareContext(diagram, loaded.solver.t_start, &ctx, &x);
-  if (args.equilibrium) blocks::FindEquilibrium(diagram, &ctx, &x);
-  const std::vector<std::string> states = blocks::StateNames(diagram);
-  // Mechanism coordinates ("block.q:dof") carry the mode shapes when present.
-  std::vector<bool> coordinates(states.size());
-  for (std::size_t i = 0; i < states.size(); ++i) coordinates[i] = states[i].find(".q:") != std::string::npos;
-  if (std::find(coordinates.begin(), coordinates.end(), true) == coordinates.end()) coordinates.clear();
-  const std::vector<blocks::Mode> modes =
-      blocks::ModalAnalysis(blocks::StateJacobian(diagram, &ctx, x), coordinates);
-  PrintModes(modes, states, x, args.equilibrium, out);
-  std::filesystem::create_directories(args.out_dir);
-  const std::string csv = (std::filesystem::path(args.out_dir) / "modes.csv").string();
-  WriteModesCsv(modes, states, csv);
-  out << "wrote " << csv << "\n";
+  blocks::PrepareContext(diagram, report.time, &ctx, &report.x);
+  if (args.equilibrium) report.equilibrium = blocks::FindEquilibrium(diagram, &ctx, &report.x);
+
+  // linearise; coordinates (a state whose rate is another state, or a
+  // mechanism's q) carry the mode shapes
+  const Eigen::MatrixXd A = blocks::StateJacobian(diagram, &ctx, report.x);
+  report.states = blocks::StateNames(diagram);
+  report.x.resize(report.states.size());
+  report.roles = blocks::FindStateRoles(A);
+  for (std::size_t i = 0; i < report.states.size(); ++i) {
+    if (report.states[i].find(".q:") != std::string::npos) report.roles.coordinate[i] = true;
+    if (report.states[i].find(".v:") != std::string::npos) report.roles.rate[i] = true;
+  }
+  std::vector<bool> normalise_on = report.roles.coordinate;
+  if (std::find(normalise_on.begin(), normalise_on.end(), true) == normalise_on.end()) normalise_on.clear();
+  report.modes = blocks::ModalAnalysis(A, normalise_on);
+
+  const auto count = [](std::size_t n, const char* what) {
+    return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+  };
+  out << "mechflow modes " << args.file << ": " << count(report.states.size(), "state") << ", "
+      << count(report.modes.size(), "mode") << "\n";
+  PrintModes(report, out);
+
+  // modes.csv in the output folder, as `run` writes its results
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(args.out_dir, ec);
+  if (ec) {
+    err << "cannot create output folder '" << args.out_dir << "': " << ec.message() << "\n";
+    return 2;
+  }
+  const fs::path csv = fs::absolute(fs::path(args.out_dir) / "modes.csv");
+  WriteModesCsv(report.modes, report.states, csv.string());
+  out << "wrote " << csv.string() << " (" << count(report.modes.size(), "mode") << ")\n";
   return 0;
 }
 

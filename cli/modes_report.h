@@ -1,6 +1,7 @@
 #pragma once
 // Output of `mechflow modes`: a table on the terminal and modes.csv.
 
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -9,10 +10,26 @@
 
 namespace mechflow::cli {
 
-void PrintModes(const std::vector<blocks::Mode>& modes, const std::vector<std::string>& states,
-                const std::vector<double>& x, bool at_equilibrium, std::ostream& out);
-// Columns: mode, frequency_hz, natural_frequency_hz, damping_ratio, lambda_re,
-// lambda_im, then one per state with the mode shape (real part).
+// Everything one linear analysis found, as the report shows it.
+struct ModesReport {
+  double time = 0.0;                                   // [s], where the diagram was linearised
+  std::optional<blocks::EquilibriumResult> equilibrium;  // set when linearised at a found equilibrium
+  std::vector<std::string> states;                     // "block.state", in state order
+  std::vector<double> x;                               // the state linearised at
+  blocks::StateRoles roles;                            // coordinates and rates, per state
+  std::vector<blocks::Mode> modes;                     // sorted by natural frequency
+};
+
+// Prints where the diagram was linearised (state values and roles), the modes
+// sorted by natural frequency (f damped and undamped [Hz], damping ratio,
+// lambda [rad/s], what kind of mode: real modes with their decay rate and time
+// constant), then the mode shapes as a table of states by modes.
+void PrintModes(const ModesReport& report, std::ostream& out);
+
+// Columns: mode (1-based index), frequency_hz (damped, |Im lambda| / 2 pi),
+// natural_frequency_hz (|lambda| / 2 pi), damping_ratio, lambda_re [1/s],
+// lambda_im [rad/s], then one per state with the mode shape (real part).
+// Numbers at full precision. Throws InputError when the file cannot be written.
 void WriteModesCsv(const std::vector<blocks::Mode>& modes, const std::vector<std::string>& states,
                    const std::string& path);
 

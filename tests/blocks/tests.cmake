@@ -12,3 +12,4 @@ mechflow_test(friction_from_normal_force_test unit tests/blocks/friction_from_no
 mechflow_test(sample_hold_test unit tests/blocks/sample_hold_test.cc)
 mechflow_test(mechanism_block_test unit tests/blocks/mechanism_block_test.cc)
 mechflow_test(suggest_test unit tests/blocks/suggest_test.cc)
+mechflow_test(linearization_test unit tests/blocks/linearization_test.cc)
