@@ -1,8 +1,9 @@
 #pragma once
 // Applied force and torque on a body: components are Parameters (constants
 // or functions of the mechanism's inputs, e.g. a controller's output), in
-// global axes or in the body's axes. The force acts at a body point.
-// Sensors: fx fy fz mx my mz (as given).
+// global axes or in the body's axes (`body_axes`). The force acts at `point`
+// (body frame); the torque is a pure moment. Sensors: fx fy fz mx my mz, as
+// given (in the axes chosen), always all six.
 
 #include <array>
 

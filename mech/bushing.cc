@@ -14,6 +14,10 @@ Bushing::Bushing(std::string name, std::string origin, int body1, Vec3 point1, i
   for (const char* s : {"fx", "fy", "fz", "mx", "my", "mz", "dx", "dy", "dz", "ax", "ay", "az"}) DeclareSensor(s);
 }
 
+Vec3 BushingCoincidentPoint(const Kinematics& kin, int body1, const Vec3& point1, int body2) {
+  return kin.body_pose[body2].Inverse() * PointPosition(kin, body1, point1);
+}
+
 void Bushing::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>, std::span<double> sensors) const {
   const Kinematics& kin = *ctx.kin;
   const Mat3& A1 = kin.body_pose[body1_].R;
@@ -32,7 +36,7 @@ void Bushing::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double
   }
   loads->AddForce(kin, body2_, p2, A1 * f);
   loads->AddTorque(kin, body2_, A1 * m);
-  loads->AddForce(kin, body1_, p1, -(A1 * f));
+  loads->AddForce(kin, body1_, p2, -(A1 * f));  // at p2: see the header
   loads->AddTorque(kin, body1_, -(A1 * m));
   for (int i = 0; i < 3; ++i) {
     sensors[i] = f(i);

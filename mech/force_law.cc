@@ -1,6 +1,8 @@
 #include "mech/force_law.h"
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 #include "mech/errors.h"
 
@@ -10,8 +12,13 @@ PointsLaw::PointsLaw(std::vector<double> x, std::vector<double> f, Interpolation
                      Extrapolation extrapolation, Parameter d, const std::string& origin)
     : x_(std::move(x)), f_(std::move(f)), interpolation_(interpolation), extrapolation_(extrapolation), d_(d) {
   const std::string where = origin.empty() ? "" : origin + ": ";
-  if (x_.size() != f_.size() || x_.size() < 2)
-    throw InputError(where + "a points table needs at least two (x, F) pairs");
+  if (x_.size() != f_.size())
+    throw InputError(where + "a points table needs as many F values as x values (" + std::to_string(x_.size()) +
+                     " x, " + std::to_string(f_.size()) + " F)");
+  if (x_.size() < 2) throw InputError(where + "a points table needs at least two (x, F) pairs");
+  for (std::size_t i = 0; i < x_.size(); ++i)
+    if (!std::isfinite(x_[i]) || !std::isfinite(f_[i]))
+      throw InputError(where + "points table: point " + std::to_string(i + 1) + " is not finite");
   for (std::size_t i = 1; i < x_.size(); ++i)
     if (!(x_[i] > x_[i - 1]))
       throw InputError(where + "points table: x must increase strictly (point " + std::to_string(i + 1) + ")");
@@ -63,11 +70,23 @@ double PointsLaw::Table(double x) const {
 
 double PointsLaw::Force(double x, double v, const ElementContext& ctx) const { return Table(x) - d_.Get(ctx) * v; }
 
+ExpressionLaw::ExpressionLaw(std::shared_ptr<const ScalarFunction> function, bool uses_inputs)
+    : function_(std::move(function)), uses_inputs_(uses_inputs) {
+  if (!function_) throw std::invalid_argument("ExpressionLaw: no function");
+}
+
 double ExpressionLaw::Force(double x, double v, const ElementContext& ctx) const {
   std::array<double, 3 + kMaxInputs> args;
   args[0] = x;
   args[1] = v;
   const std::size_t extra = ctx.parameter_args.size();  // [t, inputs...]
+  if (extra > args.size() - 2)
+    throw SimulationError("expression force law: the mechanism has " + std::to_string(extra - 1) +
+                          " inputs; an expression law takes at most " + std::to_string(kMaxInputs));
+  if (extra == 0) {  // a context without parameter arguments (no mechanism): t alone
+    args[2] = ctx.t;
+    return function_->Evaluate(std::span<const double>(args.data(), 3));
+  }
   for (std::size_t i = 0; i < extra; ++i) args[2 + i] = ctx.parameter_args[i];
   return function_->Evaluate(std::span<const double>(args.data(), 2 + extra));
 }

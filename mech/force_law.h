@@ -12,6 +12,16 @@
 //
 // Every parameter is a mech::Parameter (constant or a function of the
 // mechanism's inputs).
+//
+// Linear's x0 is always a value here: "unset" in a model means the initial
+// length (bipolar: BipolarLength in the initial configuration) or the
+// initial coordinate (joint force); the loader resolves it before it builds
+// the law, so the element needs no run state for it.
+//
+// Laws are immutable after construction and Force() keeps its scratch on the
+// stack, so one law may be evaluated from several threads; the ScalarFunction
+// of an Expression law decides that for itself (compiled Lua: one mechanism
+// per thread).
 
 #include <array>
 #include <memory>
@@ -47,8 +57,11 @@ class PointsLaw final : public ForceLaw {
  public:
   enum class Interpolation { kLinear, kSpline };
   enum class Extrapolation { kLinear, kClamp };
-  // Throws InputError (starting with `origin`) for fewer than two points or x
-  // not strictly increasing.
+  // Throws InputError (starting with `origin`) for fewer than two points, x
+  // and F of different lengths, a non-finite value, or x not strictly
+  // increasing. Beyond the table: kLinear continues the end segment (for a
+  // spline: its end tangent), so F and its slope stay continuous; kClamp
+  // holds the end value.
   PointsLaw(std::vector<double> x, std::vector<double> f, Interpolation interpolation, Extrapolation extrapolation,
             Parameter d, const std::string& origin);
   double Force(double x, double v, const ElementContext& ctx) const override;
@@ -65,10 +78,11 @@ class PointsLaw final : public ForceLaw {
 class ExpressionLaw final : public ForceLaw {
  public:
   static constexpr int kMaxInputs = 32;
-  // `function` takes [x, v, t, inputs...]; at most kMaxInputs inputs.
+  // `function` takes [x, v, t, inputs...]: x and v, then ctx.parameter_args
+  // ([t, inputs...]) copied into a stack buffer (no allocation). A mechanism
+  // with more than kMaxInputs inputs makes Force() throw SimulationError.
   // `uses_inputs`: whether the expression reads any input.
-  ExpressionLaw(std::shared_ptr<const ScalarFunction> function, bool uses_inputs)
-      : function_(std::move(function)), uses_inputs_(uses_inputs) {}
+  ExpressionLaw(std::shared_ptr<const ScalarFunction> function, bool uses_inputs);
   double Force(double x, double v, const ElementContext& ctx) const override;
   bool depends_on_inputs() const override { return uses_inputs_; }
 
