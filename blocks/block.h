@@ -95,16 +95,32 @@ class Block {
   // Periodic blocks: called at each sample hit with inputs valid.
   void OnSampleHit(const BlockContext& ctx) const { DoSampleHit(ctx); }
   // After initialisation and after every event: make modes agree with the
-  // current inputs and states (e.g. a saturation whose input jumped).
-  // Returns true when a mode changed, so outputs must be recomputed.
+  // current inputs and states (e.g. a saturation whose input jumped). The
+  // block may change continuous states too (an integrator resets on a jumped
+  // trigger). Returns true when a mode or state changed, so outputs must be
+  // recomputed.
   bool UpdateModes(const BlockContext& ctx) const { return DoUpdateModes(ctx); }
-  // Blocks whose states live on a manifold (closed loops, unit quaternions):
-  // after every accepted step the solver asks for `correction`, this block's
-  // slice of the change that puts ctx.state() back on the manifold (states
-  // are read-only here). `error` is its slice of the solver's error estimate
-  // (empty when the solver passes none), which the block may project too.
-  // Must not allocate; throws SimulationError when it cannot project.
-  // The solver projects only after steps: Initialize must start on the manifold.
+  // Blocks whose states live on a manifold (closed loops, unit quaternions)
+  // declare a projection (DeclareProjection). After every step it takes, the
+  // solver asks each of them for `correction`: this block's slice of the
+  // change (same layout as its states) that puts ctx.state() back on the
+  // manifold; the solver adds it. Here:
+  //   - ctx.time() and ctx.state() are current; the states are read-only
+  //     (they are the solver's own vector), and inputs and outputs are not
+  //     evaluated for this call, so they may be stale;
+  //   - `error` is the block's slice of the solver's local error estimate,
+  //     empty when the solver passes none. The block may project it onto the
+  //     manifold's tangent space too, or leave it alone: on a unit circle,
+  //     projecting it made CVODE fall back to order 1 and take 40 times the
+  //     steps, so leave it unless a measurement says otherwise;
+  //   - it must not allocate; it throws SimulationError when it cannot
+  //     project, and the solver retries the step with a smaller one, failing
+  //     the run with the block's message if that keeps happening.
+  // Projection removes the integrator's drift from a manifold that the exact
+  // solution keeps; it is no cure for equations that leave the manifold.
+  // The solver projects only after steps, never at the start or after an
+  // event: Initialize must put the states on the manifold, and so must any
+  // event, sample-hit or UpdateModes handler that changes them.
   void Project(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const {
     DoProject(ctx, correction, error);
   }

@@ -57,7 +57,11 @@ class BlockContext {
     return {ctx_->signals.data() + layout_->output_offset[port],
             static_cast<std::size_t>(layout_->output_width[port])};
   }
-  // Continuous states. Blocks change them only in Initialize and event handlers.
+  // Continuous states. Blocks change them only in Initialize, the event and
+  // sample-hit handlers and UpdateModes (an integrator resets on a trigger
+  // that jumped, or snaps onto a limit it has reached); the solver is
+  // re-initialised after each of those. Everywhere else (outputs,
+  // derivatives, zero crossings, Project) they are read-only.
   std::span<double> state() const {
     return {ctx_->x + layout_->first_state, static_cast<std::size_t>(layout_->num_states)};
   }

@@ -12,9 +12,11 @@
 //   while t < t_end:
 //     stop := min(next sample hit, t_end)         (the integrator never passes it)
 //     integrate towards min(next output time, stop), locating zero crossings
+//       (and, when a block declares a projection, projecting after each step)
 //     on reaching an output time: record a row from the dense interpolant
 //     on a zero crossing at t_e: outputs at t_e; each fired block handles its
-//       crossing (may change modes and states); settle modes; re-initialise
+//       crossing (may change modes and states); settle modes; re-initialise;
+//       a crossing that fires 100 times at one instant fails the run
 //     on reaching a sample hit: periodic blocks update; settle; re-initialise
 //   on solver failure: record the last state reached and report time and flag
 //
@@ -61,6 +63,8 @@ struct SolverStats {
   long events = 0;           // zero crossings handled
   long sample_hits = 0;
   long reinits = 0;
+  long projections = 0;          // projection calls (0 unless a block declares one)
+  long projection_failures = 0;  // failed projections (each retries its step smaller)
 };
 
 // One handled zero crossing, kept so a user can ask when contacts, impacts or
@@ -122,8 +126,16 @@ class Simulator {
   std::string callback_failure_;         // reason stored by a failed callback
   int callback_failures_ = 0;
   bool linear_solver_attached_ = false;
-  // A crossing that fires again and again at one instant is a modelling error.
+  bool projection_attached_ = false;     // CVODE's projection counters exist only then
+  // A crossing that fires again and again at one instant is a modelling error
+  // (a handler that leaves it where it fires again). CVODE locates each
+  // refiring a hair after the last, never at the very same t, so "one
+  // instant" is a run of firings of one crossing, each within
+  // kInstant * max(1, |t|) seconds of the one before.
   static constexpr int kMaxEventsPerInstant = 100;
+  static constexpr double kInstant = 1e-9;
+  std::vector<double> last_fired_;       // per crossing: when it last fired
+  std::vector<int> fired_in_a_row_;      // per crossing: firings in its current instant
   std::string solver_message_;           // last message from CVODE's error handler
   std::unique_ptr<Solver> solver_;
 };

@@ -34,8 +34,10 @@ std::string ClosestName(std::string_view name, const std::vector<std::string>& c
       best_distance = d;
     }
   }
-  // Short names are only one typo away from many others: allow one edit there.
-  const int limit = name.size() <= 3 ? 1 : std::max<int>(2, static_cast<int>(std::max(name.size(), best.size())) / 3);
+  // About a third of the typed name, rounded, and at least one edit: names
+  // up to four letters are one typo away from many others and get
+  // suggestions one edit away only.
+  const int limit = std::max(1, static_cast<int>(name.size() + 1) / 3);
   return best_distance <= limit ? best : std::string();
 }
 

@@ -11,8 +11,9 @@ namespace mechflow::blocks {
 int EditDistance(std::string_view a, std::string_view b);
 
 // The candidate closest to `name`, or "" when none is close enough to be a
-// plausible typo (distance more than a third of the longer name, at least 2;
-// names of up to three letters: more than 1).
+// plausible typo: the distance may be about a third of the typed name's
+// length (rounded), at least 1, so names of up to four letters get only
+// suggestions one edit away, 5 to 7 letters two, 8 to 10 three.
 std::string ClosestName(std::string_view name, const std::vector<std::string>& candidates);
 
 // " (did you mean 'x'?)" or "" — ready to append to a message.

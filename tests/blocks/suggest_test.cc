@@ -1,4 +1,5 @@
-// "Did you mean": swapped letters count once; short names get only close suggestions.
+// "Did you mean": swapped letters count once; the distance allowed is about a
+// third of the typed name, so short names get only close suggestions.
 #include "blocks/suggest.h"
 
 #include <gtest/gtest.h>
@@ -18,6 +19,25 @@ TEST(SuggestTest, ShortNamesGetNoFarFetchedSuggestion) {
   EXPECT_EQ(ClosestName("v", {"v0", "q0"}), "v0");    // one edit
   EXPECT_EQ(ClosestName("omga", {"omega", "alpha"}), "omega");
   EXPECT_EQ(DidYouMean("zzzz", {"mass"}), "");
+}
+
+TEST(SuggestTest, DistanceAllowedGrowsWithAThirdOfTheName) {
+  // one letter: only one edit
+  EXPECT_EQ(ClosestName("k", {"c"}), "c");
+  EXPECT_EQ(ClosestName("k", {"mu", "xy"}), "");
+  // up to four letters: one edit
+  EXPECT_EQ(ClosestName("rmap", {"ramp"}), "ramp");  // a swap
+  EXPECT_EQ(ClosestName("step", {"sine", "stop"}), "stop");
+  EXPECT_EQ(ClosestName("mass", {"max"}), "");       // two edits
+  EXPECT_EQ(ClosestName("tabl", {"abs"}), "");
+  // five to seven letters: two edits
+  EXPECT_EQ(ClosestName("sinus", {"sine"}), "sine");
+  EXPECT_EQ(ClosestName("stifnes", {"stiffness"}), "stiffness");
+  EXPECT_EQ(ClosestName("offst", {"output"}), "");   // four edits
+  // eight to ten letters: three edits
+  EXPECT_EQ(ClosestName("dampng_k", {"damping"}), "damping");
+  EXPECT_EQ(ClosestName("tme_cnst", {"time_constant"}), "");  // five edits
+  EXPECT_EQ(ClosestName("time_const", {"time_constant"}), "time_constant");
 }
 
 }  // namespace

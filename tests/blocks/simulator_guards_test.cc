@@ -1,0 +1,124 @@
+// Simulator guards: a crossing that keeps firing at one instant fails the run
+// instead of looping; a run that fails before the solver is set up prints
+// nothing from SUNDIALS.
+
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "blocks/diagram_builder.h"
+#include "blocks/simulator.h"
+#include "mech/errors.h"
+
+namespace mechflow::blocks {
+namespace {
+
+// x' = 1 from x = 0; crossing 0 fires when x rises through 1, and its handler
+// puts x back `setback` below 1, so it fires again straight away: a modelling
+// error (a "reset" that does not leave the switching surface).
+class Stubborn : public Block {
+ public:
+  Stubborn(std::string name, double setback) : Block("stubborn", std::move(name)), setback_(setback) {
+    DeclareOutputPort("x");
+    DeclareNoFeedthrough();
+    DeclareContinuousStates(1);
+    DeclareZeroCrossing(CrossingDirection::kRising);
+  }
+
+ protected:
+  void DoInitialize(const BlockContext& ctx) const override { ctx.state()[0] = 0.0; }
+  void DoCalcOutput(int, const BlockContext& ctx) const override { ctx.output(0)[0] = ctx.state()[0]; }
+  void DoCalcDerivatives(const BlockContext& ctx) const override { ctx.derivative()[0] = 1.0; }
+  void DoCalcZeroCrossings(const BlockContext& ctx) const override {
+    ctx.zero_crossings()[0] = ctx.state()[0] - 1.0;
+  }
+  void DoZeroCrossing(int, int, const BlockContext& ctx) const override { ctx.state()[0] = 1.0 - setback_; }
+
+ private:
+  double setback_;
+};
+
+SolverOptions Options() {
+  SolverOptions options;
+  options.t_end = 3.0;
+  options.rtol = 1e-8;
+  options.atol = 1e-10;
+  options.output_interval = 0.1;
+  return options;
+}
+
+TEST(SimulatorGuardsTest, ACrossingThatKeepsFiringFailsTheRun) {
+  for (const double setback : {1e-13, 1e-11, 1e-10}) {
+    DiagramBuilder builder;
+    builder.AddBlock(std::make_unique<Stubborn>("stubborn", setback));
+    auto diagram = builder.Build();
+    Simulator sim(*diagram, Options(), {diagram->ResolveSignal("stubborn.x")});
+    const RunOutcome outcome = sim.Run();
+    ASSERT_FALSE(outcome.ok) << "setback " << setback;
+    EXPECT_NE(outcome.failure.find("block 'stubborn' crossing 0 keeps firing at t = 1.0"), std::string::npos)
+        << outcome.failure;
+    EXPECT_NEAR(outcome.t_reached, 1.0, 1e-6);
+    // the events handled and the rows before the failure are kept
+    EXPECT_EQ(sim.stats().events, 100);
+    ASSERT_EQ(sim.events().size(), 100u);
+    EXPECT_NEAR(sim.events().back().time, 1.0, 1e-6);
+    const Results& r = sim.results();
+    ASSERT_GE(r.num_rows(), 10);
+    EXPECT_NEAR(r.at(10, 0), 1.0, 1e-12);
+    EXPECT_NEAR(r.at(10, 1), 1.0, 1e-6);
+  }
+}
+
+TEST(SimulatorGuardsTest, EventsThatMoveOnAreNotStopped) {
+  // the same block with a real setback fires every 0.25 s: 11 events in 3 s
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<Stubborn>("sawtooth", 0.25));
+  auto diagram = builder.Build();
+  Simulator sim(*diagram, Options(), {diagram->ResolveSignal("sawtooth.x")});
+  const RunOutcome outcome = sim.Run();
+  ASSERT_TRUE(outcome.ok) << outcome.failure;
+  EXPECT_EQ(sim.stats().events, 8);  // 1.0, 1.25, ..., 2.75
+}
+
+// Fails the run at t_start, before the solver is set up: its modes cannot be
+// made to agree. It declares a projection, so the projection's counters are
+// asked for too.
+class Unsettled : public Block {
+ public:
+  Unsettled() : Block("unsettled", "u") {
+    DeclareOutputPort("x");
+    DeclareNoFeedthrough();
+    DeclareContinuousStates(1);
+    DeclareProjection();
+  }
+
+ protected:
+  void DoCalcOutput(int, const BlockContext& ctx) const override { ctx.output(0)[0] = ctx.state()[0]; }
+  bool DoUpdateModes(const BlockContext&) const override {
+    throw SimulationError("unsettled: no mode fits at the start");
+  }
+};
+
+TEST(SimulatorGuardsTest, AFailureBeforeTheSolverIsSetUpPrintsNothing) {
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<Unsettled>());
+  auto diagram = builder.Build();
+  Simulator sim(*diagram, Options(), {diagram->ResolveSignal("u.x")});
+  ::testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStdout();
+  const RunOutcome outcome = sim.Run();
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_EQ(outcome.failure, "unsettled: no mode fits at the start");
+  EXPECT_EQ(outcome.t_reached, 0.0);
+  EXPECT_EQ(err, "");  // no "[CVLS ERROR] ... Linear solver memory is NULL"
+  EXPECT_EQ(out, "");
+  EXPECT_EQ(sim.stats().steps, 0);
+  EXPECT_EQ(sim.stats().jac_evals, 0);
+  EXPECT_EQ(sim.stats().projections, 0);
+}
+
+}  // namespace
+}  // namespace mechflow::blocks
