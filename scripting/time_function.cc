@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
-#include <sstream>
+#include <limits>
+#include <numbers>
+#include <string_view>
 
 #include "blocks/suggest.h"
 #include "mech/errors.h"
@@ -13,293 +16,783 @@ namespace mechflow::scripting {
 namespace {
 
 using mech::Jet;
-using Op = CompiledTimeFunction::Op;
-using Instruction = CompiledTimeFunction::Instruction;
 
-enum Function1 { kSin, kCos, kTan, kAsin, kAcos, kAtan, kExp, kLn, kSqrt, kSqr, kAbs, kSign, kSinh, kCosh, kTanh };
-enum Function2 { kMin, kMax };
+// ---------------------------------------------------------------------------
+// the derivative rules
 
-struct Named {
-  const char* name;
-  int arity;
-  int id;
+// (value, d/dt, d2/dt2); no default member initialisers, so that the
+// evaluation stack costs nothing to set up
+struct Triple {
+  double v, d, dd;
 };
-constexpr Named kFunctions[] = {
-    {"sin", 1, kSin},     {"cos", 1, kCos},       {"tan", 1, kTan},       {"asin", 1, kAsin},
-    {"arcsin", 1, kAsin}, {"acos", 1, kAcos},     {"arccos", 1, kAcos},   {"atan", 1, kAtan},
-    {"arctan", 1, kAtan}, {"exp", 1, kExp},       {"ln", 1, kLn},         {"log", 1, kLn},
-    {"sqrt", 1, kSqrt},   {"sqr", 1, kSqr},       {"abs", 1, kAbs},       {"sign", 1, kSign},
-    {"sinh", 1, kSinh},   {"cosh", 1, kCosh},     {"tanh", 1, kTanh},     {"min", 2, kMin},
-    {"max", 2, kMax}};
 
-// f(u) with f, f', f'' at u.value: the chain rule for a triple.
-Jet Chain(const Jet& u, double f, double f1, double f2) {
-  return {f, f1 * u.rate, f2 * u.rate * u.rate + f1 * u.acceleration};
+bool IsFinite(const Triple& x) { return std::isfinite(x.v) && std::isfinite(x.d) && std::isfinite(x.dd); }
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// f(u), given f, f' and f'' at u.v: the chain rule to second order
+Triple Chain(const Triple& u, double f, double f1, double f2) { return {f, f1 * u.d, f2 * u.d * u.d + f1 * u.dd}; }
+
+Triple Multiply(const Triple& a, const Triple& b) {
+  return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + 2 * a.d * b.d + a.v * b.dd};
 }
 
-Jet Apply1(int fn, const Jet& u) {
-  const double x = u.value;
-  switch (fn) {
-    case kSin: return Chain(u, std::sin(x), std::cos(x), -std::sin(x));
-    case kCos: return Chain(u, std::cos(x), -std::sin(x), -std::cos(x));
-    case kTan: {
-      const double tn = std::tan(x), s2 = 1 + tn * tn;
-      return Chain(u, tn, s2, 2 * tn * s2);
-    }
-    case kAsin: {
-      const double r = 1 / std::sqrt(1 - x * x);
-      return Chain(u, std::asin(x), r, x * r * r * r);
-    }
-    case kAcos: {
-      const double r = 1 / std::sqrt(1 - x * x);
-      return Chain(u, std::acos(x), -r, -x * r * r * r);
-    }
-    case kAtan: {
-      const double r = 1 / (1 + x * x);
-      return Chain(u, std::atan(x), r, -2 * x * r * r);
-    }
-    case kExp: {
-      const double e = std::exp(x);
-      return Chain(u, e, e, e);
-    }
-    case kLn: return Chain(u, std::log(x), 1 / x, -1 / (x * x));
-    case kSqrt: {
-      const double s = std::sqrt(x);
-      return Chain(u, s, 0.5 / s, -0.25 / (s * x));
-    }
-    case kSqr: return Chain(u, x * x, 2 * x, 2);
-    case kAbs: {
-      const double sg = x > 0 ? 1.0 : x < 0 ? -1.0 : 0.0;
-      return Chain(u, std::abs(x), sg, 0);
-    }
-    case kSign: return {x > 0 ? 1.0 : x < 0 ? -1.0 : 0.0, 0, 0};
-    case kSinh: return Chain(u, std::sinh(x), std::cosh(x), std::sinh(x));
-    case kCosh: return Chain(u, std::cosh(x), std::sinh(x), std::cosh(x));
-    case kTanh: {
-      const double th = std::tanh(x), s2 = 1 - th * th;
-      return Chain(u, th, s2, -2 * th * s2);
-    }
-  }
-  return u;
+// q = a/b: q' = (a' - q b')/b, q'' = (a'' - 2 q' b' - q b'')/b
+Triple Divide(const Triple& a, const Triple& b) {
+  const double q = a.v / b.v;
+  const double q1 = (a.d - q * b.d) / b.v;
+  return {q, q1, (a.dd - 2 * q1 * b.d - q * b.dd) / b.v};
 }
 
-Jet Multiply(const Jet& a, const Jet& b) {
-  return {a.value * b.value, a.rate * b.value + a.value * b.rate,
-          a.acceleration * b.value + 2 * a.rate * b.rate + a.value * b.acceleration};
+// c/x for a constant c: Divide with a' = a'' = 0
+Triple DivideInto(double c, const Triple& x) {
+  const double q = c / x.v;
+  const double q1 = -q * x.d / x.v;
+  return {q, q1, (-2 * q1 * x.d - q * x.dd) / x.v};
 }
 
-Jet Divide(const Jet& a, const Jet& b) {
-  // q = a/b: q' = (a' - q b')/b, q'' = (a'' - 2 q' b' - q b'')/b
-  const double q = a.value / b.value;
-  const double q1 = (a.rate - q * b.rate) / b.value;
-  const double q2 = (a.acceleration - 2 * q1 * b.rate - q * b.acceleration) / b.value;
-  return {q, q1, q2};
+// x^n for a constant n; n = 0, 1, 2 avoid the 0*inf of the general rule at x = 0
+Triple PowerOfConstant(const Triple& x, double n) {
+  if (n == 0) return {std::pow(x.v, n), 0, 0};
+  if (n == 1) return {std::pow(x.v, n), x.d, x.dd};
+  if (n == 2) return Chain(x, std::pow(x.v, n), 2 * x.v, 2);
+  return Chain(x, std::pow(x.v, n), n * std::pow(x.v, n - 1), n * (n - 1) * std::pow(x.v, n - 2));
 }
 
-Jet Power(const Jet& a, const Jet& b) {
-  if (b.rate == 0.0 && b.acceleration == 0.0) {  // constant exponent: power rule
-    const double n = b.value, x = a.value;
-    return Chain(a, std::pow(x, n), n * std::pow(x, n - 1), n * (n - 1) * std::pow(x, n - 2));
-  }
-  // a^b = exp(b ln a), a > 0
-  const Jet ln_a = Apply1(kLn, a);
-  return Apply1(kExp, Multiply(b, ln_a));
+// c^x for a constant c > 0: (c^x)' = c^x ln(c) x', (c^x)'' = c^x (ln(c) x'' + (ln(c) x')^2)
+Triple ConstantToPower(double c, const Triple& x) {
+  const double p = std::pow(c, x.v), l = std::log(c);
+  const double g = l * x.d;
+  return {p, p * g, p * (l * x.dd + g * g)};
 }
 
-class Parser {
+// a^b; when b does not move at this instant the power rule, else through
+// exp(b ln a) (a > 0): with g = (ln p)' = b' ln a + b a'/a,
+// p' = p g, p'' = p (g' + g^2), g' = b'' ln a + 2 b' a'/a + b (a''/a - (a'/a)^2)
+Triple Power(const Triple& a, const Triple& b) {
+  if (b.d == 0 && b.dd == 0) return PowerOfConstant(a, b.v);
+  const double p = std::pow(a.v, b.v), l = std::log(a.v), r = a.d / a.v;
+  const double g = b.d * l + b.v * r;
+  const double g1 = b.dd * l + 2 * b.d * r + b.v * (a.dd / a.v - r * r);
+  return {p, p * g, p * (g1 + g * g)};
+}
+
+// angle of (x, y): with N = x y' - y x' and D = x^2 + y^2, angle' = N/D and
+// angle'' = (N' - angle' D')/D, N' = x y'' - y x'', D' = 2 (x x' + y y')
+Triple Atan2(const Triple& y, const Triple& x) {
+  const double den = x.v * x.v + y.v * y.v;
+  const double w = (x.v * y.d - y.v * x.d) / den;
+  const double num1 = x.v * y.dd - y.v * x.dd;
+  const double den1 = 2 * (x.v * x.d + y.v * y.d);
+  return {std::atan2(y.v, x.v), w, (num1 - w * den1) / den};
+}
+
+// true when a <= b just after this instant: compare values, then rates, then accelerations
+bool NotAboveJustAfter(const Triple& a, const Triple& b) {
+  if (a.v != b.v) return a.v < b.v;
+  if (a.d != b.d) return a.d < b.d;
+  return a.dd <= b.dd;
+}
+
+// the derivatives of the branch that is active (just after the instant, at a tie);
+// NaN is passed on rather than lost in a comparison
+Triple Min(const Triple& a, const Triple& b) {
+  if (std::isnan(a.v) || std::isnan(b.v)) return {kNaN, kNaN, kNaN};
+  return NotAboveJustAfter(a, b) ? a : b;
+}
+Triple Max(const Triple& a, const Triple& b) {
+  if (std::isnan(a.v) || std::isnan(b.v)) return {kNaN, kNaN, kNaN};
+  return NotAboveJustAfter(b, a) ? a : b;
+}
+
+// |x| with the slope of the side x is on (or moves to, at x = 0)
+Triple Abs(const Triple& x) {
+  const double s = x.v > 0    ? 1.0
+                   : x.v < 0  ? -1.0
+                   : x.d > 0  ? 1.0
+                   : x.d < 0  ? -1.0
+                   : x.dd > 0 ? 1.0
+                   : x.dd < 0 ? -1.0
+                              : 0.0;
+  return {std::abs(x.v), s * x.d, s * x.dd};
+}
+
+Triple Sign(const Triple& x) { return {x.v > 0 ? 1.0 : x.v < 0 ? -1.0 : x.v == 0 ? 0.0 : x.v, 0, 0}; }
+
+// shortest text that reads back as the same double ("0.1", "-inf"); "nan"
+// whatever the sign bit (which depends on the CPU)
+std::string Number(double x) {
+  if (std::isnan(x)) return "nan";
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, result.ptr);
+}
+
+// ---------------------------------------------------------------------------
+// names
+
+struct FunctionInfo {
+  const char* name;
+  int min_arguments, max_arguments;
+};
+constexpr int kAny = 1 << 20;
+constexpr FunctionInfo kFunctions[] = {
+    {"sin", 1, 1},    {"cos", 1, 1},    {"tan", 1, 1},    {"asin", 1, 1}, {"acos", 1, 1}, {"atan", 1, 2},
+    {"arcsin", 1, 1}, {"arccos", 1, 1}, {"arctan", 1, 2}, {"sinh", 1, 1}, {"cosh", 1, 1}, {"tanh", 1, 1},
+    {"exp", 1, 1},    {"ln", 1, 1},     {"log", 1, 1},    {"sqrt", 1, 1}, {"sqr", 1, 1},  {"abs", 1, 1},
+    {"sign", 1, 1},   {"min", 2, kAny}, {"max", 2, kAny},
+};
+
+const FunctionInfo* FindFunction(const std::string& lower) {
+  for (const FunctionInfo& f : kFunctions)
+    if (lower == f.name) return &f;
+  return nullptr;
+}
+
+std::vector<std::string> FunctionNames() {
+  std::vector<std::string> names;
+  for (const FunctionInfo& f : kFunctions) names.push_back(f.name);
+  return names;
+}
+
+constexpr const char* kLuaKeywords[] = {"and",      "break",  "do",   "else", "elseif", "end",  "false", "for",
+                                        "function", "goto",   "if",   "in",   "local",  "nil",  "not",   "or",
+                                        "repeat",   "return", "then", "true", "until",  "while"};
+
+bool IsLuaKeyword(const std::string& lower) {
+  return std::find_if(std::begin(kLuaKeywords), std::end(kLuaKeywords), [&](const char* k) { return lower == k; }) !=
+         std::end(kLuaKeywords);
+}
+
+// the Lua tokens that are not part of a time function, longest first
+constexpr const char* kLuaSymbols[] = {"...", "--", "..", "==", "~=", "<=", ">=", "<<", ">>", "//",
+                                       "::",  "<",  ">",  "=",  "~",  "%",  "#",  "&",  "|",  "[",
+                                       "]",   "{",  "}",  ";",  ":",  ".",  "\"", "'"};
+
+bool IsNameStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
+bool IsNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// compiler: text -> tokens -> tree (constants folded) -> postfix program
+
+class TimeFunctionCompiler {
  public:
-  Parser(const std::string& text, const IdentifierTable& ids, const std::string& what)
-      : s_(text), ids_(ids), what_(what) {}
+  using Op = CompiledTimeFunction::Op;
+  using Instruction = CompiledTimeFunction::Instruction;
 
-  std::vector<Instruction> Parse(bool* uses_time) {
-    Expression();
-    Skip();
-    if (pos_ < s_.size()) Fail("unexpected '" + std::string(1, s_[pos_]) + "'");
-    *uses_time = uses_time_;
-    return std::move(tape_);
+  TimeFunctionCompiler(const IdentifierTable& identifiers, CompiledTimeFunction* out)
+      : s_(out->text_), ids_(identifiers), out_(out) {}
+
+  void Compile() {
+    if (s_.size() > static_cast<std::size_t>(CompiledTimeFunction::kMaxLength))
+      throw InputError(out_->what_ + ": time function of " + std::to_string(s_.size()) + " characters: longer than " +
+                       std::to_string(CompiledTimeFunction::kMaxLength) + "; simplify it or use identifiers");
+    Next();
+    const int root = Expression();
+    if (token_.kind != Token::kEnd) FailAfterOperand("an operator (+ - * / ^) or the end of the expression");
+    Emit(root);
+    if (max_depth_ > CompiledTimeFunction::kMaxStackDepth)
+      Fail("needs " + std::to_string(max_depth_) + " evaluation stack slots, more than the " +
+           std::to_string(CompiledTimeFunction::kMaxStackDepth) +
+           " available; write deeply nested parts first in sums and products, or simplify");
+    out_->stack_depth_ = max_depth_;
   }
 
  private:
-  [[noreturn]] void Fail(const std::string& message) const {
-    std::ostringstream out;
-    out << what_ << ": time function '" << s_ << "': " << message << " at column " << pos_ + 1
-        << " (expected numbers, identifiers, t, + - * / ^, parentheses and the functions sin cos tan asin acos "
-           "atan exp ln sqrt sqr abs sign min max sinh cosh tanh)";
-    throw InputError(out.str());
-  }
-  void Skip() {
-    while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
-  }
-  bool Accept(char c) {
-    Skip();
-    if (pos_ < s_.size() && s_[pos_] == c) {
-      ++pos_;
-      return true;
-    }
-    return false;
-  }
-  void Emit(Op op, double value = 0.0, int function = 0) { tape_.push_back({op, value, function}); }
+  struct Token {
+    enum Kind { kNumber, kName, kSymbol, kEnd } kind = kEnd;
+    int begin = 0, end = 0;  // [begin, end) in the text
+    double number = 0.0;
+    std::string text;  // lower-case for names
+  };
+  struct Node {
+    Op op;
+    double value = 0.0;  // kConst
+    int a = -1, b = -1;  // operands
+    int begin = 0, end = 0;
+    bool constant = false;
+  };
 
-  void Expression() {  // sum := product (('+'|'-') product)*
-    Product();
-    for (;;) {
-      if (Accept('+')) {
-        Product();
-        Emit(Op::kAdd);
-      } else if (Accept('-')) {
-        Product();
-        Emit(Op::kSub);
-      } else {
-        return;
-      }
-    }
+  // --- messages
+
+  [[noreturn]] void Fail(const std::string& message) const {
+    throw InputError(out_->what_ + ": time function '" + s_ + "': " + message);
   }
-  void Product() {  // product := unary (('*'|'/') unary)*
-    Unary();
-    for (;;) {
-      if (Accept('*')) {
-        Unary();
-        Emit(Op::kMul);
-      } else if (Accept('/')) {
-        Unary();
-        Emit(Op::kDiv);
-      } else {
-        return;
-      }
-    }
+
+  std::string Column(int at) const { return " at column " + std::to_string(at + 1); }
+
+  // a token and where it is, for "found ..."
+  std::string Found(const Token& token) const {
+    if (token.kind == Token::kEnd) return "the end of the expression";
+    if (token.kind == Token::kSymbol && (s_[token.begin] == '"' || s_[token.begin] == '\''))
+      return "a string" + Column(token.begin);
+    return "'" + s_.substr(token.begin, token.end - token.begin) + "'" + Column(token.begin);
   }
-  void Unary() {  // unary := ('-'|'+') unary | power
-    if (Accept('-')) {
-      Unary();
-      Emit(Op::kNeg);
-    } else if (Accept('+')) {
-      Unary();
-    } else {
-      Power();
-    }
+
+  // why a token that looks like Lua is not accepted ("" for others)
+  std::string WhyNot(const Token& token) const {
+    const std::string text = s_.substr(token.begin, token.end - token.begin);
+    if (token.kind == Token::kName && IsLuaKeyword(token.text))
+      return "Lua keywords (and, or, not, nil, ...) are not part of a time function";
+    if (token.kind != Token::kSymbol) return "";
+    if (text == "--") return "in Lua '--' starts a comment; write '- -' or '+' to negate twice";
+    if (text == "..") return "'..' joins strings in Lua; time functions have only + - * / ^";
+    if (text == "//" || text == "%" || text == "&" || text == "|" || text == "~" || text == "<<" || text == ">>")
+      return "time functions have only the operators + - * / ^";
+    if (text == "==" || text == "~=" || text == "<" || text == "<=" || text == ">" || text == ">=")
+      return "time functions have no comparisons";
+    if (text == "\"" || text == "'") return "time functions have no strings";
+    if (text == "=") return "a time function is an expression, not an assignment";
+    return "";
   }
-  void Power() {  // power := primary ('^' unary)?   (right-associative, as in Lua)
-    Primary();
-    if (Accept('^')) {
-      Unary();
-      Emit(Op::kPow);
-    }
+
+  // a token that cannot come where an operand (number, name, '(') must
+  [[noreturn]] void FailExpectedOperand() const {
+    const std::string why = WhyNot(token_);
+    Fail("expected a number, a name, '(' or a sign, found " + Found(token_) + (why.empty() ? "" : "; " + why));
   }
-  void Primary() {
-    Skip();
-    if (pos_ >= s_.size()) Fail("the expression ends too early");
-    const char c = s_[pos_];
-    if (Accept('(')) {
-      Expression();
-      if (!Accept(')')) Fail("')' missing");
+
+  // after a complete operand, a token that cannot follow it
+  [[noreturn]] void FailAfterOperand(const std::string& expected) const {
+    std::string why = WhyNot(token_);
+    if (token_.kind == Token::kNumber || (token_.kind == Token::kName && why.empty()) || IsSymbol('('))
+      why = "write '*' for a product";
+    Fail("expected " + expected + ", found " + Found(token_) + (why.empty() ? "" : "; " + why));
+  }
+
+  // --- tokens
+
+  void Next() {
+    int i = token_.end;  // 0 before the first token
+    const int n = static_cast<int>(s_.size());
+    while (i < n && std::isspace(static_cast<unsigned char>(s_[i]))) ++i;
+    token_ = Token();
+    token_.begin = i;
+    if (i >= n) {
+      token_.kind = Token::kEnd;
+      token_.end = n;
       return;
     }
-    if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') return Number();
-    if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') return Name();
-    Fail("unexpected '" + std::string(1, c) + "'");
-  }
-  void Number() {
-    const char* begin = s_.c_str() + pos_;
-    char* end = nullptr;
-    const double value = std::strtod(begin, &end);
-    if (end == begin) Fail("malformed number");
-    pos_ += static_cast<std::size_t>(end - begin);
-    Emit(Op::kConst, value);
-  }
-  void Name() {
-    const std::size_t start = pos_;
-    while (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) ++pos_;
-    const std::string name = ToLower(s_.substr(start, pos_ - start));
-    Skip();
-    if (pos_ < s_.size() && s_[pos_] == '(') {
-      for (const Named& f : kFunctions) {
-        if (name != f.name) continue;
-        Accept('(');
-        Expression();
-        for (int k = 1; k < f.arity; ++k) {
-          if (!Accept(',')) Fail(std::string(f.name) + " takes " + std::to_string(f.arity) + " arguments");
-          Expression();
-        }
-        if (!Accept(')')) Fail("')' missing after the arguments of " + std::string(f.name));
-        Emit(f.arity == 1 ? Op::kCall1 : Op::kCall2, 0.0, f.id);
-        return;
+    const char c = s_[i];
+    if (std::isdigit(static_cast<unsigned char>(c)) ||
+        (c == '.' && i + 1 < n && std::isdigit(static_cast<unsigned char>(s_[i + 1]))))
+      return ReadNumber(i);
+    if (IsNameStart(c)) {
+      int j = i;
+      while (j < n && IsNameChar(s_[j])) ++j;
+      token_.kind = Token::kName;
+      token_.end = j;
+      token_.text = ToLower(s_.substr(i, j - i));
+      return;
+    }
+    token_.kind = Token::kSymbol;
+    token_.end = i + 1;
+    for (const char* symbol : kLuaSymbols) {
+      const std::string_view sv(symbol);
+      if (std::string_view(s_).substr(i, sv.size()) == sv) {
+        token_.end = i + static_cast<int>(sv.size());
+        break;
       }
-      pos_ = start;
-      Fail("unknown function '" + name + "'");
     }
-    if (pos_ + 1 < s_.size() && (s_[pos_] == '.' || s_[pos_] == ':') &&
-        std::isalpha(static_cast<unsigned char>(s_[pos_ + 1]))) {
-      pos_ = start;
-      Fail("field access ('" + name + ".') is not part of a time function");
+  }
+
+  // a numeral as Lua reads it: digits, '.', exponent with sign; then letters
+  // glued to it make it malformed ("2t", "1.2.3"), as in Lua
+  void ReadNumber(int i) {
+    const int n = static_cast<int>(s_.size());
+    const bool hex = s_[i] == '0' && i + 1 < n && (s_[i + 1] == 'x' || s_[i + 1] == 'X');
+    const char* exponent = hex ? "Pp" : "Ee";
+    int j = hex ? i + 2 : i;
+    while (j < n) {
+      if (s_[j] == exponent[0] || s_[j] == exponent[1]) {
+        ++j;
+        if (j < n && (s_[j] == '+' || s_[j] == '-')) ++j;
+      } else if (std::isxdigit(static_cast<unsigned char>(s_[j])) || s_[j] == '.') {
+        ++j;
+      } else {
+        break;
+      }
     }
-    if (name == "t") {
-      uses_time_ = true;
-      return Emit(Op::kTime);
+    while (j < n && (IsNameChar(s_[j]) || s_[j] == '.')) ++j;
+    token_.kind = Token::kNumber;
+    token_.end = j;
+    const char* first = s_.data() + (hex ? i + 2 : i);
+    const char* last = s_.data() + j;
+    const auto [ptr, ec] =
+        std::from_chars(first, last, token_.number, hex ? std::chars_format::hex : std::chars_format::general);
+    const std::string text = s_.substr(i, j - i);
+    if (ec == std::errc::result_out_of_range) Fail("the number '" + text + "'" + Column(i) + " is out of range");
+    if (ec != std::errc() || ptr != last || first == last)
+      Fail("malformed number '" + text + "'" + Column(i) + " (write '*' for a product, as in '2*t')");
+  }
+
+  bool IsSymbol(char c) const {
+    return token_.kind == Token::kSymbol && token_.end - token_.begin == 1 && s_[token_.begin] == c;
+  }
+
+  // --- tree
+
+  int Add(Node node) {
+    nodes_.push_back(node);
+    return static_cast<int>(nodes_.size()) - 1;
+  }
+
+  int Leaf(Op op, double value, int begin, int end) {
+    Node node{op, value};
+    node.begin = begin;
+    node.end = end;
+    node.constant = op == Op::kConst;
+    return Add(node);
+  }
+
+  // an operation on one or two operands; folded into a constant when they are
+  int Operation(Op op, int a, int b, int begin, int end) {
+    Node node{op};
+    node.a = a;
+    node.b = b;
+    node.begin = begin;
+    node.end = end;
+    node.constant = nodes_[a].constant && (b < 0 || nodes_[b].constant);
+    if (node.constant) {
+      // the same code as at run time, on operands without derivatives
+      Instruction program[3] = {{Op::kConst, nodes_[a].value}, {Op::kConst, b < 0 ? 0.0 : nodes_[b].value}, {op}};
+      if (b < 0) program[1] = program[2];
+      const double value = CompiledTimeFunction::RunProgram<false>(program, b < 0 ? 2 : 3, 0.0, nullptr).value;
+      if (!std::isfinite(value))
+        Fail("'" + s_.substr(begin, end - begin) + "' is " + Number(value) +
+             " for the identifiers' values (it does not depend on t)");
+      node.op = Op::kConst;
+      node.value = value;
+      node.a = node.b = -1;
     }
-    if (name == "pi") return Emit(Op::kConst, M_PI);
-    const int index = ids_.Find(name);
-    if (index < 0) {
-      pos_ = start;
-      Fail("unknown identifier '" + name + "'" + blocks::DidYouMean(name, ids_.Names()));
+    return Add(node);
+  }
+
+  // --- grammar (see the header)
+
+  int Expression() {
+    int a = Term();
+    for (;;) {
+      const Op op = IsSymbol('+') ? Op::kAdd : IsSymbol('-') ? Op::kSub : Op::kConst;
+      if (op == Op::kConst) return a;
+      Next();
+      const int b = Term();
+      a = Operation(op, a, b, nodes_[a].begin, nodes_[b].end);
     }
-    Emit(Op::kConst, ids_.value(index));
+  }
+
+  int Term() {
+    int a = Unary();
+    for (;;) {
+      const Op op = IsSymbol('*') ? Op::kMul : IsSymbol('/') ? Op::kDiv : Op::kConst;
+      if (op == Op::kConst) return a;
+      Next();
+      const int b = Unary();
+      a = Operation(op, a, b, nodes_[a].begin, nodes_[b].end);
+    }
+  }
+
+  int Unary() {
+    if (++nesting_ > CompiledTimeFunction::kMaxNesting)
+      Fail("nested more than " + std::to_string(CompiledTimeFunction::kMaxNesting) + " deep" + Column(token_.begin));
+    int result;
+    if (IsSymbol('-')) {
+      const int begin = token_.begin;
+      Next();
+      const int a = Unary();
+      result = Operation(Op::kNeg, a, -1, begin, nodes_[a].end);
+    } else if (IsSymbol('+')) {
+      Next();
+      result = Unary();
+    } else {
+      result = Power();
+    }
+    --nesting_;
+    return result;
+  }
+
+  int Power() {
+    const int a = Primary();
+    if (!IsSymbol('^')) return a;
+    Next();
+    const int b = Unary();  // right-associative, and 2^-1 is allowed
+    return Operation(Op::kPow, a, b, nodes_[a].begin, nodes_[b].end);
+  }
+
+  int Primary() {
+    const Token token = token_;
+    if (token.kind == Token::kNumber) {
+      Next();
+      return Leaf(Op::kConst, token.number, token.begin, token.end);
+    }
+    if (token.kind == Token::kName && !IsLuaKeyword(token.text)) {
+      Next();
+      return Name(token);
+    }
+    if (IsSymbol('(')) {
+      Next();
+      const int inner = Expression();
+      if (!IsSymbol(')')) FailAfterOperand("an operator (+ - * / ^) or ')' closing the '('" + Column(token.begin));
+      nodes_[inner].begin = token.begin;  // messages quote the parentheses too
+      nodes_[inner].end = token_.end;
+      Next();
+      return inner;
+    }
+    FailExpectedOperand();
+  }
+
+  // a name; token_ is the token after it
+  int Name(const Token& name) {
+    const std::string& lower = name.text;
+    const std::string original = s_.substr(name.begin, name.end - name.begin);
+    if (IsSymbol('.') || IsSymbol(':')) {
+      std::string message = "'" + original + s_[token_.begin] + "'" + Column(name.begin) +
+                            " is Lua field access, which time functions do not have";
+      Next();
+      if (lower == "math" && token_.kind == Token::kName && (FindFunction(token_.text) || token_.text == "pi"))
+        message += "; write '" + token_.text + "' alone";
+      Fail(message);
+    }
+    const bool called = IsSymbol('(');
+    const FunctionInfo* function = FindFunction(lower);
+    if (lower == "floor" || lower == "ceil")
+      Fail("'" + original + "'" + Column(name.begin) +
+           " is not allowed in a time function: its jumps have no derivative");
+    if (called) {
+      if (function) return Call(*function, name);
+      if (lower == "t" || lower == "pi" || ids_.Find(lower) >= 0)
+        Fail("'" + original + "'" + Column(name.begin) + " is not a function; write '*' for a product");
+      Fail("unknown function '" + original + "'" + Column(name.begin) + blocks::DidYouMean(lower, FunctionNames()) +
+           "; expected one of " + blocks::JoinNames(FunctionNames()));
+    }
+    if (function) Fail("the function '" + original + "'" + Column(name.begin) + " needs its arguments in parentheses");
+    if (lower == "t") {
+      out_->depends_on_time_ = true;
+      return Leaf(Op::kTime, 0.0, name.begin, name.end);
+    }
+    if (lower == "pi") return Leaf(Op::kConst, std::numbers::pi, name.begin, name.end);
+    const int index = ids_.Find(lower);
+    if (index >= 0) {
+      auto& used = out_->identifiers_used_;
+      if (std::find(used.begin(), used.end(), lower) == used.end()) used.push_back(lower);
+      return Leaf(Op::kConst, ids_.value(index), name.begin, name.end);
+    }
+    if (lower == "x" || lower == "v")
+      Fail("'" + original + "'" + Column(name.begin) +
+           ": x and v are arguments of force laws; a time function depends on t alone");
+    std::vector<std::string> candidates = ids_.Names();
+    candidates.push_back("t");
+    candidates.push_back("pi");
+    // a one-letter name is close to too many others for a suggestion to help
+    const std::string hint = lower.size() > 1 ? blocks::DidYouMean(lower, candidates) : "";
+    Fail("unknown name '" + original + "'" + Column(name.begin) + hint + "; expected t, pi or an identifier");
+  }
+
+  // f(arguments); token_ is the '('
+  int Call(const FunctionInfo& f, const Token& name) {
+    const int open = token_.begin;
+    Next();
+    std::vector<int> arguments;
+    if (!IsSymbol(')')) {
+      for (;;) {
+        arguments.push_back(Expression());
+        if (IsSymbol(')')) break;
+        if (!IsSymbol(','))
+          FailAfterOperand("an operator (+ - * / ^), ',' or ')' closing the arguments of '" + name.text + "'" +
+                           Column(open));
+        Next();
+      }
+    }
+    const int end = token_.end;
+    Next();
+    const int count = static_cast<int>(arguments.size());
+    if (count < f.min_arguments || count > f.max_arguments) {
+      const std::string expected =
+          f.max_arguments == kAny ? std::to_string(f.min_arguments) + " or more arguments"
+          : f.min_arguments == f.max_arguments
+              ? std::to_string(f.min_arguments) + (f.min_arguments == 1 ? " argument" : " arguments")
+              : std::to_string(f.min_arguments) + " or " + std::to_string(f.max_arguments) + " arguments";
+      std::string hint;
+      if ((name.text == "ln" || name.text == "log") && count == 2) hint = " (for another base write ln(x)/ln(b))";
+      Fail("'" + s_.substr(name.begin, name.end - name.begin) + "'" + Column(name.begin) + " takes " + expected +
+           ", found " + std::to_string(count) + hint);
+    }
+    const std::string& n = name.text;
+    if (n == "min" || n == "max") {
+      int a = arguments[0];
+      for (int k = 1; k < count; ++k) a = Operation(n == "min" ? Op::kMin : Op::kMax, a, arguments[k], name.begin, end);
+      return a;
+    }
+    if (count == 2) return Operation(Op::kAtan2, arguments[0], arguments[1], name.begin, end);  // atan(y, x)
+    const Op op = n == "sin"                     ? Op::kSin
+                  : n == "cos"                   ? Op::kCos
+                  : n == "tan"                   ? Op::kTan
+                  : n == "asin" || n == "arcsin" ? Op::kAsin
+                  : n == "acos" || n == "arccos" ? Op::kAcos
+                  : n == "atan" || n == "arctan" ? Op::kAtan
+                  : n == "sinh"                  ? Op::kSinh
+                  : n == "cosh"                  ? Op::kCosh
+                  : n == "tanh"                  ? Op::kTanh
+                  : n == "exp"                   ? Op::kExp
+                  : n == "ln" || n == "log"      ? Op::kLn
+                  : n == "sqrt"                  ? Op::kSqrt
+                  : n == "sqr"                   ? Op::kSqr
+                  : n == "abs"                   ? Op::kAbs
+                                                 : Op::kSign;
+    return Operation(op, arguments[0], -1, name.begin, end);
+  }
+
+  // --- postfix program
+
+  void Push(Op op, double c, const Node& node, int depth_change) {
+    out_->program_.push_back({op, c});
+    out_->spans_.emplace_back(node.begin, node.end);
+    depth_ += depth_change;
+    max_depth_ = std::max(max_depth_, depth_);
+  }
+
+  // emits node n; a constant operand goes into the instruction
+  void Emit(int n) {
+    const Node node = nodes_[n];
+    if (node.op == Op::kConst || node.op == Op::kTime) return Push(node.op, node.value, node, +1);
+    if (node.b < 0) {
+      Emit(node.a);
+      return Push(node.op, 0.0, node, 0);
+    }
+    const Node& a = nodes_[node.a];
+    const Node& b = nodes_[node.b];
+    Op with_constant = Op::kConst;  // none
+    if (b.constant) {
+      with_constant = node.op == Op::kAdd   ? Op::kAddC
+                      : node.op == Op::kSub ? Op::kSubC
+                      : node.op == Op::kMul ? Op::kMulC
+                      : node.op == Op::kDiv ? Op::kDivC
+                      : node.op == Op::kPow ? Op::kPowC
+                                            : Op::kConst;
+      if (with_constant != Op::kConst) {
+        Emit(node.a);
+        return Push(with_constant, b.value, node, 0);
+      }
+    } else if (a.constant) {
+      // c + x and c * x as x + c and x * c: exactly the same numbers
+      with_constant = node.op == Op::kAdd   ? Op::kAddC
+                      : node.op == Op::kSub ? Op::kRSubC
+                      : node.op == Op::kMul ? Op::kMulC
+                      : node.op == Op::kDiv ? Op::kRDivC
+                      : node.op == Op::kPow ? Op::kRPowC
+                                            : Op::kConst;
+      if (with_constant != Op::kConst) {
+        Emit(node.b);
+        return Push(with_constant, a.value, node, 0);
+      }
+    }
+    Emit(node.a);
+    Emit(node.b);
+    Push(node.op, 0.0, node, -1);
   }
 
   const std::string& s_;
   const IdentifierTable& ids_;
-  const std::string& what_;
-  std::size_t pos_ = 0;
-  std::vector<Instruction> tape_;
-  bool uses_time_ = false;
+  CompiledTimeFunction* out_;
+  Token token_;
+  std::vector<Node> nodes_;
+  int nesting_ = 0;
+  int depth_ = 0, max_depth_ = 0;
 };
 
-}  // namespace
+// ---------------------------------------------------------------------------
+// CompiledTimeFunction
 
 CompiledTimeFunction::CompiledTimeFunction(const std::string& text, const IdentifierTable& identifiers,
                                            const std::string& what)
     : text_(text), what_(what) {
-  tape_ = Parser(text_, identifiers, what_).Parse(&uses_time_);
-  int depth = 0, max_depth = 0;
-  for (const Instruction& in : tape_) {
-    depth += (in.op == Op::kConst || in.op == Op::kTime) ? 1
-             : (in.op == Op::kNeg || in.op == Op::kCall1) ? 0
-                                                           : -1;
-    max_depth = std::max(max_depth, depth);
-  }
-  stack_.resize(max_depth);
+  TimeFunctionCompiler(identifiers, this).Compile();
 }
 
-mech::Jet CompiledTimeFunction::Evaluate(double t) const {
-  int top = 0;
-  Jet* s = stack_.data();
-  for (const Instruction& in : tape_) {
+template <bool kFindFailure>
+Jet CompiledTimeFunction::RunProgram(const Instruction* code, int size, double t, int* failed) {
+  Triple stack[kMaxStackDepth + 1];  // stack[0] is never used, so top[-1] is always in the array
+  Triple* top = stack + 1;           // one past the top
+  for (int i = 0; i < size; ++i) {
+    const Instruction& in = code[i];
+    Triple& x = top[-1];  // the operand of one-operand instructions
     switch (in.op) {
-      case Op::kConst: s[top++] = {in.value, 0, 0}; break;
-      case Op::kTime: s[top++] = {t, 1, 0}; break;
-      case Op::kNeg: s[top - 1] = {-s[top - 1].value, -s[top - 1].rate, -s[top - 1].acceleration}; break;
-      case Op::kCall1: s[top - 1] = Apply1(in.function, s[top - 1]); break;
-      default: {
-        const Jet b = s[--top];
-        Jet& a = s[top - 1];
-        switch (in.op) {
-          case Op::kAdd: a = {a.value + b.value, a.rate + b.rate, a.acceleration + b.acceleration}; break;
-          case Op::kSub: a = {a.value - b.value, a.rate - b.rate, a.acceleration - b.acceleration}; break;
-          case Op::kMul: a = Multiply(a, b); break;
-          case Op::kDiv: a = Divide(a, b); break;
-          case Op::kPow: a = Power(a, b); break;
-          case Op::kCall2: a = (in.function == kMin) == (a.value <= b.value) ? a : b; break;
-          default: break;
-        }
+      case Op::kConst:
+        *top++ = {in.c, 0, 0};
+        break;
+      case Op::kTime:
+        *top++ = {t, 1, 0};
+        break;
+      case Op::kNeg:
+        x = {-x.v, -x.d, -x.dd};
+        break;
+      case Op::kAdd:
+        --top;
+        top[-1] = {top[-1].v + top[0].v, top[-1].d + top[0].d, top[-1].dd + top[0].dd};
+        break;
+      case Op::kSub:
+        --top;
+        top[-1] = {top[-1].v - top[0].v, top[-1].d - top[0].d, top[-1].dd - top[0].dd};
+        break;
+      case Op::kMul:
+        --top;
+        top[-1] = Multiply(top[-1], top[0]);
+        break;
+      case Op::kDiv:
+        --top;
+        top[-1] = Divide(top[-1], top[0]);
+        break;
+      case Op::kPow:
+        --top;
+        top[-1] = Power(top[-1], top[0]);
+        break;
+      case Op::kMin:
+        --top;
+        top[-1] = Min(top[-1], top[0]);
+        break;
+      case Op::kMax:
+        --top;
+        top[-1] = Max(top[-1], top[0]);
+        break;
+      case Op::kAtan2:
+        --top;
+        top[-1] = Atan2(top[-1], top[0]);
+        break;
+      case Op::kAddC:
+        x.v += in.c;
+        break;
+      case Op::kSubC:
+        x.v -= in.c;
+        break;
+      case Op::kRSubC:
+        x = {in.c - x.v, -x.d, -x.dd};
+        break;
+      case Op::kMulC:
+        x = {x.v * in.c, x.d * in.c, x.dd * in.c};
+        break;
+      case Op::kDivC:
+        x = {x.v / in.c, x.d / in.c, x.dd / in.c};
+        break;
+      case Op::kRDivC:
+        x = DivideInto(in.c, x);
+        break;
+      case Op::kPowC:
+        x = PowerOfConstant(x, in.c);
+        break;
+      case Op::kRPowC:
+        x = ConstantToPower(in.c, x);
+        break;
+      case Op::kSin: {
+        const double s = std::sin(x.v), c = std::cos(x.v);
+        x = Chain(x, s, c, -s);
+        break;
+      }
+      case Op::kCos: {
+        const double s = std::sin(x.v), c = std::cos(x.v);
+        x = Chain(x, c, -s, -c);
+        break;
+      }
+      case Op::kTan: {
+        const double tn = std::tan(x.v), sec2 = 1 + tn * tn;
+        x = Chain(x, tn, sec2, 2 * tn * sec2);
+        break;
+      }
+      case Op::kAsin: {
+        const double r = 1 / std::sqrt(1 - x.v * x.v);
+        x = Chain(x, std::asin(x.v), r, x.v * r * r * r);
+        break;
+      }
+      case Op::kAcos: {
+        const double r = 1 / std::sqrt(1 - x.v * x.v);
+        x = Chain(x, std::acos(x.v), -r, -x.v * r * r * r);
+        break;
+      }
+      case Op::kAtan: {
+        const double r = 1 / (1 + x.v * x.v);
+        x = Chain(x, std::atan(x.v), r, -2 * x.v * r * r);
+        break;
+      }
+      case Op::kSinh: {
+        const double sh = std::sinh(x.v), ch = std::cosh(x.v);
+        x = Chain(x, sh, ch, sh);
+        break;
+      }
+      case Op::kCosh: {
+        const double sh = std::sinh(x.v), ch = std::cosh(x.v);
+        x = Chain(x, ch, sh, ch);
+        break;
+      }
+      case Op::kTanh: {
+        const double th = std::tanh(x.v), sech2 = 1 - th * th;
+        x = Chain(x, th, sech2, -2 * th * sech2);
+        break;
+      }
+      case Op::kExp: {
+        const double e = std::exp(x.v);
+        x = Chain(x, e, e, e);
+        break;
+      }
+      case Op::kLn:
+        x = Chain(x, std::log(x.v), 1 / x.v, -1 / (x.v * x.v));
+        break;
+      case Op::kSqrt: {
+        const double s = std::sqrt(x.v);
+        x = Chain(x, s, 0.5 / s, -0.25 / (s * x.v));
+        break;
+      }
+      case Op::kSqr:
+        x = Chain(x, x.v * x.v, 2 * x.v, 2);
+        break;
+      case Op::kAbs:
+        x = Abs(x);
+        break;
+      case Op::kSign:
+        x = Sign(x);
+        break;
+    }
+    if constexpr (kFindFailure) {
+      if (!IsFinite(top[-1])) {
+        *failed = i;
+        return {top[-1].v, top[-1].d, top[-1].dd};
       }
     }
   }
-  const Jet r = s[0];
-  if (!std::isfinite(r.value) || !std::isfinite(r.rate) || !std::isfinite(r.acceleration)) {
-    std::ostringstream out;
-    out << what_ << ": time function '" << text_ << "' is not finite at t = " << t;
-    throw SimulationError(out.str());
+  if constexpr (kFindFailure) *failed = -1;
+  return {stack[1].v, stack[1].d, stack[1].dd};
+}
+
+Jet CompiledTimeFunction::Evaluate(double t) const {
+  const Jet result = RunProgram<false>(program_.data(), static_cast<int>(program_.size()), t, nullptr);
+  if (!(std::isfinite(result.value) && std::isfinite(result.rate) && std::isfinite(result.acceleration)))
+    ThrowNotFinite(t, result);
+  return result;
+}
+
+void CompiledTimeFunction::ThrowNotFinite(double t, const Jet& result) const {
+  // run again, stopping at the first part that is not finite
+  const int size = static_cast<int>(program_.size());
+  int failed = -1;
+  Jet part = RunProgram<true>(program_.data(), size, t, &failed);
+  std::string where;
+  if (failed >= 0 && failed + 1 < size) {
+    const auto [begin, end] = spans_[failed];
+    where = ": its part '" + text_.substr(begin, end - begin) + "' is not";
+  } else {
+    part = result;
   }
-  return r;
+  throw SimulationError(what_ + ": time function '" + text_ + "' is not finite at t = " + Number(t) + where +
+                        " (value " + Number(part.value) + ", rate " + Number(part.rate) + ", acceleration " +
+                        Number(part.acceleration) + ")");
+}
+
+double EvaluateConstantExpression(const std::string& text, const IdentifierTable& identifiers,
+                                  const std::string& what) {
+  const CompiledTimeFunction f(text, identifiers, what);
+  if (f.depends_on_time())
+    throw InputError(what + ": '" + text + "' depends on t; expected an expression of numbers and identifiers");
+  return f.Evaluate(0.0).value;  // finite: a non-finite constant does not compile
 }
 
 }  // namespace mechflow::scripting
