@@ -402,9 +402,11 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
     p.clearance = r.Number(e, "clearance", 0.0);
     p.stiffness = r.Number(e, "stiffness", 0.0);
     p.damping = r.Number(e, "damping", 0.0);
-    return std::make_unique<mech::Gearing>(name, e.loc.str(), b1, BodyPoint(r, model, e, "centre1", b1),
-                                           r.Vector(e, "axis1", Vec3::UnitX()), b2,
-                                           BodyPoint(r, model, e, "centre2", b2), p);
+    // axis2 defaults to axis1's components (in gear 2's frame)
+    const Vec3 axis1 = r.Vector(e, "axis1", Vec3::UnitX());
+    return std::make_unique<mech::Gearing>(name, e.loc.str(), b1, BodyPoint(r, model, e, "centre1", b1), axis1, b2,
+                                           BodyPoint(r, model, e, "centre2", b2), r.Vector(e, "axis2", axis1), p,
+                                           kin0);
   }
   if (e.tag == "contact") {
     const std::string type = e.Text("type");

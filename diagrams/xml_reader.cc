@@ -37,7 +37,7 @@ const std::vector<ElementSchema>& Schema() {
       {"mechanism", {"name"}, {"src", "gravity", "comment"},
        {"input", "body", "joint", "force", "joint_force", "bushing", "applied_force", "contact", "gearing", "sensor"}},
       {"gearing", {"name", "body1", "body2"},
-       {"centre1", "axis1", "centre2", "ratio", "clearance", "stiffness", "damping"}, {}},
+       {"centre1", "axis1", "centre2", "axis2", "ratio", "clearance", "stiffness", "damping"}, {}},
       {"contact", {"name", "type", "body1", "body2"},
        {"points", "centre", "circle_normal", "radius", "plane_point", "normal", "stiffness", "exponent", "damping",
         "damping_depth", "mu", "v_eps"},

@@ -6,8 +6,12 @@
 
 namespace mechflow::mech {
 
+namespace {
+constexpr double kEngageMargin = 1e-12;  // [m], see ZeroCrossings
+}  // namespace
+
 Gearing::Gearing(std::string name, std::string origin, int body1, Vec3 centre1, Vec3 axis1, int body2,
-                 Vec3 centre2, GearParameters parameters)
+                 Vec3 centre2, Vec3 axis2, GearParameters parameters, const Kinematics& initial)
     : ForceElement(std::move(name), std::move(origin)),
       body1_(body1),
       body2_(body2),
@@ -15,10 +19,23 @@ Gearing::Gearing(std::string name, std::string origin, int body1, Vec3 centre1, 
       centre2_(centre2),
       p_(parameters) {
   const std::string where = this->origin() + (this->origin().empty() ? "" : ": ") + "gearing '" + this->name() + "': ";
-  if (!(axis1.norm() > 0)) throw InputError(where + "the axis of gear 1 must be non-zero");
+  if (!(axis1.norm() > 0) || !(axis2.norm() > 0)) throw InputError(where + "the gear axes must be non-zero");
   if (!(p_.ratio > 0) || p_.clearance < 0 || p_.stiffness < 0 || p_.damping < 0)
     throw InputError(where + "ratio must be positive; clearance, stiffness and damping >= 0");
   axis1_ = axis1.normalized();
+  axis2_ = axis2.normalized();
+  // the kind of axes is fixed by the mechanism (bearings keep it); decide it once
+  const Vec3 o1 = PointPosition(initial, body1_, centre1_), o2 = PointPosition(initial, body2_, centre2_);
+  double gap = 0;
+  axes_ = ClassifyGearAxes(o1, initial.body_pose[body1_].R * axis1_, o2, initial.body_pose[body2_].R * axis2_, &gap);
+  if (axes_ == GearAxes::kSkew) {
+    std::ostringstream out;
+    out << where << "the gear axes are skew (they pass " << gap
+        << " m apart); gearing needs parallel (spur) or intersecting (bevel) axes";
+    throw InputError(out.str());
+  }
+  const PitchGeometry g = Pitch(initial);
+  if (g.problem) throw InputError(where + g.problem);
   for (const char* s : {"force", "deflection", "mode"}) DeclareSensor(s);
   DeclareStates(1);
   DeclareModes(1);
@@ -26,21 +43,24 @@ Gearing::Gearing(std::string name, std::string origin, int body1, Vec3 centre1, 
   DeclareCrossing(mech::Crossing::kEither);  // delta + b/2
 }
 
-Gearing::Mesh Gearing::Geometry(const ElementContext& ctx) const {
-  const Kinematics& kin = *ctx.kin;
+PitchGeometry Gearing::Pitch(const Kinematics& kin) const {
   const Vec3 o1 = PointPosition(kin, body1_, centre1_), o2 = PointPosition(kin, body2_, centre2_);
   const Vec3 a1 = kin.body_pose[body1_].R * axis1_;
-  const Vec3 d = (o2 - o1) - (o2 - o1).dot(a1) * a1;
-  const double distance = d.norm();
-  if (!(distance > 0)) {
+  if (axes_ == GearAxes::kParallel) return ParallelPitch(o1, a1, o2, p_.ratio);
+  return BevelPitch(o1, a1, o2, kin.body_pose[body2_].R * axis2_, p_.ratio);
+}
+
+Gearing::Mesh Gearing::Geometry(const ElementContext& ctx) const {
+  const Kinematics& kin = *ctx.kin;
+  const PitchGeometry g = Pitch(kin);
+  if (g.problem) {
     std::ostringstream out;
-    out << "gearing '" << name() << "': the gear centres are on one axis at t = " << ctx.t;
+    out << "gearing '" << name() << "': " << g.problem << " at t = " << ctx.t;
     throw SimulationError(out.str());
   }
-  const Vec3 u = d / distance;
   Mesh m;
-  m.p = o1 + distance * p_.ratio / (1 + p_.ratio) * u;
-  m.t = a1.cross(u);
+  m.p = g.p;
+  m.t = g.t;
   m.rate = (MaterialVelocityAt(kin, body1_, m.p) - MaterialVelocityAt(kin, body2_, m.p)).dot(m.t);
   return m;
 }
@@ -82,8 +102,13 @@ void Gearing::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double
 }
 
 void Gearing::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
-  values[0] = ctx.state[0] - 0.5 * p_.clearance;
-  values[1] = ctx.state[0] + 0.5 * p_.clearance;
+  // Free (mode 0), the engagement crossings sit 1e-12 m beyond the backlash:
+  // gears at rest with no clearance start exactly at delta = 0, and the
+  // solver reports no crossing of a function that starts at zero. (A tooth
+  // force of c * 1e-12 m is far below any tolerance.)
+  const double margin = ctx.modes[0] == 0.0 ? kEngageMargin : 0.0;
+  values[0] = ctx.state[0] - 0.5 * p_.clearance - margin;
+  values[1] = ctx.state[0] + 0.5 * p_.clearance + margin;
 }
 
 }  // namespace mechflow::mech
