@@ -13,3 +13,8 @@ if(NOT MECHFLOW_BUILD_BENCH)
 endif()
 mechflow_test(pendulum_chain_reference_test unit tests/mech/pendulum_chain_reference_test.cc)
 target_link_libraries(pendulum_chain_reference_test PRIVATE mechflow_bench_reference)
+
+# the P1-P3 reference (bench/friction_direct.*) against closed forms, and the generated diagrams
+# (bench/friction_diagram.*) run by mechflow against it
+mechflow_test(friction_reference_test unit tests/mech/friction_reference_test.cc)
+target_link_libraries(friction_reference_test PRIVATE mechflow_bench_friction)
