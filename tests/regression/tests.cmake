@@ -6,3 +6,5 @@ mechflow_test(tension_mechanism_test regression tests/regression/tension_mechani
 mechflow_test(contact_test regression tests/regression/contact_test.cc)
 mechflow_test(bushing_test regression tests/regression/bushing_test.cc)
 mechflow_test(gearing_test regression tests/regression/gearing_test.cc)
+mechflow_test(fidget_test regression tests/regression/fidget_test.cc)
+mechflow_test(creep_test regression tests/regression/creep_test.cc)
