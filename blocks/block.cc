@@ -62,4 +62,21 @@ void Block::DeclarePeriodicSampleTime(double period, double offset) {
   sample_time_ = {period, offset};
 }
 
+void Block::DeclareSparsity(BlockSparsity sparsity) {
+  const auto in_range = [](const std::vector<std::vector<int>>& lists, int limit) {
+    for (const auto& list : lists)
+      for (const int i : list)
+        if (i < 0 || i >= limit) return false;
+    return true;
+  };
+  if (static_cast<int>(sparsity.derivative_states.size()) != num_states() ||
+      static_cast<int>(sparsity.derivative_inputs.size()) != num_states() ||
+      static_cast<int>(sparsity.output_states.size()) != num_outputs() ||
+      !in_range(sparsity.derivative_states, num_states()) || !in_range(sparsity.derivative_inputs, num_inputs()) ||
+      !in_range(sparsity.output_states, num_states()))
+    throw std::logic_error("block '" + name_ + "': sparsity does not match its states and ports");
+  if (num_states() == 0) return;  // nothing to say: the default covers outputs of stateless blocks
+  sparsity_ = std::move(sparsity);
+}
+
 }  // namespace mechflow::blocks

@@ -38,6 +38,17 @@ struct PortSpec {
   int width = 1;
 };
 
+// Optional structural sparsity of a block (for sparse Jacobians): which of
+// its own states and input ports each state derivative and each output port
+// reads. Lists hold local indices, sorted. An output's dependence on inputs
+// is its declared feedthrough. A missing entry makes the diagram's Jacobian
+// wrong; an extra one only costs time, so declare the superset when unsure.
+struct BlockSparsity {
+  std::vector<std::vector<int>> derivative_states;  // per state: the states its derivative reads
+  std::vector<std::vector<int>> derivative_inputs;  // per state: the input ports its derivative reads
+  std::vector<std::vector<int>> output_states;      // per output port: the states it reads
+};
+
 // Which sign change of a zero-crossing function is an event.
 enum class CrossingDirection { kRising, kFalling, kEither };
 
@@ -76,6 +87,9 @@ class Block {
   CrossingDirection crossing_direction(int i) const { return crossings_.at(i); }
   const SampleTime& sample_time() const { return sample_time_; }
   bool has_projection() const { return has_projection_; }
+  // The declared sparsity, or nullptr: every derivative then reads every
+  // state and input, and every output every state (the safe default).
+  const BlockSparsity* sparsity() const { return sparsity_.derivative_states.empty() ? nullptr : &sparsity_; }
 
   // --- run time ------------------------------------------------------------
   // Sets initial continuous and discrete states (inputs are not yet valid).
@@ -139,6 +153,9 @@ class Block {
   int DeclareZeroCrossing(CrossingDirection direction);
   void DeclarePeriodicSampleTime(double period, double offset);
   void DeclareProjection() { has_projection_ = true; }
+  // After the ports and states are declared: sizes must match them
+  // (std::logic_error otherwise).
+  void DeclareSparsity(BlockSparsity sparsity);
 
   virtual void DoInitialize(const BlockContext&) const {}
   virtual void DoCalcOutput(int port, const BlockContext& ctx) const = 0;
@@ -162,6 +179,7 @@ class Block {
   std::vector<CrossingDirection> crossings_;
   SampleTime sample_time_;
   bool has_projection_ = false;
+  BlockSparsity sparsity_;
 };
 
 }  // namespace mechflow::blocks

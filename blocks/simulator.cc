@@ -6,8 +6,12 @@
 
 #include <cvode/cvode_ls.h>
 #include <cvode/cvode_proj.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
+#include "blocks/coloured_jacobian.h"
 #include "blocks/evaluation.h"
+#include "blocks/flush_denormals.h"
+#include "blocks/sparsity.h"
 #include "blocks/sundials.h"
 #include "mech/errors.h"
 
@@ -27,12 +31,20 @@ std::string SolverOptions::Problem() const {
   return "";
 }
 
-// The SUNDIALS objects of one run; y is the solver's state vector.
+// The SUNDIALS objects of one run; y is the solver's state vector. One of
+// dense and sparse is made.
 struct Simulator::Solver {
-  explicit Solver(sunindextype n) : y(n, ctx), linear(y, ctx), cvode(ctx) {}
+  Solver(sunindextype n, const ColouredJacobian* jacobian) : y(n, ctx), weights(n, ctx), cvode(ctx) {
+    if (jacobian) sparse = std::make_unique<sundials::SparseSolver>(y, jacobian->pattern(), ctx);
+    else dense = std::make_unique<sundials::DenseSolver>(y, ctx);
+  }
+  SUNMatrix matrix() const { return sparse ? sparse->matrix() : dense->matrix(); }
+  SUNLinearSolver linear_solver() const { return sparse ? sparse->solver() : dense->solver(); }
   sundials::Context ctx;
   sundials::Vector y;
-  sundials::DenseSolver linear;
+  sundials::Vector weights;  // sparse: CVODE's error weights, for the increments
+  std::unique_ptr<sundials::DenseSolver> dense;
+  std::unique_ptr<sundials::SparseSolver> sparse;
   sundials::Cvode cvode;
 };
 
@@ -72,6 +84,16 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   last_fired_.assign(diagram_.num_zero_crossings(), 0.0);
   fired_in_a_row_.assign(diagram_.num_zero_crossings(), 0);
   next_hit_.assign(diagram_.periodic_blocks().size(), 0);
+  // the Jacobian's structure is the diagram's: found and coloured once
+  const int n = std::max(1, diagram_.num_states());
+  const LinearSolverKind kind = options_.linear_solver;
+  if (kind == LinearSolverKind::kSparse || (kind == LinearSolverKind::kAuto && n >= kSparseMinStates)) {
+    auto jacobian = std::make_unique<ColouredJacobian>(DiagramSparsity(diagram_));
+    if (kind == LinearSolverKind::kSparse || 4 * jacobian->num_colours() <= n) {
+      jacobian_ = std::move(jacobian);
+      increments_.assign(n, 0.0);
+    }
+  }
 }
 
 Simulator::~Simulator() = default;
@@ -93,13 +115,15 @@ void Simulator::Record(double t, double* x) {
 }
 
 int Simulator::Rhs(double t, N_Vector y, N_Vector ydot, void* user) {
-  auto* self = static_cast<Simulator*>(user);
-  const Diagram& d = self->diagram_;
-  double* xdot = N_VGetArrayPointer(ydot);
+  return static_cast<Simulator*>(user)->EvaluateRhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+int Simulator::EvaluateRhs(double t, double* x, double* xdot) {
+  const Diagram& d = diagram_;
   try {
-    Context& ctx = self->ctx_;
+    Context& ctx = ctx_;
     ctx.time = t;
-    ctx.x = N_VGetArrayPointer(y);
+    ctx.x = x;
     ctx.xdot = xdot;
     ++ctx.evaluation;
     EvaluateOutputs(d, &ctx);
@@ -108,16 +132,55 @@ int Simulator::Rhs(double t, N_Vector y, N_Vector ydot, void* user) {
     // recoverable at first: CVODE retries with smaller steps, so a failing
     // run stops close to the failing instant; then final, so that a model
     // that cannot go on does not creep towards it with ever smaller steps
-    self->callback_failure_ = e.what();
-    return ++self->callback_failures_ > kMaxCallbackFailures ? -1 : 1;
+    callback_failure_ = e.what();
+    return ++callback_failures_ > kMaxCallbackFailures ? -1 : 1;
   }
   if (d.num_states() == 0) xdot[0] = 0.0;  // the placeholder state of a stateless diagram
   for (int i = 0; i < d.num_states(); ++i) {
     if (!std::isfinite(xdot[i])) {
       // recoverable: CVODE retries with a smaller step, and fails if it persists
-      self->callback_failure_ = "derivative of a continuous state is not finite at t = " +
-                                std::to_string(t);
+      callback_failure_ = "derivative of a continuous state is not finite at t = " + std::to_string(t);
       return 1;
+    }
+  }
+  return 0;
+}
+
+int Simulator::LinearSystem(double t, N_Vector y, N_Vector fy, SUNMatrix a, sunbooleantype jok,
+                            sunbooleantype* jcur, double gamma, void* user, N_Vector, N_Vector, N_Vector) {
+  auto* self = static_cast<Simulator*>(user);
+  ColouredJacobian& jacobian = *self->jacobian_;
+  const SparsityPattern& pattern = jacobian.pattern();
+  if (!jok) {
+    // a fresh J at (t, y), with the increments CVODE's dense quotient would take
+    void* mem = self->solver_->cvode.get();
+    double step = 0.0;
+    CVodeGetCurrentStep(mem, &step);
+    CVodeGetErrWeights(mem, self->solver_->weights.get());
+    double* x = N_VGetArrayPointer(y);
+    DifferenceIncrements(pattern.n, x, N_VGetArrayPointer(fy), self->solver_->weights.data(), step,
+                         self->increments_.data());
+    const int flag = jacobian.Fill(x, N_VGetArrayPointer(fy), self->increments_.data(),
+                                   [&](double* xp, double* fp) { return self->EvaluateRhs(t, xp, fp); });
+    self->ctx_.x = x;  // the callers' state again, for anything that reads the context next
+    // CVODE counts the Jacobian evaluations; the right-hand sides are ours
+    self->stats_.jac_rhs_evals += jacobian.num_colours();
+    if (flag != 0) return flag;
+    *jcur = SUNTRUE;
+  } else {
+    *jcur = SUNFALSE;
+  }
+  // A = I - gamma J on the fixed pattern (rewritten each time: a matrix
+  // zeroed by anyone else would lose it)
+  sunindextype* start = SUNSparseMatrix_IndexPointers(a);
+  sunindextype* rows = SUNSparseMatrix_IndexValues(a);
+  double* values = SUNSparseMatrix_Data(a);
+  const std::vector<double>& j = jacobian.values();
+  for (int c = 0; c <= pattern.n; ++c) start[c] = pattern.column_start[c];
+  for (int c = 0; c < pattern.n; ++c) {
+    for (int k = pattern.column_start[c]; k < pattern.column_start[c + 1]; ++k) {
+      rows[k] = pattern.rows[k];
+      values[k] = (pattern.rows[k] == c ? 1.0 : 0.0) - gamma * j[k];
     }
   }
   return 0;
@@ -252,13 +315,19 @@ void Simulator::Reinitialize(double t) {
 RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   const double t0 = options_.t_start, t_end = options_.t_end;
   const sunindextype n = std::max(1, diagram_.num_states());
-  solver_ = std::make_unique<Solver>(n);
+  const FlushDenormals flush_denormals;  // for the whole run (see the header)
+  solver_ = std::make_unique<Solver>(n, jacobian_.get());
   double* y = solver_->y.data();
   std::fill(y, y + n, 0.0);
   void* mem = solver_->cvode.get();
   results_ = Results(ColumnNames(logged_));
   events_.clear();
   stats_ = SolverStats();
+  if (jacobian_) {
+    stats_.sparse = true;
+    stats_.colours = jacobian_->num_colours();
+    stats_.nonzeros = jacobian_->pattern().nonzeros();
+  }
   callback_failures_ = 0;
   std::fill(last_fired_.begin(), last_fired_.end(), -std::numeric_limits<double>::infinity());
   std::fill(fired_in_a_row_.begin(), fired_in_a_row_.end(), 0);
@@ -286,8 +355,8 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     Check(CVodeSetUserData(mem, this), "CVodeSetUserData");
     Check(CVodeSetErrHandlerFn(mem, &Simulator::ErrorHandler, this), "CVodeSetErrHandlerFn");
     Check(CVodeSStolerances(mem, options_.rtol, options_.atol), "CVodeSStolerances");
-    Check(CVodeSetLinearSolver(mem, solver_->linear.solver(), solver_->linear.matrix()),
-          "CVodeSetLinearSolver");
+    Check(CVodeSetLinearSolver(mem, solver_->linear_solver(), solver_->matrix()), "CVodeSetLinearSolver");
+    if (jacobian_) Check(CVodeSetLinSysFn(mem, &Simulator::LinearSystem), "CVodeSetLinSysFn");
     linear_solver_attached_ = true;
     Check(CVodeSetMaxNumSteps(mem, options_.max_steps), "CVodeSetMaxNumSteps");
     if (options_.max_step > 0.0) Check(CVodeSetMaxStep(mem, options_.max_step), "CVodeSetMaxStep");

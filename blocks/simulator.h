@@ -1,10 +1,21 @@
 #pragma once
 // Simulator: integrates a built diagram with CVODE and records logged signals.
 //
-// Method: CVODE BDF (variable order 1..5), Newton iteration with a dense
-// direct linear solver and CVODE's difference-quotient Jacobian. This is the
-// stiff workhorse: friction regularisation and contact stiffness make the
-// problems this tool is for stiff.
+// Method: CVODE BDF (variable order 1..5), Newton iteration with a direct
+// linear solver. This is the stiff workhorse: friction regularisation and
+// contact stiffness make the problems this tool is for stiff. Two Jacobians:
+//   dense:  CVODE's dense matrix and difference-quotient Jacobian (n
+//           right-hand sides per Jacobian, O(n^3) factorisation);
+//   sparse: the diagram's structural pattern (blocks/sparsity.h), filled by
+//           coloured difference quotients (one right-hand side per colour,
+//           blocks/coloured_jacobian.h) into a compressed-column matrix that
+//           KLU factors. The Newton matrix I - gamma J is formed here
+//           (CVodeSetLinSysFn): CVODE's own construction of it for a sparse
+//           matrix costs O(n^2) (../shared/BENCH.md, known traps).
+// kAuto picks sparse when the diagram has at least kSparseMinStates states and
+// its pattern needs at most a quarter as many colours as states (so a fill
+// costs at most n/4 right-hand sides), dense otherwise. The whole run has
+// subnormal numbers flushed to zero (blocks/flush_denormals.h).
 //
 // One run, as pseudocode:
 //   initialise block states; settle modes; sample hits due at t_start
@@ -32,9 +43,14 @@
 #include "blocks/diagram.h"
 #include "blocks/results.h"
 
+#include <sundials/sundials_matrix.h>
 #include <sundials/sundials_nvector.h>
 
 namespace mechflow::blocks {
+
+class ColouredJacobian;
+
+enum class LinearSolverKind { kAuto, kDense, kSparse };
 
 struct SolverOptions {
   double t_start = 0.0;      // [s]
@@ -45,6 +61,7 @@ struct SolverOptions {
   double initial_step = 0.0; // [s], 0: CVODE's own estimate
   long max_steps = 500000;   // steps allowed between two output times
   double output_interval = 0.0;  // [s], 0: (t_end - t_start) / 1000
+  LinearSolverKind linear_solver = LinearSolverKind::kAuto;
 
   // Empty when usable, otherwise what is wrong (e.g. "rtol must be > 0").
   std::string Problem() const;
@@ -65,6 +82,9 @@ struct SolverStats {
   long reinits = 0;
   long projections = 0;          // projection calls (0 unless a block declares one)
   long projection_failures = 0;  // failed projections (each retries its step smaller)
+  bool sparse = false;           // sparse Jacobian and KLU (otherwise dense)
+  int colours = 0;               // sparse: column groups, right-hand sides per Jacobian
+  long nonzeros = 0;             // sparse: entries of the structural pattern
 };
 
 // One handled zero crossing, kept so a user can ask when contacts, impacts or
@@ -96,14 +116,23 @@ class Simulator {
   const SolverStats& stats() const { return stats_; }
   const std::vector<EventRecord>& events() const { return events_; }
   const SolverOptions& options() const { return options_; }
+  // The sparse Jacobian when the run uses one (chosen at construction), else
+  // nullptr.
+  const ColouredJacobian* sparse_jacobian() const { return jacobian_.get(); }
+
+  // Smallest state count for which kAuto considers a sparse Jacobian.
+  static constexpr int kSparseMinStates = 100;
 
  private:
   struct Solver;
   static int Rhs(double t, N_Vector y, N_Vector ydot, void* self);
+  static int LinearSystem(double t, N_Vector y, N_Vector fy, SUNMatrix A, sunbooleantype jok,
+                          sunbooleantype* jcur, double gamma, void* self, N_Vector, N_Vector, N_Vector);
   static int Roots(double t, N_Vector y, double* g, void* self);
   static int Project(double t, N_Vector y, N_Vector correction, double tolerance, N_Vector error, void* self);
   static void ErrorHandler(int code, const char* module, const char* function, char* msg, void* self);
 
+  int EvaluateRhs(double t, double* x, double* xdot);
   void EvaluateAt(double t, double* x);
   void Record(double t, double* x);
   void HandleCrossings(double t);
@@ -137,6 +166,8 @@ class Simulator {
   std::vector<double> last_fired_;       // per crossing: when it last fired
   std::vector<int> fired_in_a_row_;      // per crossing: firings in its current instant
   std::string solver_message_;           // last message from CVODE's error handler
+  std::unique_ptr<ColouredJacobian> jacobian_;  // sparse runs only
+  std::vector<double> increments_;              // sparse: per state, for each fill
   std::unique_ptr<Solver> solver_;
 };
 

@@ -3,6 +3,9 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
 namespace mechflow::blocks::sundials {
 
 std::string CvodeFlagName(int flag) {
@@ -40,6 +43,27 @@ DenseSolver::~DenseSolver() {
   SUNLinSolFree(ls_);
   SUNMatDestroy(a_);
 }
+
+SparseSolver::SparseSolver(const Vector& y, const SparsityPattern& pattern, const Context& ctx) {
+  const sunindextype n = N_VGetLength(y.get());
+  if (n != pattern.n) throw std::logic_error("sparsity pattern and state vector differ in size");
+  a_ = SUNSparseMatrix(n, n, pattern.nonzeros(), CSC_MAT, ctx.get());
+  if (!a_) throw std::runtime_error("SUNSparseMatrix failed");
+  sunindextype* start = SUNSparseMatrix_IndexPointers(a_);
+  sunindextype* rows = SUNSparseMatrix_IndexValues(a_);
+  for (sunindextype j = 0; j <= n; ++j) start[j] = pattern.column_start[j];
+  for (int k = 0; k < pattern.nonzeros(); ++k) rows[k] = pattern.rows[k];
+  ls_ = SUNLinSol_KLU(y.get(), a_, ctx.get());
+  if (!ls_) {
+    SUNMatDestroy(a_);
+    throw std::runtime_error("SUNLinSol_KLU failed");
+  }
+}
+SparseSolver::~SparseSolver() {
+  SUNLinSolFree(ls_);
+  SUNMatDestroy(a_);
+}
+double* SparseSolver::values() const { return SUNSparseMatrix_Data(a_); }
 
 Cvode::Cvode(const Context& ctx) : mem_(CVodeCreate(CV_BDF, ctx.get())) {
   if (!mem_) throw std::runtime_error("CVodeCreate failed");

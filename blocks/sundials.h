@@ -11,6 +11,8 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "blocks/sparsity.h"
+
 namespace mechflow::blocks::sundials {
 
 // Throws std::runtime_error("CVodeInit failed: CV_ILL_INPUT") when flag < 0.
@@ -53,6 +55,24 @@ class DenseSolver {
   DenseSolver& operator=(const DenseSolver&) = delete;
   SUNMatrix matrix() const { return a_; }
   SUNLinearSolver solver() const { return ls_; }
+
+ private:
+  SUNMatrix a_ = nullptr;
+  SUNLinearSolver ls_ = nullptr;
+};
+
+// Compressed-sparse-column matrix with a fixed pattern (set here, once) plus
+// the KLU direct solver. KLU analyses the pattern at its first factorisation
+// and only refactors afterwards.
+class SparseSolver {
+ public:
+  SparseSolver(const Vector& y, const SparsityPattern& pattern, const Context& ctx);
+  ~SparseSolver();
+  SparseSolver(const SparseSolver&) = delete;
+  SparseSolver& operator=(const SparseSolver&) = delete;
+  SUNMatrix matrix() const { return a_; }
+  SUNLinearSolver solver() const { return ls_; }
+  double* values() const;  // the nonzeros, in the pattern's order
 
  private:
   SUNMatrix a_ = nullptr;

@@ -42,6 +42,10 @@ void PrintStats(const blocks::SolverStats& s, std::ostream& out) {
       << s.error_test_failures << " error-test failures\n"
       << "        " << s.events << " events, " << s.sample_hits << " sample hits, " << s.reinits
       << " re-initialisations, " << s.root_evals << " zero-crossing evaluations\n";
+  if (s.sparse)
+    out << "        sparse Jacobian (KLU): " << s.colours << " colours, " << s.nonzeros << " nonzeros\n";
+  else
+    out << "        dense Jacobian\n";
   // only diagrams with a block on a manifold project
   if (s.projections > 0 || s.projection_failures > 0)
     out << "        " << s.projections << " projections, " << s.projection_failures << " projection failures\n";

@@ -68,6 +68,13 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
                         blocks::SolverOptions* solver) {
   for (const auto& a : d.solver) {
     const std::string what = a.loc.str() + ": solver setting '" + a.name + "'";
+    if (a.name == "linear_solver") {
+      if (a.value == "auto") solver->linear_solver = blocks::LinearSolverKind::kAuto;
+      else if (a.value == "dense") solver->linear_solver = blocks::LinearSolverKind::kDense;
+      else if (a.value == "sparse") solver->linear_solver = blocks::LinearSolverKind::kSparse;
+      else throw InputError(what + " is '" + a.value + "'; expected auto, dense or sparse");
+      continue;
+    }
     const double v = eval.Number(a.value, what);
     if (a.name == "t_start") solver->t_start = v;
     else if (a.name == "t_end") solver->t_end = v;

@@ -65,7 +65,7 @@ const std::vector<ElementSchema>& Schema() {
       {"block", {"type", "name"}, {}, {}, true},
       {"connections", {}, {}, {"connect"}},
       {"connect", {"from", "to"}, {}, {}},
-      {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps"}, {}},
+      {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps", "linear_solver"}, {}},
       {"output", {}, {"interval", "csv", "plot"}, {"log"}},
       {"log", {"signal"}, {"group", "label"}, {}},
   };

@@ -10,6 +10,7 @@ AppliedForce::AppliedForce(std::string name, std::string origin, int body, Vec3 
       force_(force),
       torque_(torque),
       body_axes_(body_axes) {
+  DeclareBodies({body_});
   for (int i = 0; i < 3; ++i) DeclareDependsOnInputs(force_[i].uses_inputs || torque_[i].uses_inputs);
   for (const char* s : {"fx", "fy", "fz", "mx", "my", "mz"}) DeclareSensor(s);
 }

@@ -14,6 +14,7 @@ BipolarForce::BipolarForce(std::string name, std::string origin, int body1, Vec3
       point1_(point1),
       point2_(point2),
       law_(std::move(law)) {
+  DeclareBodies({body1_, body2_});
   DeclareDependsOnInputs(law_->depends_on_inputs());
   DeclareSensor("force");
   DeclareSensor("length");

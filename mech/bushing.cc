@@ -11,6 +11,7 @@ Bushing::Bushing(std::string name, std::string origin, int body1, Vec3 point1, i
       point2_(point2),
       p_(parameters),
       initial_relative_(initial.body_pose[body1].R.transpose() * initial.body_pose[body2].R) {
+  DeclareBodies({body1_, body2_});
   for (const char* s : {"fx", "fy", "fz", "mx", "my", "mz", "dx", "dy", "dz", "ax", "ay", "az"}) DeclareSensor(s);
 }
 

@@ -17,6 +17,7 @@ CirclePlaneContact::CirclePlaneContact(std::string name, std::string origin, int
       radius_(radius),
       plane_point_(plane_point),
       law_(law) {
+  DeclareBodies({body1_, body2_});
   const std::string where = this->origin() + (this->origin().empty() ? "" : ": ") + "contact '" + this->name() + "': ";
   if (!(circle_normal.norm() > 0) || !(normal.norm() > 0))
     throw InputError(where + "the circle and plane normals must be non-zero");

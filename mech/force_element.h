@@ -71,6 +71,13 @@ class ForceElement {
   // inputs at the same instant (a parameter follows an input); its sensors
   // then feed through from the inputs.
   bool depends_on_inputs() const { return depends_on_inputs_; }
+  // What the element reads and loads, for sparse Jacobians: the bodies
+  // (Base0 included) whose motion it reads and on which it acts, and the
+  // velocity coordinates (v indices) it reads and loads directly. Both empty:
+  // not declared, read as "every body and coordinate".
+  const std::vector<int>& bodies() const { return bodies_; }
+  const std::vector<int>& coordinates() const { return coordinates_; }
+  bool declares_footprint() const { return !bodies_.empty() || !coordinates_.empty(); }
   int num_states() const { return num_states_; }
   int num_modes() const { return num_modes_; }
   int num_crossings() const { return static_cast<int>(crossings_.size()); }
@@ -99,6 +106,8 @@ class ForceElement {
   void DeclareStates(int n) { num_states_ += n; }
   void DeclareDependsOnInputs(bool depends) { depends_on_inputs_ = depends_on_inputs_ || depends; }
   void DeclareModes(int n) { num_modes_ += n; }
+  void DeclareBodies(std::vector<int> bodies) { bodies_ = std::move(bodies); }
+  void DeclareCoordinates(std::vector<int> v_indices) { coordinates_ = std::move(v_indices); }
   int DeclareCrossing(Crossing direction) {
     crossings_.push_back(direction);
     return num_crossings() - 1;
@@ -110,6 +119,7 @@ class ForceElement {
   int num_states_ = 0, num_modes_ = 0;
   bool depends_on_inputs_ = false;
   std::vector<Crossing> crossings_;
+  std::vector<int> bodies_, coordinates_;
 };
 
 }  // namespace mechflow::mech

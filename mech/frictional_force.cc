@@ -18,6 +18,7 @@ FrictionalForce::FrictionalForce(std::string name, std::string origin, int body1
       point1_(point1),
       point2_(point2),
       p_(parameters) {
+  DeclareBodies({body1_, body2_});
   DeclareDependsOnInputs(p_.friction.uses_inputs || p_.ratio.uses_inputs || p_.stiffness.uses_inputs ||
                          p_.damping.uses_inputs);
   DeclareSensor("force");

@@ -5,6 +5,7 @@ namespace mechflow::mech {
 JointForce::JointForce(std::string name, std::string origin, const Dof& dof, std::unique_ptr<ForceLaw> law)
     : ForceElement(std::move(name), std::move(origin)), q_index_(dof.q_index), v_index_(dof.v_index),
       law_(std::move(law)) {
+  DeclareCoordinates({v_index_});
   DeclareDependsOnInputs(law_->depends_on_inputs());
   DeclareSensor("force");
   DeclareSensor("length");

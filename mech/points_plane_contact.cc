@@ -45,6 +45,7 @@ PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int
       points_(std::move(points)),
       plane_point_(plane_point),
       law_(law) {
+  DeclareBodies({body1_, body2_});
   const std::string where = this->origin() + (this->origin().empty() ? "" : ": ") + "contact '" + this->name() + "': ";
   if (points_.empty()) throw InputError(where + "needs at least one point");
   if (!(normal.norm() > 0)) throw InputError(where + "the plane normal must be non-zero");

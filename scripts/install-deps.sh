@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  libeigen3-dev libsundials-dev libtinyxml2-dev liblua5.4-dev libgtest-dev
+  libeigen3-dev libsundials-dev libsuitesparse-dev libtinyxml2-dev liblua5.4-dev libgtest-dev
   gnuplot-nox
 )
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "blocks/library/mechanism_sparsity.h"
 #include "mech/errors.h"
 
 namespace mechflow::blocks {
@@ -68,6 +69,8 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
                                                           : CrossingDirection::kEither);
     }
   if (!mechanism_->constraints().empty() || mechanism_->model().has_quaternions()) DeclareProjection();
+  // which states each derivative and sensor reads, from the topology
+  if (auto sparsity = MechanismSparsity(*mechanism_, sensors_)) DeclareSparsity(std::move(*sparsity));
   for (const auto& sensor : sensors_)
     if (sensor.kind == mech::SensorKind::kReactionForce || sensor.kind == mech::SensorKind::kReactionTorque)
       ws_.want_reactions = true;

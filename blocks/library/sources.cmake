@@ -11,6 +11,7 @@ set(MECHFLOW_LIBRARY_SOURCES
   blocks/library/gain.cc
   blocks/library/integrator.cc
   blocks/library/mechanism_block.cc
+  blocks/library/mechanism_sparsity.cc
   blocks/library/piecewise_linear.cc
   blocks/library/product.cc
   blocks/library/ramp.cc

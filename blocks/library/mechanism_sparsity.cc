@@ -1,0 +1,174 @@
+#include "blocks/library/mechanism_sparsity.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace mechflow::blocks {
+namespace {
+
+using IndexSet = std::vector<int>;
+
+void Add(const IndexSet& from, IndexSet* into) { into->insert(into->end(), from.begin(), from.end()); }
+
+void Normalize(IndexSet* s) {
+  std::sort(s->begin(), s->end());
+  s->erase(std::unique(s->begin(), s->end()), s->end());
+}
+
+// Union-find over segment trees.
+struct Groups {
+  explicit Groups(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int Find(int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void Join(int a, int b) { parent[Find(a)] = Find(b); }
+  std::vector<int> parent;
+};
+
+}  // namespace
+
+std::optional<BlockSparsity> MechanismSparsity(const mech::Mechanism& m,
+                                               const std::vector<mech::SensorSpec>& sensors) {
+  const mech::Model& model = m.model();
+  const int nq = model.nq(), nv = model.nv(), num_segments = static_cast<int>(model.segments().size());
+  for (int e = 0; e < m.num_elements(); ++e)
+    if (!m.element(e).declares_footprint()) return std::nullopt;
+
+  // the root segment of every segment, then groups of roots joined by loops
+  std::vector<int> root(num_segments);
+  for (int s = 0; s < num_segments; ++s) {
+    int r = s;
+    while (model.segments()[r].parent != mech::kGround) r = model.segments()[r].parent;
+    root[s] = r;
+  }
+  Groups groups(num_segments);
+  auto segment_of_body = [&](int body) { return model.bodies()[body].segment; };
+  for (int j = 0; j < static_cast<int>(model.joints().size()); ++j) {
+    const mech::Joint& joint = model.joints()[j];
+    if (!joint.is_cut && !joint.convel) continue;
+    std::vector<int> members;
+    for (const int body : {joint.body1, joint.body2})
+      if (segment_of_body(body) != mech::kGround) members.push_back(root[segment_of_body(body)]);
+    for (int s = 0; s < num_segments; ++s)
+      if (model.segments()[s].joint == j) members.push_back(root[s]);
+    for (std::size_t k = 1; k < members.size(); ++k) groups.Join(members[k], members[0]);
+  }
+  auto group_of_segment = [&](int s) { return groups.Find(root[s]); };
+
+  // coordinates of each segment and of each group
+  std::vector<int> q_owner(nq, -1), v_owner(nv, -1);
+  for (int s = 0; s < num_segments; ++s) {
+    const mech::Segment& seg = model.segments()[s];
+    if (seg.drive != mech::SegmentDrive::kDof) continue;
+    const bool free = seg.motion == mech::SegmentMotion::kFree;
+    for (int k = 0; k < (free ? 7 : 1); ++k) q_owner[seg.q_index + k] = s;
+    for (int k = 0; k < (free ? 6 : 1); ++k) v_owner[seg.v_index + k] = s;
+  }
+  if (std::count(q_owner.begin(), q_owner.end(), -1) > 0 || std::count(v_owner.begin(), v_owner.end(), -1) > 0)
+    return std::nullopt;
+  std::vector<IndexSet> group_coordinates(num_segments);  // by group id: its q and v states
+  for (int i = 0; i < nq; ++i) group_coordinates[group_of_segment(q_owner[i])].push_back(i);
+  for (int i = 0; i < nv; ++i) group_coordinates[group_of_segment(v_owner[i])].push_back(nq + i);
+
+  // what each element touches and reads
+  std::vector<IndexSet> element_groups(m.num_elements()), element_reads(m.num_elements());
+  for (int e = 0; e < m.num_elements(); ++e) {
+    const mech::ForceElement& element = m.element(e);
+    IndexSet& g = element_groups[e];
+    for (const int body : element.bodies())
+      if (segment_of_body(body) != mech::kGround) g.push_back(group_of_segment(segment_of_body(body)));
+    for (const int v : element.coordinates()) g.push_back(group_of_segment(v_owner[v]));
+    Normalize(&g);
+    for (const int group : g) Add(group_coordinates[group], &element_reads[e]);
+    for (int k = 0; k < element.num_states(); ++k) element_reads[e].push_back(m.state_offset(e) + k);
+    Normalize(&element_reads[e]);
+  }
+
+  // what the accelerations of each group read, and whether inputs reach them
+  std::vector<IndexSet> group_reads(num_segments);
+  std::vector<bool> group_inputs(num_segments, false);
+  for (int g = 0; g < num_segments; ++g) group_reads[g] = group_coordinates[g];
+  for (int e = 0; e < m.num_elements(); ++e)
+    for (const int g : element_groups[e]) {
+      Add(element_reads[e], &group_reads[g]);
+      if (m.element(e).depends_on_inputs()) group_inputs[g] = true;
+    }
+  for (IndexSet& s : group_reads) Normalize(&s);
+
+  IndexSet all_inputs(m.num_inputs());
+  std::iota(all_inputs.begin(), all_inputs.end(), 0);
+  BlockSparsity out;
+  out.derivative_states.resize(m.num_states());
+  out.derivative_inputs.resize(m.num_states());
+  // q' from the segment's own coordinates
+  for (int i = 0; i < nq; ++i) {
+    const int s = q_owner[i];
+    const mech::Segment& seg = model.segments()[s];
+    const bool free = seg.motion == mech::SegmentMotion::kFree;
+    IndexSet& row = out.derivative_states[i];
+    for (int k = 0; k < (free ? 6 : 1); ++k) row.push_back(nq + seg.v_index + k);
+    if (free)
+      for (int k = 0; k < 7; ++k) row.push_back(seg.q_index + k);
+    if (!model.has_quaternions()) row.push_back(nq + i);  // CoordinateRates copies v[i] then
+    Normalize(&row);
+  }
+  for (int i = 0; i < nv; ++i) {
+    const int g = group_of_segment(v_owner[i]);
+    out.derivative_states[nq + i] = group_reads[g];
+    if (group_inputs[g]) out.derivative_inputs[nq + i] = all_inputs;
+  }
+  for (int e = 0; e < m.num_elements(); ++e)
+    for (int k = 0; k < m.element(e).num_states(); ++k) {
+      out.derivative_states[m.state_offset(e) + k] = element_reads[e];
+      if (m.element(e).depends_on_inputs()) out.derivative_inputs[m.state_offset(e) + k] = all_inputs;
+    }
+
+  // sensors
+  auto body_group_coordinates = [&](int body, IndexSet* into) {
+    if (segment_of_body(body) != mech::kGround) Add(group_coordinates[group_of_segment(segment_of_body(body))], into);
+  };
+  auto body_group_reads = [&](int body, IndexSet* into) {
+    if (segment_of_body(body) != mech::kGround) Add(group_reads[group_of_segment(segment_of_body(body))], into);
+  };
+  IndexSet everything(m.num_states());
+  std::iota(everything.begin(), everything.end(), 0);
+  for (const mech::SensorSpec& sensor : sensors) {
+    IndexSet row;
+    switch (sensor.kind) {
+      case mech::SensorKind::kCoordinate:
+      case mech::SensorKind::kVelocity:
+      case mech::SensorKind::kAcceleration: {
+        const int v = model.dofs()[sensor.index].v_index;
+        if (v < 0) row = everything;
+        else if (sensor.kind == mech::SensorKind::kAcceleration) Add(group_reads[group_of_segment(v_owner[v])], &row);
+        else Add(group_coordinates[group_of_segment(v_owner[v])], &row);
+        break;
+      }
+      case mech::SensorKind::kPointPosition:
+      case mech::SensorKind::kPointVelocity:
+      case mech::SensorKind::kBodyAngles:
+      case mech::SensorKind::kBodyAngularVelocity:
+        body_group_coordinates(sensor.index, &row);
+        break;
+      case mech::SensorKind::kPointAcceleration:
+        body_group_reads(sensor.index, &row);
+        break;
+      case mech::SensorKind::kReactionForce:
+      case mech::SensorKind::kReactionTorque:
+        body_group_reads(model.joints()[sensor.index].body1, &row);
+        body_group_reads(model.joints()[sensor.index].body2, &row);
+        break;
+      case mech::SensorKind::kElement:
+        row = element_reads[sensor.index];
+        break;
+      default:
+        row = everything;  // a kind added later: the safe answer
+    }
+    Normalize(&row);
+    out.output_states.push_back(std::move(row));
+  }
+  return out;
+}
+
+}  // namespace mechflow::blocks
