@@ -9,24 +9,19 @@
 //   - the continuous-state layout, the zero-crossing list and the periodic
 //     blocks.
 // Algebraic loops (strongly connected components of the feedthrough graph)
-// are found at build time and reported; solving them (Newton on the loop
-// signals) will become a schedule entry of its own.
+// are found at build time; each becomes one schedule entry, solved by Newton
+// on a few of its signals at every evaluation (see AlgebraicLoop).
 
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "blocks/algebraic_loop.h"
 #include "blocks/block.h"
 #include "blocks/block_context.h"
 
 namespace mechflow::blocks {
-
-// One output port of one block: a node of the schedule.
-struct OutputNode {
-  int block = 0;
-  int port = 0;
-};
 
 // A resolved "block.port" signal: where its values sit in Context::signals.
 struct SignalRef {
@@ -55,8 +50,10 @@ class Diagram {
   int num_discrete_states() const { return num_discrete_; }
   int num_zero_crossings() const { return num_crossings_; }
 
-  // Output ports in evaluation order.
+  // Output ports in evaluation order; an entry with loop >= 0 is that
+  // algebraic loop, solved as a whole.
   const std::vector<OutputNode>& schedule() const { return schedule_; }
+  const std::vector<AlgebraicLoop>& loops() const { return loops_; }
   const std::vector<Connection>& connections() const { return connections_; }
   // Blocks with continuous states / zero crossings / a periodic sample time.
   const std::vector<int>& stateful_blocks() const { return stateful_; }
@@ -76,6 +73,7 @@ class Diagram {
   std::vector<BlockLayout> layouts_;
   std::vector<Connection> connections_;
   std::vector<OutputNode> schedule_;
+  std::vector<AlgebraicLoop> loops_;
   std::vector<int> stateful_, crossing_, periodic_;
   int num_signals_ = 0, num_states_ = 0, num_discrete_ = 0, num_crossings_ = 0;
 };

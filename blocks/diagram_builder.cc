@@ -201,39 +201,26 @@ void DiagramBuilder::LayOut(Diagram* d, const std::vector<Connection>& resolved)
   d->connections_ = resolved;
 }
 
-// Orders output ports so that every port is computed after the ports it
-// depends on directly. Nodes are output ports; an edge runs from output A.o to
-// output B.p when A.o drives an input of B that feeds B.p directly. Tarjan's
-// algorithm yields the strongly connected components sinks-first; any
-// component with more than one node, or a node with an edge to itself, is an
-// algebraic loop.
-void DiagramBuilder::Schedule(Diagram* d) const {
-  std::vector<int> first_node(d->num_blocks() + 1, 0);
-  for (int b = 0; b < d->num_blocks(); ++b) first_node[b + 1] = first_node[b] + d->blocks_[b]->num_outputs();
-  const int n = first_node.back();
-  std::vector<OutputNode> nodes(n);
-  for (int b = 0; b < d->num_blocks(); ++b)
-    for (int p = 0; p < d->blocks_[b]->num_outputs(); ++p) nodes[first_node[b] + p] = {b, p};
+namespace {
 
-  // edges[u] = list of (v, connection index): v depends directly on u
-  std::vector<std::vector<std::pair<int, int>>> edges(n);
-  for (size_t ci = 0; ci < d->connections_.size(); ++ci) {
-    const Connection& c = d->connections_[ci];
-    const Block& to = *d->blocks_[c.to_block];
-    for (int p = 0; p < to.num_outputs(); ++p)
-      if (to.HasFeedthrough(c.to_port, p))
-        edges[first_node[c.from_block] + c.from_port].push_back({first_node[c.to_block] + p, int(ci)});
-  }
+// Feedthrough graph over output ports: edges[u] lists (v, connection) when
+// port v depends directly on port u through that connection.
+using Edges = std::vector<std::vector<std::pair<int, int>>>;
 
-  std::vector<int> index(n, -1), low(n, 0), stack, component(n, -1);
+// Strongly connected components (Tarjan) of the subgraph of `active` nodes,
+// sinks first.
+std::vector<std::vector<int>> Components(const Edges& edges, const std::vector<bool>& active) {
+  const int n = static_cast<int>(edges.size());
+  std::vector<int> index(n, -1), low(n, 0), stack;
   std::vector<bool> on_stack(n, false);
-  std::vector<std::vector<int>> components;  // sinks first
+  std::vector<std::vector<int>> components;
   int counter = 0;
   std::function<void(int)> visit = [&](int u) {
     index[u] = low[u] = counter++;
     stack.push_back(u);
     on_stack[u] = true;
     for (const auto& [v, ci] : edges[u]) {
+      if (!active[v]) continue;
       if (index[v] < 0) {
         visit(v);
         low[u] = std::min(low[u], low[v]);
@@ -248,30 +235,95 @@ void DiagramBuilder::Schedule(Diagram* d) const {
         v = stack.back();
         stack.pop_back();
         on_stack[v] = false;
-        component[v] = static_cast<int>(components.size());
         comp.push_back(v);
       } while (v != u);
       components.push_back(comp);
     }
   };
   for (int u = 0; u < n; ++u)
-    if (index[u] < 0) visit(u);
+    if (active[u] && index[u] < 0) visit(u);
+  return components;
+}
 
-  for (const auto& comp : components) {
-    const int u = comp.front();
-    bool self_loop = false;
-    for (const auto& e : edges[u]) self_loop |= e.first == u;
-    if (comp.size() == 1 && !self_loop) continue;
-    // walk one cycle inside the component, starting from u
+bool IsCycle(const std::vector<int>& comp, const Edges& edges) {
+  if (comp.size() > 1) return true;
+  for (const auto& e : edges[comp.front()])
+    if (e.first == comp.front()) return true;
+  return false;
+}
+
+// Output ports that cut every cycle of a loop: repeatedly, in each cycle that
+// remains, the port with the most paths through it (in-degree x out-degree
+// inside the cycle; ties to the narrower, then the earlier port). Few tears
+// make a small Newton system.
+std::vector<int> ChooseTears(const std::vector<int>& loop, const Edges& edges, const std::vector<int>& width) {
+  std::vector<bool> active(edges.size(), false);
+  for (const int u : loop) active[u] = true;
+  std::vector<int> tears;
+  for (bool cut = true; cut;) {
+    cut = false;
+    for (const auto& comp : Components(edges, active)) {
+      if (!IsCycle(comp, edges)) continue;
+      std::map<int, int> in, out;
+      for (const int u : comp)
+        for (const auto& [v, ci] : edges[u])
+          if (std::find(comp.begin(), comp.end(), v) != comp.end()) ++out[u], ++in[v];
+      int best = comp.front();
+      for (const int u : comp) {
+        const long score = long(in[u]) * out[u], best_score = long(in[best]) * out[best];
+        if (score > best_score || (score == best_score && (width[u] < width[best] ||
+                                                           (width[u] == width[best] && u < best))))
+          best = u;
+      }
+      tears.push_back(best);
+      active[best] = false;
+      cut = true;
+    }
+  }
+  return tears;
+}
+
+}  // namespace
+
+// Orders output ports so that every port is computed after the ports it
+// depends on directly. Nodes are output ports; an edge runs from output A.o to
+// output B.p when A.o drives an input of B that feeds B.p directly. Tarjan's
+// algorithm yields the strongly connected components sinks-first; any
+// component with more than one node, or a node with an edge to itself, is an
+// algebraic loop, scheduled as one entry and solved at run time.
+void DiagramBuilder::Schedule(Diagram* d) const {
+  std::vector<int> first_node(d->num_blocks() + 1, 0);
+  for (int b = 0; b < d->num_blocks(); ++b) first_node[b + 1] = first_node[b] + d->blocks_[b]->num_outputs();
+  const int n = first_node.back();
+  std::vector<OutputNode> nodes(n);
+  std::vector<int> width(n);
+  for (int b = 0; b < d->num_blocks(); ++b)
+    for (int p = 0; p < d->blocks_[b]->num_outputs(); ++p) {
+      nodes[first_node[b] + p] = {b, p};
+      width[first_node[b] + p] = d->layouts_[b].output_width[p];
+    }
+
+  Edges edges(n);
+  for (size_t ci = 0; ci < d->connections_.size(); ++ci) {
+    const Connection& c = d->connections_[ci];
+    const Block& to = *d->blocks_[c.to_block];
+    for (int p = 0; p < to.num_outputs(); ++p)
+      if (to.HasFeedthrough(c.to_port, p))
+        edges[first_node[c.from_block] + c.from_port].push_back({first_node[c.to_block] + p, int(ci)});
+  }
+
+  // One cycle of the loop as block.port hops, for messages.
+  auto describe = [&](const std::vector<int>& comp) {
+    std::vector<bool> in_comp(n, false), seen(n, false);
+    for (const int u : comp) in_comp[u] = true;
     std::vector<std::pair<int, int>> path;  // (connection, node it reaches)
-    std::vector<bool> seen(n, false);
-    int cur = u;
     std::vector<int> visited;
+    int cur = comp.front();
     while (!seen[cur]) {
       seen[cur] = true;
       visited.push_back(cur);
       for (const auto& [v, ci] : edges[cur])
-        if (component[v] == component[u]) {
+        if (in_comp[v]) {
           path.push_back({ci, v});
           cur = v;
           break;
@@ -280,25 +332,44 @@ void DiagramBuilder::Schedule(Diagram* d) const {
     // cur is the first node met twice: drop the lead-in before it
     const auto lead_in = std::find(visited.begin(), visited.end(), cur) - visited.begin();
     path.erase(path.begin(), path.begin() + lead_in);
-    std::string hops;
+    const Block& first = *d->blocks_[nodes[cur].block];
+    std::string text = " through " + PortName(first, first.output_port(nodes[cur].port)) + ":";
     for (const auto& [ci, reached] : path) {
       const Connection& c = d->connections_[ci];
       const Block& a = *d->blocks_[c.from_block];
       const Block& b = *d->blocks_[c.to_block];
-      hops += "\n  " + PortName(a, a.output_port(c.from_port)) + " -> " +
-              PortName(b, b.input_port(c.to_port)) + " (feeds " +
-              PortName(b, b.output_port(nodes[reached].port)) + " directly)" +
+      text += "\n  " + PortName(a, a.output_port(c.from_port)) + " -> " + PortName(b, b.input_port(c.to_port)) +
+              " (feeds " + PortName(b, b.output_port(nodes[reached].port)) + " directly)" +
               (pending_[ci].origin.empty() ? "" : " at " + pending_[ci].origin);
     }
-    const Block& first = *d->blocks_[nodes[cur].block];
-    throw InputError(Where(d->origins_[nodes[cur].block]) + "algebraic loop through " +
-                     PortName(first, first.output_port(nodes[cur].port)) + ":" + hops +
-                     "\nBreak it with a block that has state (integrator, first-order lag) or check "
-                     "the feedthrough of the blocks involved.");
-  }
+    return text;
+  };
+
+  const std::vector<std::vector<int>> components = Components(edges, std::vector<bool>(n, true));
   // Tarjan emits sinks first: reverse for evaluation order
-  for (auto it = components.rbegin(); it != components.rend(); ++it)
-    d->schedule_.push_back(nodes[it->front()]);
+  for (auto it = components.rbegin(); it != components.rend(); ++it) {
+    if (!IsCycle(*it, edges)) {
+      d->schedule_.push_back(nodes[it->front()]);
+      continue;
+    }
+    const std::vector<int> tear_ids = ChooseTears(*it, edges, width);
+    std::vector<bool> inner_active(n, false);
+    for (const int u : *it) inner_active[u] = true;
+    for (const int u : tear_ids) inner_active[u] = false;
+    std::vector<OutputNode> inner, tears;
+    const auto order = Components(edges, inner_active);  // all single ports now, sinks first
+    for (auto o = order.rbegin(); o != order.rend(); ++o) inner.push_back(nodes[o->front()]);
+    std::vector<int> offsets, widths;
+    for (const int u : tear_ids) {
+      tears.push_back(nodes[u]);
+      offsets.push_back(d->layouts_[nodes[u].block].output_offset[nodes[u].port]);
+      widths.push_back(width[u]);
+    }
+    OutputNode entry = tears.front();
+    entry.loop = static_cast<int>(d->loops_.size());
+    d->loops_.emplace_back(std::move(inner), std::move(tears), offsets, widths, describe(*it));
+    d->schedule_.push_back(entry);
+  }
 }
 
 std::unique_ptr<Diagram> DiagramBuilder::Build() {

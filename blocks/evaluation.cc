@@ -7,8 +7,12 @@ void InitializeStates(const Diagram& d, Context* ctx) {
 }
 
 void EvaluateOutputs(const Diagram& d, Context* ctx) {
-  for (const OutputNode& node : d.schedule())
-    d.block(node.block).CalcOutput(node.port, BlockContext(ctx, &d.layout(node.block)));
+  for (const OutputNode& node : d.schedule()) {
+    if (node.loop >= 0)
+      d.loops()[node.loop].Solve(d, ctx);
+    else
+      d.block(node.block).CalcOutput(node.port, BlockContext(ctx, &d.layout(node.block)));
+  }
 }
 
 void EvaluateDerivatives(const Diagram& d, Context* ctx) {

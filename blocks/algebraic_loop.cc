@@ -1,0 +1,143 @@
+#include "blocks/algebraic_loop.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "blocks/diagram.h"
+#include "mech/errors.h"
+
+namespace mechflow::blocks {
+
+AlgebraicLoop::AlgebraicLoop(std::vector<OutputNode> inner, std::vector<OutputNode> tears,
+                             const std::vector<int>& tear_offsets, const std::vector<int>& tear_widths,
+                             std::string description)
+    : inner_(std::move(inner)), tears_(std::move(tears)), description_(std::move(description)) {
+  for (std::size_t i = 0; i < tear_offsets.size(); ++i)
+    for (int k = 0; k < tear_widths[i]; ++k) slot_.push_back(tear_offsets[i] + k);
+  const int n = num_unknowns();
+  z_.setZero(n);
+  g_.setZero(n);
+  r_.setZero(n);
+  r_old_.setZero(n);
+  step_.setZero(n);
+  column_.setZero(n);
+  newton_matrix_.setZero(n, n);
+  lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+}
+
+void AlgebraicLoop::Evaluate(const Diagram& d, Context* ctx, const Eigen::VectorXd& z, Eigen::VectorXd* g) const {
+  for (int k = 0; k < num_unknowns(); ++k) ctx->signals[slot_[k]] = z[k];
+  // Blocks cache work per evaluation (a mechanism's solve): new tear values
+  // are a new evaluation.
+  ++ctx->evaluation;
+  for (const OutputNode& node : inner_)
+    d.block(node.block).CalcOutput(node.port, BlockContext(ctx, &d.layout(node.block)));
+  for (const OutputNode& node : tears_)
+    d.block(node.block).CalcOutput(node.port, BlockContext(ctx, &d.layout(node.block)));
+  for (int k = 0; k < num_unknowns(); ++k) (*g)[k] = ctx->signals[slot_[k]];
+  ++stats_.evaluations;
+}
+
+bool AlgebraicLoop::Converged(const Eigen::VectorXd& z, const Eigen::VectorXd& r, double* worst) const {
+  bool converged = true;
+  *worst = 0.0;
+  for (int k = 0; k < num_unknowns(); ++k) {
+    if (!std::isfinite(r[k])) return false;
+    converged &= std::abs(r[k]) <= kRelativeTolerance * std::abs(z[k]) + kAbsoluteTolerance;
+    *worst = std::max(*worst, std::abs(r[k]));
+  }
+  return converged;
+}
+
+// Forward differences about (z_, g_); the loop's signals are left at the last
+// perturbed point, which the next Evaluate overwrites.
+void AlgebraicLoop::UpdateJacobian(const Diagram& d, Context* ctx) const {
+  const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
+  for (int k = 0; k < num_unknowns(); ++k) {
+    const double scale = std::max(std::abs(z_[k]), std::abs(g_[k]));
+    const double h = root_eps * (scale > 0.0 ? scale : 1.0);
+    step_ = z_;
+    step_[k] += h;
+    Evaluate(d, ctx, step_, &column_);
+    newton_matrix_.col(k) = (column_ - g_) / h;
+    newton_matrix_(k, k) -= 1.0;
+  }
+  lu_.compute(newton_matrix_);
+  have_jacobian_ = true;
+  ++stats_.jacobians;
+}
+
+// Smallest over largest pivot of the LU factors: a cheap singularity test
+// that, unlike Eigen's rcond(), needs no scratch memory.
+double AlgebraicLoop::PivotRatio() const {
+  const auto& lu = lu_.matrixLU();
+  double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+  for (int k = 0; k < num_unknowns(); ++k) {
+    smallest = std::min(smallest, std::abs(lu(k, k)));
+    largest = std::max(largest, std::abs(lu(k, k)));
+  }
+  return largest > 0.0 ? smallest / largest : 0.0;
+}
+
+void AlgebraicLoop::Solve(const Diagram& d, Context* ctx) const {
+  ++stats_.solves;
+  for (int k = 0; k < num_unknowns(); ++k) z_[k] = ctx->signals[slot_[k]];
+  if (!z_.allFinite()) z_.setZero();  // never evaluated yet
+  Evaluate(d, ctx, z_, &g_);
+  r_ = g_ - z_;
+  for (int iteration = 0;; ++iteration) {
+    double worst = 0.0;
+    if (Converged(z_, r_, &worst)) {
+      stats_.worst_residual = std::max(stats_.worst_residual, worst);
+      return;
+    }
+    if (!r_.allFinite()) Fail(*ctx, "a loop signal is not finite");
+    if (iteration == kMaxIterations) {
+      std::ostringstream why;
+      why << "no convergence in " << kMaxIterations << " Newton iterations (largest residual " << worst << ")";
+      Fail(*ctx, why.str());
+    }
+    if (!have_jacobian_) UpdateJacobian(d, ctx);
+    const double pivot_ratio = PivotRatio();
+    if (!(pivot_ratio > 1e-13)) {
+      std::ostringstream why;
+      why << "it has no unique solution: the loop passes its signals back with gain 1 "
+          << "(I - dG/dz is singular: smallest/largest pivot " << pivot_ratio << ")";
+      Fail(*ctx, why.str());
+    }
+    step_ = lu_.solve(r_);  // (J - I) step = r  gives  z - step
+    const double before = r_.lpNorm<Eigen::Infinity>();
+    z_ -= step_;
+    r_old_ = r_;
+    Evaluate(d, ctx, z_, &g_);
+    r_ = g_ - z_;
+    ++stats_.iterations;
+    // A Jacobian kept from another instant may no longer fit. Broyden's
+    // update makes it fit along the step just taken, for free (no extra
+    // evaluations), so a slowly changing loop keeps converging in one step;
+    // a step that did not even halve the residual asks for a fresh
+    // difference Jacobian.
+    const double after = r_.lpNorm<Eigen::Infinity>();
+    if (!(after <= 0.5 * before)) {
+      have_jacobian_ = false;
+    } else if (after > 0.0) {
+      // (J - I) += ((r_new - r_old) - (J - I) dz) dz^T / dz^T dz with dz = -step
+      column_.noalias() = newton_matrix_ * step_;
+      column_ += r_ - r_old_;
+      newton_matrix_.noalias() -= (column_ / step_.squaredNorm()) * step_.transpose();
+      lu_.compute(newton_matrix_);
+    }
+  }
+}
+
+void AlgebraicLoop::Fail(const Context& ctx, const std::string& why) const {
+  std::ostringstream msg;
+  msg << "algebraic loop" << description_ << "\ncould not be solved at t = " << ctx.time << ": " << why;
+  // The next attempt (a smaller step) starts from a fresh Jacobian.
+  have_jacobian_ = false;
+  throw SimulationError(msg.str());
+}
+
+}  // namespace mechflow::blocks
