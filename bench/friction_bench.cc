@@ -126,7 +126,7 @@ std::function<Outcome()> Mechflow(std::shared_ptr<const mechflow::diagrams::Load
       if (e.crossing == 0) o.stops.push_back(e.time);
       if (e.crossing == 2) o.breaks.push_back(e.time);
     }
-    if (fc >= 0) o.creep = -(r.at(last, fc) + law.damping * r.at(last, vc[0])) / law.stiffness;
+    if (fc >= 0) o.creep = 0.0 - (r.at(last, fc) + law.damping * r.at(last, vc[0])) / law.stiffness;  // no -0
     return o;
   };
 }
