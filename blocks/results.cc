@@ -45,4 +45,33 @@ void Results::WriteCsv(const std::string& path) const {
   if (!file) throw std::runtime_error("error while writing '" + path + "'");
 }
 
+namespace {
+
+// A CSV field: quoted when it holds a separator, a quote or a line break.
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+void Results::WriteFiguresCsv(const std::string& path) const {
+  std::ofstream file(path);
+  if (!file) throw std::runtime_error("cannot write '" + path + "'");
+  file << "label,kind,signal,value,unit,time\n";
+  char value[32] = "", time[32] = "";
+  for (const ReportFigure& f : figures_) {
+    value[0] = time[0] = '\0';
+    if (f.found) {
+      std::snprintf(value, sizeof value, "%.17g", f.value);
+      std::snprintf(time, sizeof time, "%.17g", f.time);
+    }
+    file << CsvField(f.label) << ',' << ReportKindName(f.kind) << ',' << CsvField(f.signal) << ',' << value << ','
+         << CsvField(f.unit) << ',' << time << '\n';
+  }
+  if (!file) throw std::runtime_error("error while writing '" + path + "'");
+}
+
 }  // namespace mechflow::blocks

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "blocks/report.h"
+
 namespace mechflow::blocks {
 
 class Results {
@@ -25,6 +27,14 @@ class Results {
   // Appends a row: `values` holds num_columns() numbers, time first.
   void AddRow(const double* values);
 
+  // The figures of the diagram's <report>s, in their order.
+  const std::vector<ReportFigure>& figures() const { return figures_; }
+  void SetFigures(std::vector<ReportFigure> figures) { figures_ = std::move(figures); }
+  // label,kind,signal,value,unit,time: one line per figure (empty value and
+  // time when not found); full double precision. Throws std::runtime_error
+  // when the file cannot be written.
+  void WriteFiguresCsv(const std::string& path) const;
+
   // CSV with a header line; full double precision.
   void WriteCsv(std::ostream& out) const;
   // Writes to `path`; throws std::runtime_error when the file cannot be written.
@@ -33,6 +43,7 @@ class Results {
  private:
   std::vector<std::string> columns_;
   std::vector<double> values_;
+  std::vector<ReportFigure> figures_;
 };
 
 }  // namespace mechflow::blocks

@@ -96,7 +96,94 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   }
 }
 
-Simulator::~Simulator() = default;
+Simulator::~Simulator() {
+  if (watch_vector_) N_VDestroy(watch_vector_);
+}
+
+void Simulator::SetReports(std::vector<ReportRequest> reports) {
+  for (const ReportRequest& r : reports)
+    if (r.index < 0 || r.index >= r.signal.width)
+      throw InputError("report '" + r.label + "': signal '" + r.signal.name + "' has width " +
+                       std::to_string(r.signal.width) + "; element " + std::to_string(r.index) + " does not exist");
+  reports_ = std::move(reports);
+  trackers_.assign(reports_.size(), ExtremumTracker());
+}
+
+std::vector<ReportFigure> Simulator::figures() const {
+  std::vector<ReportFigure> out;
+  for (std::size_t i = 0; i < reports_.size(); ++i) {
+    const ReportRequest& r = reports_[i];
+    ReportFigure f{r.label, r.unit, r.signal.name, r.kind, trackers_[i].found()};
+    if (f.found) {
+      // the tracker maximised -f for a minimum
+      f.value = r.kind == ReportKind::kMin ? -trackers_[i].value() : trackers_[i].value();
+      f.time = trackers_[i].time();
+    }
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+void Simulator::WatchStep(double ta, double tb) {
+  void* mem = solver_->cvode.get();
+  for (std::size_t i = 0; i < reports_.size(); ++i) {
+    const ReportRequest& r = reports_[i];
+    const int offset = r.signal.offset + r.index;
+    const double sign = r.kind == ReportKind::kMin ? -1.0 : 1.0;
+    const bool magnitude = r.kind == ReportKind::kPeakAbs;
+    trackers_[i].WatchStep(ta, tb, [&](double t) {
+      Check(CVodeGetDky(mem, t, 0, watch_vector_), "CVodeGetDky");
+      EvaluateAt(t, watch_y_.data());
+      const double v = ctx_.signals[offset];
+      return magnitude ? std::abs(v) : sign * v;
+    });
+  }
+}
+
+int Simulator::Advance(double t_out, N_Vector yout, double* t_ret) {
+  void* mem = solver_->cvode.get();
+  double* out = N_VGetArrayPointer(yout);
+  if (root_pending_) {
+    if (pending_root_time_ <= t_out) {
+      root_pending_ = false;
+      std::copy(pending_root_y_.begin(), pending_root_y_.end(), out);
+      *t_ret = pending_root_time_;
+      return CV_ROOT_RETURN;
+    }
+    Check(CVodeGetDky(mem, t_out, 0, yout), "CVodeGetDky");
+    *t_ret = t_out;
+    return CV_SUCCESS;
+  }
+  double tn = 0.0;
+  Check(CVodeGetCurrentTime(mem, &tn), "CVodeGetCurrentTime");
+  // as in CV_NORMAL: max_steps counts the steps towards one output time
+  for (long steps = 0; tn < t_out; ++steps) {
+    if (steps >= options_.max_steps) {
+      solver_message_ = "at t = " + std::to_string(tn) + ", " + std::to_string(options_.max_steps) +
+                        " steps taken before reaching the output time";
+      return CV_TOO_MUCH_WORK;
+    }
+    const double ta = tn;
+    const int flag = CVode(mem, t_out, yout, t_ret, CV_ONE_STEP);
+    if (flag < 0) return flag;
+    Check(CVodeGetCurrentTime(mem, &tn), "CVodeGetCurrentTime");
+    // a root ends the watched part of the step: beyond it the modes change
+    const double tb = flag == CV_ROOT_RETURN ? *t_ret : tn;
+    if (tb > ta) WatchStep(ta, tb);
+    if (flag == CV_ROOT_RETURN && *t_ret > t_out) {
+      root_pending_ = true;
+      pending_root_time_ = *t_ret;
+      std::copy(out, out + pending_root_y_.size(), pending_root_y_.begin());
+      break;
+    }
+    // the stop time (a sample hit, t_end) beyond t_out: rows come first
+    if (flag == CV_TSTOP_RETURN && *t_ret > t_out) break;
+    if (flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN) return flag;
+  }
+  Check(CVodeGetDky(mem, t_out, 0, yout), "CVodeGetDky");
+  *t_ret = t_out;
+  return CV_SUCCESS;
+}
 
 void Simulator::EvaluateAt(double t, double* x) {
   ctx_.time = t;
@@ -333,6 +420,12 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   std::fill(fired_in_a_row_.begin(), fired_in_a_row_.end(), 0);
   linear_solver_attached_ = false;
   projection_attached_ = false;
+  for (auto& tracker : trackers_) tracker.Reset();
+  root_pending_ = false;
+  pending_root_y_.assign(n, 0.0);
+  watch_y_.assign(n, 0.0);
+  if (watch_vector_) N_VDestroy(watch_vector_);
+  watch_vector_ = N_VMake_Serial(n, watch_y_.data(), solver_->ctx.get());
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
 
@@ -406,7 +499,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       }
       Check(CVodeSetStopTime(mem, stop), "CVodeSetStopTime");
       double t_ret = t;
-      const int flag = CVode(mem, t_out, yout, &t_ret, CV_NORMAL);
+      const int flag = reports_.empty() ? CVode(mem, t_out, yout, &t_ret, CV_NORMAL) : Advance(t_out, yout, &t_ret);
       if (flag < 0) {
         // keep what was reached: the state at the last successful step
         double t_last = t;
@@ -459,6 +552,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     outcome.failure = e.what();
   }
   AccumulateStats();
+  results_.SetFigures(figures());
   return outcome;
 }
 

@@ -41,6 +41,7 @@
 
 #include "blocks/block_context.h"
 #include "blocks/diagram.h"
+#include "blocks/report.h"
 #include "blocks/results.h"
 
 #include <sundials/sundials_matrix.h>
@@ -109,12 +110,20 @@ class Simulator {
   Simulator(const Diagram& diagram, SolverOptions options, std::vector<SignalRef> logged);
   ~Simulator();
 
+  // Figures to locate during every run (blocks/report.h). With reports the
+  // integrator advances one internal step at a time, each step watched;
+  // without, it runs to each output time at once. Signals must be scalar or
+  // indexed within their width (InputError otherwise).
+  void SetReports(std::vector<ReportRequest> reports);
+
   // Runs from t_start to t_end. `progress(t)` is called after every output row.
   RunOutcome Run(const std::function<void(double)>& progress = {});
 
   const Results& results() const { return results_; }
   const SolverStats& stats() const { return stats_; }
   const std::vector<EventRecord>& events() const { return events_; }
+  // The reports' figures so far (also in results().figures() after a run).
+  std::vector<ReportFigure> figures() const;
   const SolverOptions& options() const { return options_; }
   // The sparse Jacobian when the run uses one (chosen at construction), else
   // nullptr.
@@ -140,6 +149,10 @@ class Simulator {
   double NextSampleHit() const;
   void Reinitialize(double t);
   void AccumulateStats();
+  // CVode towards t_out one internal step at a time, watching each step for
+  // the reports; returns as CVode(..., CV_NORMAL) would.
+  int Advance(double t_out, N_Vector yout, double* t_ret);
+  void WatchStep(double ta, double tb);
 
   const Diagram& diagram_;
   SolverOptions options_;
@@ -166,6 +179,15 @@ class Simulator {
   std::vector<double> last_fired_;       // per crossing: when it last fired
   std::vector<int> fired_in_a_row_;      // per crossing: firings in its current instant
   std::string solver_message_;           // last message from CVODE's error handler
+  std::vector<ReportRequest> reports_;
+  std::vector<ExtremumTracker> trackers_;  // one per report
+  std::vector<double> watch_y_;          // the state on a watched step
+  N_Vector watch_vector_ = nullptr;      // wraps watch_y_ for CVodeGetDky
+  // a root that a step found beyond the output time it was asked for: the
+  // output row comes first, the root on the next Advance
+  bool root_pending_ = false;
+  double pending_root_time_ = 0.0;
+  std::vector<double> pending_root_y_;
   std::unique_ptr<ColouredJacobian> jacobian_;  // sparse runs only
   std::vector<double> increments_;              // sparse: per state, for each fill
   std::unique_ptr<Solver> solver_;

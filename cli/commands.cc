@@ -61,6 +61,7 @@ class Progress {
 int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
   blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
+  sim.SetReports(loaded.reports);
 
   const auto wall_start = std::chrono::steady_clock::now();
   blocks::RunOutcome outcome;
@@ -101,6 +102,19 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     return 2;
   }
   out << "wrote " << csv.string() << " (" << sim.results().num_rows() << " rows)\n";
+  if (!sim.results().figures().empty()) {
+    // beside the results: tension_mechanism.csv -> tension_mechanism.report.csv
+    fs::path figures = csv;
+    figures.replace_extension(".report.csv");
+    try {
+      sim.results().WriteFiguresCsv(figures.string());
+    } catch (const std::exception& e) {
+      err << e.what() << "\n";
+      return 2;
+    }
+    out << "wrote " << figures.string() << "\n";
+  }
+
   if (!loaded.plot_file.empty()) {
     const fs::path plot = fs::absolute(fs::path(args.out_dir) / loaded.plot_file);
     fs::create_directories(plot.parent_path(), ec);
@@ -114,6 +128,8 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     }
   }
   PrintSignalRanges(sim.results(), out);
+  PrintFigures(sim.results().figures(), outcome.ok, out);
+  PrintEventWarnings(*loaded.diagram, sim.events(), err);
   return outcome.ok ? 0 : 1;
 }
 

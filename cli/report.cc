@@ -1,8 +1,13 @@
 #include "cli/report.h"
 
 #include <cstdio>
+#include <set>
 #include <sstream>
 #include <string>
+#include <utility>
+
+#include "blocks/library/mechanism_block.h"
+#include "mech/mechanism.h"
 
 namespace mechflow::cli {
 namespace {
@@ -65,6 +70,36 @@ void PrintSignalRanges(const blocks::Results& r, std::ostream& out) {
     out << r.columns()[c] << std::string(width - r.columns()[c].size(), ' ') << Format(" %14.6g", r.at(lo, c))
         << Format(" %11.6g", r.at(lo, 0)) << Format(" %14.6g", r.at(hi, c)) << Format(" %11.6g", r.at(hi, 0))
         << "\n";
+  }
+}
+
+void PrintFigures(const std::vector<blocks::ReportFigure>& figures, bool finished, std::ostream& out) {
+  for (const blocks::ReportFigure& f : figures) {
+    out << f.label << ": ";
+    if (!f.found) {
+      out << "not found (the run took no step)\n";
+      continue;
+    }
+    out << Format("%.6g", f.value) << (f.unit.empty() ? "" : " " + f.unit) << " at t = " << Format("%.6g", f.time)
+        << " s" << (finished ? "" : " (up to the failure)") << "\n";
+  }
+}
+
+void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks::EventRecord>& events,
+                        std::ostream& out) {
+  std::set<std::pair<int, int>> warned;  // (block, element): once each
+  for (const blocks::EventRecord& e : events) {
+    const auto* block = dynamic_cast<const blocks::MechanismBlock*>(&diagram.block(e.block));
+    if (!block) continue;
+    const mech::Mechanism& m = block->mechanism();
+    for (int i = 0; i < m.num_elements(); ++i) {
+      const int local = e.crossing - m.crossing_offset(i);
+      if (local < 0 || local >= m.element(i).num_crossings()) continue;
+      const std::string warning = m.element(i).CrossingWarning(local, e.direction);
+      if (warning.empty() || !warned.insert({e.block, i}).second) continue;
+      out << "warning: t = " << Format("%.6g", e.time) << " s: " << m.element(i).origin() << ": "
+          << block->name() << "." << m.element(i).name() << ": " << warning << "\n";
+    }
   }
 }
 

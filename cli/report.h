@@ -2,6 +2,7 @@
 // What the commands print: run summary, check listing, DOT graph.
 
 #include <ostream>
+#include <vector>
 
 #include "blocks/simulator.h"
 #include "diagrams/loader.h"
@@ -13,6 +14,17 @@ void PrintStats(const blocks::SolverStats& stats, std::ostream& out);
 
 // Minimum and maximum of every logged column, with the times they occur.
 void PrintSignalRanges(const blocks::Results& results, std::ostream& out);
+
+// The figures of the diagram's <report>s, one line each:
+//   "peak contact force: 285.219 N at t = 0.094021 s"
+// (6 significant digits; "up to the failure" after a failed run).
+void PrintFigures(const std::vector<blocks::ReportFigure>& figures, bool finished, std::ostream& out);
+
+// Warnings carried by events (an element crossing that means "check the
+// model", e.g. a contact's penetration beyond its max_penetration): one line
+// per element, at the first such event, with its time.
+void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks::EventRecord>& events,
+                        std::ostream& out);
 
 // `mechflow check`: identifiers, schedule, state layout, crossings, sampled blocks.
 void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out);

@@ -45,6 +45,13 @@ struct LogDesc {
   SourceLoc loc;
 };
 
+// <report peak|min|peak_abs="signal" label=... unit=... index=...>: checked
+// by the loader, which resolves the signal.
+struct ReportDesc {
+  std::vector<Attribute> attributes;
+  SourceLoc loc;
+};
+
 // An XML element as written (mechanism content): tag, attributes, children.
 struct ElementDesc {
   std::string tag;
@@ -86,6 +93,7 @@ struct DiagramDescription {
   std::vector<Attribute> output;  // attributes of <output>
   SourceLoc output_loc;
   std::vector<LogDesc> logs;
+  std::vector<ReportDesc> reports;
 };
 
 }  // namespace mechflow::diagrams

@@ -1,5 +1,6 @@
 #include "diagrams/loader.h"
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 
@@ -136,6 +137,47 @@ void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
   }
 }
 
+// <report>s: exactly one of peak/min/peak_abs naming a signal, resolved now
+// so that a run looks nothing up.
+void CollectReports(const DiagramDescription& d, const Evaluator& eval, LoadedDiagram* out) {
+  for (const ReportDesc& r : d.reports) {
+    blocks::ReportRequest request;
+    const Attribute* signal = nullptr;
+    for (const auto kind : {blocks::ReportKind::kPeak, blocks::ReportKind::kMin, blocks::ReportKind::kPeakAbs}) {
+      const Attribute* a = FindAttribute(r.attributes, blocks::ReportKindName(kind));
+      if (!a) continue;
+      if (signal)
+        throw InputError(a->loc.str() + ": <report> asks for '" + signal->name + "' and '" + a->name +
+                         "'; one figure per <report>");
+      signal = a;
+      request.kind = kind;
+    }
+    if (!signal)
+      throw InputError(r.loc.str() + ": <report> needs one of peak=\"signal\", min=\"signal\" or peak_abs=\"signal\"");
+    try {
+      request.signal = out->diagram->ResolveSignal(Trim(signal->value));
+    } catch (const InputError& e) {
+      throw InputError(signal->loc.str() + ": <report>: " + e.what());
+    }
+    if (const Attribute* index = FindAttribute(r.attributes, "index")) {
+      const double i = eval.Number(index->value, index->loc.str() + ": <report> attribute 'index'");
+      if (!(i >= 0 && i < request.signal.width && i == std::floor(i)))
+        throw InputError(index->loc.str() + ": <report>: index " + index->value + " is not an element of '" +
+                         request.signal.name + "' (width " + std::to_string(request.signal.width) + ")");
+      request.index = static_cast<int>(i);
+    } else if (request.signal.width != 1) {
+      throw InputError(signal->loc.str() + ": <report>: signal '" + request.signal.name + "' has width " +
+                       std::to_string(request.signal.width) + "; choose an element with index=\"0\" .. \"" +
+                       std::to_string(request.signal.width - 1) + "\"");
+    }
+    const Attribute* label = FindAttribute(r.attributes, "label");
+    request.label = label ? label->value : std::string(blocks::ReportKindName(request.kind)) + " of " +
+                                               request.signal.name;
+    if (const Attribute* unit = FindAttribute(r.attributes, "unit")) request.unit = unit->value;
+    out->reports.push_back(std::move(request));
+  }
+}
+
 // --variant NAME: the named sets of identifier values, in the order given. A
 // name is the variant's own, or "group/variant" when two groups share it.
 void ApplyVariants(const DiagramDescription& d, const std::vector<std::string>& selected,
@@ -222,6 +264,7 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   // solver and output settings
   BuildSolverOptions(d, eval, options, &out.solver);
   CollectLoggedSignals(d, &out);
+  CollectReports(d, eval, &out);
   const Attribute* csv = FindAttribute(d.output, "csv");
   out.csv_file = csv && !Trim(csv->value).empty() ? Trim(csv->value) : d.name + ".csv";
   if (const Attribute* plot = FindAttribute(d.output, "plot")) {

@@ -45,6 +45,7 @@ struct LoadedDiagram {
   blocks::SolverOptions solver;
   std::vector<blocks::SignalRef> logged;  // in column order; name = column label
   std::vector<PlotGroup> groups;
+  std::vector<blocks::ReportRequest> reports;  // <report>s, signals resolved
   std::string csv_file;   // relative to the output folder; never empty
   std::string plot_file;  // relative to the output folder; empty: no plot
 };

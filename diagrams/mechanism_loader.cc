@@ -159,6 +159,17 @@ class MechanismReader {
   scripting::IdentifierTable non_inputs_;
 };
 
+// Bad input (issue 4, item 7): a stiffness, damping or friction that is a
+// constant below `minimum` is an error at the attribute's file:line.
+// Parameters that follow inputs are checked by their elements at run time.
+void RequireAtLeast(const MechanismReader& r, const ElementDesc& e, const std::string& attribute,
+                    const mech::Parameter& p, double minimum, const std::string& what) {
+  if (!p.is_constant() || p.value >= minimum) return;
+  char found[32];
+  std::snprintf(found, sizeof found, "%g", p.value);
+  throw InputError(r.What(e, attribute) + ": " + what + " (found " + found + ")");
+}
+
 mech::Pose Frame(const MechanismReader& r, const ElementDesc& e, const std::string& point,
                  const std::string& rotation, const mech::BodySpec* body) {
   mech::Pose pose = mech::Pose::Translation(r.Point(e, point, body));
@@ -278,9 +289,12 @@ mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
 
 std::unique_ptr<mech::ForceLaw> ReadLaw(const MechanismReader& r, const ElementDesc& e, double initial_x) {
   const std::string type = e.Text("type");
-  if (type == "linear")
-    return std::make_unique<mech::LinearLaw>(r.Param(e, "c", 0.0), r.Param(e, "x0", initial_x), r.Param(e, "d", 0.0),
-                                             r.Param(e, "f0", 0.0));
+  if (type == "linear") {
+    const mech::Parameter c = r.Param(e, "c", 0.0), d = r.Param(e, "d", 0.0);
+    RequireAtLeast(r, e, "c", c, 0.0, "the stiffness c must not be negative");
+    RequireAtLeast(r, e, "d", d, 0.0, "the damping d must not be negative");
+    return std::make_unique<mech::LinearLaw>(c, r.Param(e, "x0", initial_x), d, r.Param(e, "f0", 0.0));
+  }
   if (type == "points") {
     if (!r.Has(e, "points")) r.Fail(e, "a points law needs points=\"x1 F1; x2 F2; ...\"");
     std::vector<double> xs, fs;
@@ -364,6 +378,11 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
       p.ratio = r.Param(e, "ratio", 1.2);
       p.stiffness = r.Param(e, "c", 0.0);
       p.damping = r.Param(e, "d", 0.0);
+      RequireAtLeast(r, e, "friction", p.friction, 0.0, "the friction force must not be negative");
+      RequireAtLeast(r, e, "ratio", p.ratio, 1.0,
+                     "the ratio of static to dynamic friction must be at least 1 (static below dynamic friction)");
+      RequireAtLeast(r, e, "c", p.stiffness, 0.0, "the stiffness c must not be negative");
+      RequireAtLeast(r, e, "d", p.damping, 0.0, "the damping d must not be negative");
       if (e.Text("type") == "elastic_friction")
         return std::make_unique<mech::ElasticFrictionForce>(name, e.loc.str(), b1, p1, b2, p2, p);
       return std::make_unique<mech::FrictionalForce>(name, e.loc.str(), b1, p1, b2, p2, p);
@@ -385,6 +404,8 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
     auto three = [&](const char* attribute, std::array<double, 3>* out) {
       if (!r.Has(e, attribute)) return;
       const Vec3 v = r.Vector(e, attribute, Vec3::Zero());
+      for (int i = 0; i < 3; ++i)
+        RequireAtLeast(r, e, attribute, v(i), 0.0, "stiffness and damping must not be negative");
       *out = {v.x(), v.y(), v.z()};
     };
     three("c", &p.stiffness);
@@ -420,6 +441,7 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
     law.damping_depth = r.Number(e, "damping_depth", 0.0);
     law.mu = r.Number(e, "mu", 0.0);
     law.v_eps = r.Number(e, "v_eps", 1e-4);
+    law.max_penetration = r.Number(e, "max_penetration", mech::ContactLaw::kDefaultMaxPenetration);
     if (type == "circle_plane")
       return std::make_unique<mech::CirclePlaneContact>(
           name, e.loc.str(), b1, BodyPoint(r, model, e, "centre", b1), r.Vector(e, "circle_normal", Vec3::UnitX()),

@@ -40,7 +40,7 @@ const std::vector<ElementSchema>& Schema() {
        {"centre1", "axis1", "centre2", "axis2", "ratio", "clearance", "stiffness", "damping"}, {}},
       {"contact", {"name", "type", "body1", "body2"},
        {"points", "centre", "circle_normal", "radius", "plane_point", "normal", "stiffness", "exponent", "damping",
-        "damping_depth", "mu", "v_eps"},
+        "damping_depth", "mu", "v_eps", "max_penetration"},
        {}},
       {"input", {"name"}, {}, {}},
       {"body", {"name", "mass", "inertia"}, {"com", "products", "comment"}, {"point"}},
@@ -66,7 +66,8 @@ const std::vector<ElementSchema>& Schema() {
       {"connections", {}, {}, {"connect"}},
       {"connect", {"from", "to"}, {}, {}},
       {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps", "linear_solver"}, {}},
-      {"output", {}, {"interval", "csv", "plot"}, {"log"}},
+      {"output", {}, {"interval", "csv", "plot"}, {"log", "report"}},
+      {"report", {}, {"peak", "min", "peak_abs", "label", "unit", "index"}, {}},
       {"log", {"signal"}, {"group", "label"}, {}},
   };
   return schema;
@@ -195,6 +196,8 @@ class Reader {
       d.output_loc = Loc(o);
       for (const XMLElement* e = o->FirstChildElement("log"); e; e = e->NextSiblingElement("log"))
         d.logs.push_back({Text(e, "signal"), Text(e, "group"), Text(e, "label"), Loc(e)});
+      for (const XMLElement* e = o->FirstChildElement("report"); e; e = e->NextSiblingElement("report"))
+        d.reports.push_back({Attributes(e), Loc(e)});
     } else {
       d.output_loc = Loc(root);
     }

@@ -19,8 +19,8 @@ CirclePlaneContact::CirclePlaneContact(std::string name, std::string origin, int
       law_(law) {
   DeclareBodies({body1_, body2_});
   const std::string where = this->origin() + (this->origin().empty() ? "" : ": ") + "contact '" + this->name() + "': ";
-  if (!(circle_normal.norm() > 0) || !(normal.norm() > 0))
-    throw InputError(where + "the circle and plane normals must be non-zero");
+  if (!(circle_normal.norm() > 0)) throw InputError(where + "the circle normal must be non-zero");
+  if (!(normal.norm() > 0)) throw InputError(where + "the plane normal must be non-zero");
   if (!(radius > 0)) throw InputError(where + "the radius must be positive");
   CheckContactLaw(law_, where);
   circle_normal_ = circle_normal.normalized();
@@ -28,6 +28,11 @@ CirclePlaneContact::CirclePlaneContact(std::string name, std::string origin, int
   for (const char* s : {"normal", "penetration", "slip", "friction"}) DeclareSensor(s);
   DeclareModes(1);
   DeclareCrossing(mech::Crossing::kEither);
+  DeclareCrossing(mech::Crossing::kRising);  // max_penetration passed
+}
+
+std::string CirclePlaneContact::CrossingWarning(int index, int direction) const {
+  return index == 1 && direction > 0 ? PenetrationWarning(law_) : "";
 }
 
 double CirclePlaneContact::Geometry(const ElementContext& ctx, Vec3* q, Vec3* n) const {
@@ -68,10 +73,12 @@ void CirclePlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::
 void CirclePlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
   Vec3 q, n;
   values[0] = Geometry(ctx, &q, &n);
+  values[1] = values[0] - law_.max_penetration;
 }
 
-void CirclePlaneContact::OnCrossing(int, int direction, const ElementContext&, std::span<double>,
+void CirclePlaneContact::OnCrossing(int index, int direction, const ElementContext&, std::span<double>,
                                     std::span<double> modes) const {
+  if (index == 1) return;  // the bound: a warning only
   modes[0] = direction > 0 ? 1.0 : 0.0;
 }
 

@@ -100,6 +100,10 @@ class ForceElement {
   virtual bool UpdateModes(const ElementContext&, std::span<double> /*state*/, std::span<double> /*modes*/) const {
     return false;
   }
+  // Crossing `index` fired in `direction`: a warning for the user when the
+  // event means "check the model" (e.g. a contact sinking deeper than its
+  // bound), else empty. Called after a run, not at run time.
+  virtual std::string CrossingWarning(int /*index*/, int /*direction*/) const { return ""; }
 
  protected:
   void DeclareSensor(std::string sensor) { sensors_.push_back(std::move(sensor)); }

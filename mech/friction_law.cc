@@ -19,6 +19,7 @@ double FrictionForce(const FrictionLawParams& p, double normal_force, double v) 
 const char* CheckFrictionLawParams(const FrictionLawParams& p) {
   if (!(p.mu_static >= 0.0)) return "mu_static must be >= 0";
   if (!(p.mu_dynamic >= 0.0)) return "mu_dynamic must be >= 0";
+  if (p.mu_static < p.mu_dynamic) return "mu_static must not be below mu_dynamic (static below dynamic friction)";
   if (!(p.stribeck_velocity > 0.0)) return "stribeck_velocity must be > 0";
   if (!(p.viscous >= 0.0)) return "viscous must be >= 0";
   if (!(p.regularisation_velocity > 0.0)) return "regularisation_velocity must be > 0";

@@ -2,10 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "mech/errors.h"
 
 namespace mechflow::mech {
+namespace {
+
+std::string FormatNumber(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+}  // namespace
 
 double ContactNormalForce(const ContactLaw& law, double delta, double rate) {
   if (delta <= 0) return 0.0;
@@ -18,9 +29,21 @@ double ContactNormalForce(const ContactLaw& law, double delta, double rate) {
 }
 
 void CheckContactLaw(const ContactLaw& law, const std::string& where) {
-  if (!(law.exponent >= 1.0)) throw InputError(where + "the stiffness exponent must be at least 1");
-  if (law.stiffness < 0 || law.damping < 0 || law.damping_depth < 0 || law.mu < 0 || !(law.v_eps > 0))
-    throw InputError(where + "stiffness, damping, depth and mu must be >= 0, v_eps > 0");
+  auto require = [&](bool ok, const char* what, double value) {
+    if (!ok) throw InputError(where + what + " (found " + FormatNumber(value) + ")");
+  };
+  require(law.exponent >= 1.0, "the stiffness exponent must be at least 1", law.exponent);
+  require(law.stiffness >= 0, "the stiffness must be >= 0", law.stiffness);
+  require(law.damping >= 0, "the damping must be >= 0", law.damping);
+  require(law.damping_depth >= 0, "damping_depth must be >= 0", law.damping_depth);
+  require(law.mu >= 0, "the friction coefficient mu must be >= 0", law.mu);
+  require(law.v_eps > 0, "v_eps must be > 0", law.v_eps);
+  require(law.max_penetration > 0, "max_penetration must be > 0", law.max_penetration);
+}
+
+std::string PenetrationWarning(const ContactLaw& law) {
+  return "penetration exceeds max_penetration = " + FormatNumber(law.max_penetration) +
+         " m (is the contact too soft, or is a body passing through the plane?)";
 }
 
 PointContactLoad ApplyPointContact(const Kinematics& kin, const ContactLaw& law, int body1, int body2,
@@ -54,6 +77,11 @@ PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int
   for (const char* s : {"normal", "penetration", "slip", "friction"}) DeclareSensor(s);
   DeclareModes(static_cast<int>(points_.size()));
   for (std::size_t i = 0; i < points_.size(); ++i) DeclareCrossing(mech::Crossing::kEither);
+  DeclareCrossing(mech::Crossing::kRising);  // the deepest point passes max_penetration
+}
+
+std::string PointsPlaneContact::CrossingWarning(int index, int direction) const {
+  return index == static_cast<int>(points_.size()) && direction > 0 ? PenetrationWarning(law_) : "";
 }
 
 double PointsPlaneContact::Penetration(const ElementContext& ctx, int i, Vec3* p) const {
@@ -91,7 +119,12 @@ void PointsPlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::
 
 void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
   Vec3 p;
-  for (std::size_t i = 0; i < points_.size(); ++i) values[i] = Penetration(ctx, static_cast<int>(i), &p);
+  double deepest = -1e300;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    values[i] = Penetration(ctx, static_cast<int>(i), &p);
+    deepest = std::max(deepest, values[i]);
+  }
+  values[points_.size()] = deepest - law_.max_penetration;
 }
 
 bool PointsPlaneContact::UpdateModes(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
@@ -110,6 +143,7 @@ bool PointsPlaneContact::UpdateModes(const ElementContext& ctx, std::span<double
 
 void PointsPlaneContact::OnCrossing(int index, int direction, const ElementContext&, std::span<double>,
                                     std::span<double> modes) const {
+  if (index == static_cast<int>(points_.size())) return;  // the bound: a warning only
   modes[index] = direction > 0 ? 1.0 : 0.0;
 }
 

@@ -29,6 +29,11 @@ struct ContactLaw {
   double damping_depth = 0.0;  // penetration over which damping builds up [m]; 0: constant
   double mu = 0.0;             // friction coefficient
   double v_eps = 1e-4;         // regularisation velocity [m/s]
+  // Sanity bound on the penetration [m], > 0: deeper means the contact is
+  // too soft or a body passes through; the run warns (once per element, with
+  // the time) through an event (ForceElement::CrossingWarning).
+  double max_penetration = kDefaultMaxPenetration;
+  static constexpr double kDefaultMaxPenetration = 0.05;
 };
 
 // The normal and friction loads of one contact point p (global) of body 1
@@ -44,6 +49,8 @@ PointContactLoad ApplyPointContact(const Kinematics& kin, const ContactLaw& law,
 double ContactNormalForce(const ContactLaw& law, double delta, double rate);
 // Checks a law's numbers; throws InputError starting with `where`.
 void CheckContactLaw(const ContactLaw& law, const std::string& where);
+// The warning of a contact whose penetration crossed its bound (rising).
+std::string PenetrationWarning(const ContactLaw& law);
 
 class PointsPlaneContact final : public ForceElement {
  public:
@@ -58,6 +65,8 @@ class PointsPlaneContact final : public ForceElement {
   // A point exactly on the plane and moving into it is in contact: the solver
   // would not see a crossing that starts at zero.
   bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+  // The last crossing is the deepest point passing max_penetration.
+  std::string CrossingWarning(int index, int direction) const override;
 
 
  private:

@@ -32,6 +32,7 @@ inline diagrams::LoadedDiagram LoadXml(const std::string& xml, const diagrams::L
 inline XmlRun RunXml(const std::string& xml, const diagrams::LoadOptions& options = {}) {
   XmlRun run{LoadXml(xml, options), nullptr, {}};
   run.sim = std::make_unique<blocks::Simulator>(*run.loaded.diagram, run.loaded.solver, run.loaded.logged);
+  run.sim->SetReports(run.loaded.reports);
   run.outcome = run.sim->Run();
   return run;
 }

@@ -2,3 +2,4 @@
 mechflow_test(loader_test unit tests/diagrams/loader_test.cc)
 mechflow_test(mechanism_loader_test unit tests/diagrams/mechanism_loader_test.cc)
 mechflow_test(variants_test unit tests/diagrams/variants_test.cc)
+mechflow_test(bad_input_test unit tests/diagrams/bad_input_test.cc)
