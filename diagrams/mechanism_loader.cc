@@ -12,6 +12,7 @@
 #include "mech/bipolar_force.h"
 #include "mech/bushing.h"
 #include "mech/circle_plane_contact.h"
+#include "mech/elastic_friction2_force.h"
 #include "mech/elastic_friction_force.h"
 #include "mech/frictional_force.h"
 #include "mech/gearing.h"
@@ -317,7 +318,8 @@ std::unique_ptr<mech::ForceLaw> ReadLaw(const MechanismReader& r, const ElementD
     return std::make_unique<mech::ExpressionLaw>(r.Function(e.Text("expression"), {"x", "v", "t"}, r.What(e, "expression")),
                                                  r.MentionsInput(e.Text("expression")));
   }
-  const std::vector<std::string> laws = {"linear", "points", "expression", "frictional", "elastic_friction"};
+  const std::vector<std::string> laws = {"linear",     "points",           "expression",
+                                         "frictional", "elastic_friction", "elastic_friction2"};
   throw InputError(r.What(e, "type") + ": unknown law '" + type + "'" + blocks::DidYouMean(type, laws) +
                    "; expected one of " + blocks::JoinNames(laws));
 }
@@ -386,6 +388,26 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
       if (e.Text("type") == "elastic_friction")
         return std::make_unique<mech::ElasticFrictionForce>(name, e.loc.str(), b1, p1, b2, p2, p);
       return std::make_unique<mech::FrictionalForce>(name, e.loc.str(), b1, p1, b2, p2, p);
+    }
+    if (e.Text("type") == "elastic_friction2") {
+      mech::ElasticFriction2Parameters p;
+      p.series_stiffness = r.Param(e, "c1", 0.0);
+      p.parallel_stiffness = r.Param(e, "c2", 0.0);
+      p.mu = r.Param(e, "mu", 0.0);
+      p.mu0 = r.Has(e, "mu0") ? r.Param(e, "mu0", 0.0) : p.mu;
+      p.free_length = r.Param(e, "l0", mech::BipolarLength(kin0, b1, p1, b2, p2));
+      const std::string limit = e.Text("limit", "transmitted");
+      const std::vector<std::string> limits = {"transmitted", "spring", "constant"};
+      if (std::find(limits.begin(), limits.end(), limit) == limits.end())
+        throw InputError(r.What(e, "limit") + ": unknown friction limit '" + limit + "'" +
+                         blocks::DidYouMean(limit, limits) + "; expected one of " + blocks::JoinNames(limits));
+      p.limit = limit == "spring" ? mech::FrictionLimit::kSpring
+                : limit == "constant" ? mech::FrictionLimit::kConstant
+                                      : mech::FrictionLimit::kTransmitted;
+      if (p.limit == mech::FrictionLimit::kConstant && !r.Has(e, "normal_force"))
+        r.Fail(e, "the constant friction limit needs normal_force (the limit is mu * normal_force)");
+      p.normal_force = r.Param(e, "normal_force", 0.0);
+      return std::make_unique<mech::ElasticFriction2Force>(name, e.loc.str(), b1, p1, b2, p2, p);
     }
     return std::make_unique<mech::BipolarForce>(name, e.loc.str(), b1, p1, b2, p2,
                                                 ReadLaw(r, e, mech::BipolarLength(kin0, b1, p1, b2, p2)));

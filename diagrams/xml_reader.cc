@@ -52,7 +52,7 @@ const std::vector<ElementSchema>& Schema() {
       {"et", {"type"}, {"axis", "value", "vector", "q0", "v0", "locked", "name"}, {}},
       {"force", {"name", "type", "body1", "body2"},
        {"point1", "point2", "c", "x0", "d", "f0", "points", "interpolation", "extrapolation", "expression",
-        "friction", "ratio"},
+        "friction", "ratio", "c1", "c2", "mu", "mu0", "l0", "limit", "normal_force"},
        {}},
       {"joint_force", {"name", "type", "dof"},
        {"c", "x0", "d", "f0", "points", "interpolation", "extrapolation", "expression"}, {}},

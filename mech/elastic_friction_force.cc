@@ -19,11 +19,17 @@ ElasticFrictionForce::ElasticFrictionForce(std::string name, std::string origin,
       p_(parameters) {
   DeclareDependsOnInputs(p_.friction.uses_inputs || p_.ratio.uses_inputs || p_.stiffness.uses_inputs ||
                          p_.damping.uses_inputs);
-  if (p_.damping.is_constant() && p_.damping.value <= 0.0 &&
-      !(p_.friction.is_constant() && p_.friction.value == 0.0 && p_.stiffness.is_constant() &&
-        p_.stiffness.value == 0.0))
-    throw InputError(this->origin() + (this->origin().empty() ? "" : ": ") + "elastic-friction element '" +
-                     this->name() + "' needs a positive damping d (the relaxation time while sliding is d/c)");
+  // d = 0 is the plain Jenkins element (the deflection is algebraic while
+  // sliding, delta = +-F/c), which needs c; only F = c = d = 0 (switched off)
+  // may have neither.
+  const auto zero = [](const Parameter& p) { return p.is_constant() && p.value == 0.0; };
+  const auto negative = [](const Parameter& p) { return p.is_constant() && p.value < 0.0; };
+  const std::string what = this->origin() + (this->origin().empty() ? "" : ": ") + "elastic-friction element '" +
+                           this->name() + "'";
+  if (negative(p_.damping) || negative(p_.stiffness) || negative(p_.friction))
+    throw InputError(what + ": friction F, stiffness c and damping d must not be negative");
+  if (zero(p_.damping) && zero(p_.stiffness) && !zero(p_.friction))
+    throw InputError(what + " needs a positive stiffness c when d = 0 (the deflection while sliding is F/c)");
   for (const char* s : {"force", "length", "rate", "mode", "deflection"}) DeclareSensor(s);
   DeclareStates(1);
   DeclareModes(1);
@@ -44,9 +50,12 @@ ElasticFrictionForce::Values ElasticFrictionForce::Compute(const ElementContext&
   r.v = (PointVelocity(kin, body2_, point2_) - PointVelocity(kin, body1_, point1_)).dot(r.u);
   const double delta = ctx.state[0];
   const double c = p_.stiffness.Get(ctx), damping = p_.damping.Get(ctx), f = p_.friction.Get(ctx);
-  if (mode == 0.0 || damping <= 0.0) {  // stuck (or switched off)
+  if (mode == 0.0) {
     r.delta_rate = r.v;
     r.tension = c * delta + damping * r.v;
+  } else if (damping <= 0.0) {  // d = 0: delta = +-F/c, set when sliding began
+    r.tension = mode * f;
+    r.delta_rate = 0.0;
   } else {
     r.tension = mode * f;
     r.delta_rate = (r.tension - c * delta) / damping;
@@ -59,6 +68,7 @@ void ElasticFrictionForce::Initialize(const ElementContext& ctx, std::span<doubl
   state[0] = 0.0;
   const double v = Compute(ctx, 0.0).v;
   modes[0] = v > 0 ? 1.0 : v < 0 ? -1.0 : 0.0;
+  state[0] = SlidingDeflection(ctx, modes[0]);
 }
 
 void ElasticFrictionForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
@@ -78,16 +88,25 @@ void ElasticFrictionForce::ZeroCrossings(const ElementContext& ctx, std::span<do
   const double mode = ctx.modes[0];
   const Values r = Compute(ctx, mode);
   const double limit = BreakawayLimit(p_.ratio.Get(ctx) * p_.friction.Get(ctx));
-  const bool active = p_.damping.Get(ctx) > 0.0;
+  const bool active = p_.damping.Get(ctx) > 0.0 || p_.stiffness.Get(ctx) > 0.0;
   values[kBreaksForward] = active && mode == 0.0 ? r.tension - limit : -1.0;
   values[kBreaksBackward] = active && mode == 0.0 ? -r.tension - limit : -1.0;
   values[kSlipPlusStops] = active && mode == 1.0 ? r.v - r.delta_rate : 1.0;
   values[kSlipMinusStops] = active && mode == -1.0 ? r.v - r.delta_rate : -1.0;
 }
 
-void ElasticFrictionForce::OnCrossing(int index, int, const ElementContext&, std::span<double>,
+void ElasticFrictionForce::OnCrossing(int index, int, const ElementContext& ctx, std::span<double> state,
                                       std::span<double> modes) const {
   modes[0] = index == kBreaksForward ? 1.0 : index == kBreaksBackward ? -1.0 : 0.0;
+  // d = 0: the link jumps from k_s F / c to F / c when the slider lets go
+  // (the reset map of 3.7); with d > 0 delta is continuous.
+  if (modes[0] != 0.0 && p_.damping.Get(ctx) <= 0.0) state[0] = SlidingDeflection(ctx, modes[0]);
+}
+
+double ElasticFrictionForce::SlidingDeflection(const ElementContext& ctx, double mode) const {
+  const double c = p_.stiffness.Get(ctx);
+  if (mode == 0.0 || p_.damping.Get(ctx) > 0.0 || c <= 0.0) return 0.0;
+  return mode * p_.friction.Get(ctx) / c;
 }
 
 }  // namespace mechflow::mech

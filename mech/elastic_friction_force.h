@@ -11,9 +11,10 @@
 //   events: STICK -> SLIP+/- when +-T rises through ratio * F;
 //           SLIP+/- -> STICK when the slider velocity u = v - delta' crosses 0.
 // Unlike the Frictional element it is stiff while sliding too (relaxation
-// time d/c) and rings after it sticks. d must be positive unless the element
-// is switched off (F = c = d = 0). Sensors: force, length, rate, mode,
-// deflection.
+// time d/c) and rings after it sticks. With d = 0 it is the plain Jenkins
+// element: while sliding delta = +-F/c is algebraic (delta' = 0, set by a
+// reset when sliding begins) and slip ends when v crosses 0. F = c = d = 0
+// switches it off. Sensors: force, length, rate, mode, deflection.
 
 #include "mech/frictional_force.h"
 
@@ -21,7 +22,7 @@ namespace mechflow::mech {
 
 class ElasticFrictionForce final : public ForceElement {
  public:
-  // Throws InputError when d is a constant 0 while F or c is not.
+  // Throws InputError for negative constants, or c = d = 0 with F > 0.
   ElasticFrictionForce(std::string name, std::string origin, int body1, Vec3 point1, int body2, Vec3 point2,
                        FrictionalParameters parameters);
   void Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
@@ -38,6 +39,8 @@ class ElasticFrictionForce final : public ForceElement {
     double delta_rate, tension;
   };
   Values Compute(const ElementContext& ctx, double mode) const;
+  // The deflection while sliding when d = 0 (+-F/c); 0 otherwise.
+  double SlidingDeflection(const ElementContext& ctx, double mode) const;
 
   int body1_, body2_;
   Vec3 point1_, point2_;

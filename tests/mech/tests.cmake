@@ -4,6 +4,7 @@ mechflow_test(constraints_test unit tests/mech/constraints_test.cc)
 mechflow_test(quaternion_joint_test unit tests/mech/quaternion_joint_test.cc)
 mechflow_test(mech_no_allocation_test unit tests/mech/no_allocation_test.cc)
 mechflow_test(force_elements_test unit tests/mech/force_elements_test.cc)
+mechflow_test(friction_hysteresis_test unit tests/mech/friction_hysteresis_test.cc)
 mechflow_test(gear_pitch_test unit tests/mech/gear_pitch_test.cc)
 
 # the P4 reference (bench/pendulum_chain_direct.*) checked against closed forms; its library is

@@ -130,6 +130,35 @@ TEST(FrictionExamplesTest, AboveThresholdPushBreaksAway) {
   EXPECT_NEAR(v.back(), expected, 1e-3 * expected);
 }
 
+// Vibration variant (9.2): the base moves as ampl sin(2 pi om t); the box
+// rides with it while the force that takes, m ampl (2 pi om)^2, stays below
+// the static limit k_s F = 12 N, i.e. ampl (2 pi om)^2 <= 1.2 m/s^2, and slips
+// relative to it above. 5 % either side, both friction types.
+TEST(FrictionExamplesTest, VibrationRidesWithTheBaseBelowTheThresholdAndSlipsAbove) {
+  const double c = 10 * 50.0 * 50.0 * 4 * M_PI * M_PI, stick_limit = 12.0 / c;
+  for (const std::string type : {"Standard", "Elastic"}) {
+    const std::string mode_column = type == "Standard" ? "m.mode" : "m.elastic_mode";
+    for (const double acceleration : {0.95 * 1.2, 1.05 * 1.2}) {
+      FrictionRun run({{"ampl", acceleration / (4 * M_PI * M_PI)}}, {type, "Vibration"});
+      ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+      const auto x = run.Column("m.x"), base = run.Column("m.base"), mode = run.Column(mode_column);
+      double relative = 0;
+      int slipping = 0;
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        relative = std::max(relative, std::abs(x[i] - base[i]));
+        slipping += mode[i] != 0;
+      }
+      if (acceleration < 1.2) {
+        EXPECT_EQ(slipping, 0) << type << " at " << acceleration << " m/s^2";
+        EXPECT_LT(relative, stick_limit) << type << " at " << acceleration << " m/s^2";
+      } else {
+        EXPECT_GT(slipping, 0) << type << " at " << acceleration << " m/s^2";
+        EXPECT_GT(relative, 100 * stick_limit) << type << " at " << acceleration << " m/s^2";
+      }
+    }
+  }
+}
+
 // LS-1: friction fed from the leaf's force through blocks (abs, gain mu).
 TEST(FrictionExamplesTest, LeafSpringSettlesIntoStickingLS1) {
   const std::string path = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/leaf_spring.xml";

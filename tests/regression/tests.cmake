@@ -2,6 +2,7 @@
 mechflow_test(examples_test regression tests/regression/examples_test.cc)
 mechflow_test(mechanism_examples_test regression tests/regression/mechanism_examples_test.cc)
 mechflow_test(friction_examples_test regression tests/regression/friction_examples_test.cc)
+mechflow_test(elast_friction2_test regression tests/regression/elast_friction2_test.cc)
 mechflow_test(tension_mechanism_test regression tests/regression/tension_mechanism_test.cc)
 mechflow_test(contact_test regression tests/regression/contact_test.cc)
 mechflow_test(bushing_test regression tests/regression/bushing_test.cc)
