@@ -25,6 +25,7 @@ FrictionalForce::FrictionalForce(std::string name, std::string origin, int body1
   DeclareSensor("length");
   DeclareSensor("rate");
   DeclareSensor("mode");
+  DeclareSensor("deflection");  // of the stick spring; 0 while sliding
   DeclareModes(2);  // mode, anchor
   DeclareCrossing(mech::Crossing::kFalling);  // kSlipPlusStops: v
   DeclareCrossing(mech::Crossing::kRising);   // kSlipMinusStops: v
@@ -62,6 +63,7 @@ void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::spa
   sensors[1] = g.x;
   sensors[2] = g.v;
   sensors[3] = mode;
+  sensors[4] = mode == kStick ? g.x - ctx.modes[1] : 0.0;
 }
 
 void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
