@@ -7,7 +7,8 @@
 //   P1  seed diagrams/examples/elast_friction.xml, variants Standard + Free,
 //       t_end 2 s: box m 10 at 1.5 m/s stopped by a Frictional element;
 //       expected stop at 1.5 s after 1.125 m. Reports the stop and the creep
-//       after it (x - x_s at t_end).
+//       after it (x - x_s at t_end); then both again without the output grid
+//       (one row at t_end), to show what recording the rows costs.
 //   P2  stick-slip: body m 1 on a translational joint with a Frictional
 //       element (mu_d m g, ratio mu_s/mu_d = 1.5), pulled by a spring c 100
 //       from a leader with prescribed motion 0.1 t; t_end 20 s. Reports the
@@ -240,6 +241,13 @@ void RunP1(int repeat) {
       {"mechflow", Mechflow(loaded, 1, &line.friction)},
       {"direct-dense", [&] { return Direct(line, x0, v0s, Options(t_end, outputs, kRtol, kAtol, mb::LinearSolver::kDenseDifferenceQuotient, false)); }}};
   const Measured m = Measure(contenders, repeat, tight, "P1");
+  // the same with no output grid (rows at 0 and t_end only): what the 2001 rows cost
+  auto bare = std::make_shared<mechflow::diagrams::LoadedDiagram>(
+      mechflow::diagrams::LoadDiagram(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/elast_friction.xml", load));
+  bare->solver.rtol = kRtol, bare->solver.atol = kAtol, bare->solver.output_interval = t_end;
+  Measure({{"mechflow-1-row", Mechflow(bare, 1, &line.friction)},
+           {"direct-1-row", [&] { return Direct(line, x0, v0s, Options(t_end, 1, kRtol, kAtol, mb::LinearSolver::kDenseDifferenceQuotient, false)); }}},
+          repeat, tight, "P1");
   std::printf("        closed form: stop at t = %.6f s after %.6f m\n", exact.time, exact.distance);
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     const Outcome& o = m.last[c];
