@@ -12,8 +12,11 @@ namespace mechflow::blocks {
 
 AlgebraicLoop::AlgebraicLoop(std::vector<OutputNode> inner, std::vector<OutputNode> tears,
                              const std::vector<int>& tear_offsets, const std::vector<int>& tear_widths,
-                             std::string description)
-    : inner_(std::move(inner)), tears_(std::move(tears)), description_(std::move(description)) {
+                             std::string port, std::string hops)
+    : inner_(std::move(inner)),
+      tears_(std::move(tears)),
+      port_(std::move(port)),
+      description_(" through " + port_ + ":" + hops) {
   for (std::size_t i = 0; i < tear_offsets.size(); ++i)
     for (int k = 0; k < tear_widths[i]; ++k) slot_.push_back(tear_offsets[i] + k);
   const int n = num_unknowns();

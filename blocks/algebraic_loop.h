@@ -60,14 +60,16 @@ class AlgebraicLoop {
   static constexpr int kMaxIterations = 30;
 
   // `tear_offsets`/`tear_widths`: where each tear's values sit in the signals.
-  // `description` names the loop: " through s.y:" and one line per hop
-  // ("\n  a.y -> s.u1 (feeds s.y directly) at file:line").
+  // `port` names one port of the loop ("s.y"), `hops` one line per hop of a
+  // cycle through it ("\n  a.y -> s.u1 (feeds s.y directly) at file:line").
   AlgebraicLoop(std::vector<OutputNode> inner, std::vector<OutputNode> tears, const std::vector<int>& tear_offsets,
-                const std::vector<int>& tear_widths, std::string description);
+                const std::vector<int>& tear_widths, std::string port, std::string hops);
 
   const std::vector<OutputNode>& inner() const { return inner_; }
   const std::vector<OutputNode>& tears() const { return tears_; }
   int num_unknowns() const { return static_cast<int>(slot_.size()); }
+  const std::string& port() const { return port_; }
+  // " through s.y:" and the hops.
   const std::string& description() const { return description_; }
   const LoopStats& stats() const { return stats_; }
   void ResetStats() const { stats_ = {}; }
@@ -87,7 +89,7 @@ class AlgebraicLoop {
 
   std::vector<OutputNode> inner_, tears_;
   std::vector<int> slot_;  // unknown k lives at signals[slot_[k]]
-  std::string description_;
+  std::string port_, description_;
 
   mutable Eigen::VectorXd z_, g_, r_, r_old_, step_, column_;
   mutable Eigen::MatrixXd newton_matrix_;  // J - I

@@ -312,8 +312,9 @@ void DiagramBuilder::Schedule(Diagram* d) const {
         edges[first_node[c.from_block] + c.from_port].push_back({first_node[c.to_block] + p, int(ci)});
   }
 
-  // One cycle of the loop as block.port hops, for messages.
-  auto describe = [&](const std::vector<int>& comp) {
+  // One cycle of the loop as block.port hops, for messages; `port` gets the
+  // port the cycle starts from.
+  auto describe = [&](const std::vector<int>& comp, std::string* port) {
     std::vector<bool> in_comp(n, false), seen(n, false);
     for (const int u : comp) in_comp[u] = true;
     std::vector<std::pair<int, int>> path;  // (connection, node it reaches)
@@ -333,7 +334,8 @@ void DiagramBuilder::Schedule(Diagram* d) const {
     const auto lead_in = std::find(visited.begin(), visited.end(), cur) - visited.begin();
     path.erase(path.begin(), path.begin() + lead_in);
     const Block& first = *d->blocks_[nodes[cur].block];
-    std::string text = " through " + PortName(first, first.output_port(nodes[cur].port)) + ":";
+    *port = PortName(first, first.output_port(nodes[cur].port));
+    std::string text;
     for (const auto& [ci, reached] : path) {
       const Connection& c = d->connections_[ci];
       const Block& a = *d->blocks_[c.from_block];
@@ -367,7 +369,9 @@ void DiagramBuilder::Schedule(Diagram* d) const {
     }
     OutputNode entry = tears.front();
     entry.loop = static_cast<int>(d->loops_.size());
-    d->loops_.emplace_back(std::move(inner), std::move(tears), offsets, widths, describe(*it));
+    std::string port;
+    std::string hops = describe(*it, &port);
+    d->loops_.emplace_back(std::move(inner), std::move(tears), offsets, widths, std::move(port), std::move(hops));
     d->schedule_.push_back(entry);
   }
 }

@@ -410,6 +410,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   results_ = Results(ColumnNames(logged_));
   events_.clear();
   stats_ = SolverStats();
+  for (const AlgebraicLoop& loop : diagram_.loops()) loop.ResetStats();
   if (jacobian_) {
     stats_.sparse = true;
     stats_.colours = jacobian_->num_colours();

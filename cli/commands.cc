@@ -84,6 +84,12 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
       out << "mechanism '" << mechanism->name() << "': largest loop-constraint residual before projection "
           << mechanism->worst_constraint_residual() << "\n";
   }
+  for (const blocks::AlgebraicLoop& loop : loaded.diagram->loops()) {
+    const blocks::LoopStats& s = loop.stats();
+    out << "algebraic loop through " << loop.port() << ": " << s.solves << " solves, "
+        << (s.solves ? double(s.iterations) / s.solves : 0.0) << " Newton steps per solve, " << s.jacobians
+        << " difference Jacobians, largest accepted residual " << s.worst_residual << "\n";
+  }
 
   // results are written whether or not the run finished
   namespace fs = std::filesystem;

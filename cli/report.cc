@@ -128,10 +128,26 @@ void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
   out << "\nevaluation order (output ports):\n";
   int step = 1;
   for (const auto& node : d.schedule()) {
+    if (node.loop >= 0) {
+      std::string hops = d.loops()[node.loop].description();  // indented under its number
+      for (std::size_t at = hops.find('\n'); at != std::string::npos; at = hops.find('\n', at + 1))
+        hops.insert(at + 1, "    ");
+      out << "  " << step++ << ". algebraic loop" << hops << "\n";
+      continue;
+    }
     const blocks::Block& b = d.block(node.block);
     out << "  " << step++ << ". " << b.name() << "." << b.output_port(node.port).name << "  (" << b.type() << ")\n";
   }
-  out << "\nalgebraic loops: none\n";
+  out << "\nalgebraic loops:";
+  if (d.loops().empty()) out << " none";
+  out << "\n";
+  for (const blocks::AlgebraicLoop& loop : d.loops()) {
+    out << "  through " << loop.port() << ", solved by Newton on";
+    for (const blocks::OutputNode& tear : loop.tears())
+      out << " " << d.block(tear.block).name() << "." << d.block(tear.block).output_port(tear.port).name;
+    out << " (" << loop.num_unknowns() << " unknown" << (loop.num_unknowns() == 1 ? "" : "s")
+        << ") to a relative change of " << blocks::AlgebraicLoop::kRelativeTolerance << "\n";
+  }
   out << "\ncontinuous states:\n";
   if (d.num_states() == 0) out << "  (none)\n";
   for (const int bi : d.stateful_blocks()) {

@@ -437,14 +437,22 @@ TEST(MechanismBlockTest, FeedthroughIsDeclaredPerSensor) {
     for (int i = 0; i < sim.results().num_rows(); ++i) lowest = std::min(lowest, sim.results().at(i, 1));
     EXPECT_NEAR(lowest, -2 * 2.0 * 9.81 * 0.5 / 100.0, 1e-5);  // static sag m g sin30 / k, twice at the bottom
   }
-  // ... acceleration feedback is.
+  // ... acceleration feedback is one, solved at every evaluation: F = -1 kg a
+  // adds a kilogram, a = -m g sin30 / (m + 1).
   {
     DiagramBuilder builder;
     builder.AddBlock(std::make_unique<MechanismBlock>("slider", InclinedSlider(2.0), sensors));
     builder.AddBlock(std::make_unique<GainBlock>("k", -1.0, 1));
     builder.Connect("slider.a", "k");
     builder.Connect("k", "slider.F");
-    EXPECT_THROW(builder.Build(), InputError);
+    auto diagram = builder.Build();
+    ASSERT_EQ(diagram->loops().size(), 1u);
+    SolverOptions options;
+    options.t_end = 0.5;
+    Simulator sim(*diagram, options, {diagram->ResolveSignal("slider.a")});
+    ASSERT_TRUE(sim.Run().ok);
+    for (int i = 0; i < sim.results().num_rows(); ++i)
+      EXPECT_NEAR(sim.results().at(i, 1), -2.0 * 9.81 * 0.5 / 3.0, 1e-9);
   }
 }
 
