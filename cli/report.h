@@ -16,7 +16,7 @@ void PrintStats(const blocks::SolverStats& stats, std::ostream& out);
 void PrintSignalRanges(const blocks::Results& results, std::ostream& out);
 
 // The figures of the diagram's <report>s, one line each:
-//   "peak contact force: 285.219 N at t = 0.094021 s"
+//   "peak contact force: 285.219 N at t = 0.094022 s"
 // (6 significant digits; "up to the failure" after a failed run).
 void PrintFigures(const std::vector<blocks::ReportFigure>& figures, bool finished, std::ostream& out);
 
