@@ -462,6 +462,8 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
     law.damping = r.Number(e, "damping", 0.0);
     law.damping_depth = r.Number(e, "damping_depth", 0.0);
     law.mu = r.Number(e, "mu", 0.0);
+    law.mu_static = r.Has(e, "mu_static") ? r.Number(e, "mu_static", 0.0) : law.mu;
+    law.stribeck_velocity = r.Number(e, "stribeck_velocity", 1e-3);
     law.v_eps = r.Number(e, "v_eps", 1e-4);
     law.max_penetration = r.Number(e, "max_penetration", mech::ContactLaw::kDefaultMaxPenetration);
     if (type == "circle_plane")

@@ -40,7 +40,7 @@ const std::vector<ElementSchema>& Schema() {
        {"centre1", "axis1", "centre2", "axis2", "ratio", "clearance", "stiffness", "damping"}, {}},
       {"contact", {"name", "type", "body1", "body2"},
        {"points", "centre", "circle_normal", "radius", "plane_point", "normal", "stiffness", "exponent", "damping",
-        "damping_depth", "mu", "v_eps", "max_penetration"},
+        "damping_depth", "mu", "mu_static", "stribeck_velocity", "v_eps", "max_penetration"},
        {}},
       {"input", {"name"}, {}, {}},
       {"body", {"name", "mass", "inertia"}, {"com", "products", "comment"}, {"point"}},

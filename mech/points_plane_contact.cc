@@ -37,6 +37,9 @@ void CheckContactLaw(const ContactLaw& law, const std::string& where) {
   require(law.damping >= 0, "the damping must be >= 0", law.damping);
   require(law.damping_depth >= 0, "damping_depth must be >= 0", law.damping_depth);
   require(law.mu >= 0, "the friction coefficient mu must be >= 0", law.mu);
+  require(law.mu_static >= law.mu, "mu_static must not be below mu (static below dynamic friction)",
+          law.mu_static);
+  require(law.stribeck_velocity > 0, "stribeck_velocity must be > 0", law.stribeck_velocity);
   require(law.v_eps > 0, "v_eps must be > 0", law.v_eps);
   require(law.max_penetration > 0, "max_penetration must be > 0", law.max_penetration);
 }
@@ -53,7 +56,9 @@ PointContactLoad ApplyPointContact(const Kinematics& kin, const ContactLaw& law,
   out.normal = ContactNormalForce(law, std::max(delta, 0.0), -w.dot(n));
   const Vec3 wt = w - w.dot(n) * n;
   out.slip = wt.norm();
-  out.friction = -law.mu * out.normal * wt / std::sqrt(wt.squaredNorm() + law.v_eps * law.v_eps);
+  const double stribeck = out.slip / law.stribeck_velocity;
+  const double mu = law.mu + (law.mu_static - law.mu) * std::exp(-stribeck * stribeck);
+  out.friction = -mu * out.normal * wt / std::sqrt(wt.squaredNorm() + law.v_eps * law.v_eps);
   const Vec3 load = out.normal * n + out.friction;
   loads->AddForce(kin, body1, p, load);
   loads->AddForce(kin, body2, p, -load);

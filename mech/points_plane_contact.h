@@ -7,8 +7,11 @@
 //   normal force N_i = max(0, c delta^n + D(delta) delta')    (never pulls)
 //   D(delta) = d                                  when depth = 0
 //            = d * STEP(delta; 0 -> depth)        otherwise (no jump at touch)
-//   friction F_t = -mu N_i w_t / sqrt(|w_t|^2 + v_eps^2)  (regularised
-//            Coulomb: a loaded body creeps at about v_eps tan(theta)/mu)
+//   friction F_t = -mu(|w_t|) N_i w_t / sqrt(|w_t|^2 + v_eps^2)
+//            (regularised Coulomb: a loaded body creeps at about
+//            v_eps tan(theta)/mu), with a static peak that falls to the
+//            sliding value over the Stribeck velocity v_s:
+//            mu(s) = mu + (mu_static - mu) exp(-(s / v_s)^2)
 // w is the velocity of the point relative to the material point of body 2
 // under it. Touching and leaving are events: each point has a mode (in
 // contact or not) switched when its penetration crosses zero, so the force
@@ -27,7 +30,9 @@ struct ContactLaw {
   double exponent = 1.0;       // n >= 1
   double damping = 0.0;        // d, or the maximum of the ramp [N s/m]
   double damping_depth = 0.0;  // penetration over which damping builds up [m]; 0: constant
-  double mu = 0.0;             // friction coefficient
+  double mu = 0.0;             // friction coefficient while sliding
+  double mu_static = 0.0;      // at rest, >= mu
+  double stribeck_velocity = 1e-3;  // v_s [m/s], > 0
   double v_eps = 1e-4;         // regularisation velocity [m/s]
   // Sanity bound on the penetration [m], > 0: deeper means the contact is
   // too soft or a body passes through; the run warns (once per element, with

@@ -46,6 +46,16 @@ TEST(BadInputTest, ContactNegativeFrictionCoefficient) {
   EXPECT_THAT(e, HasSubstr("the friction coefficient mu must be >= 0 (found -0.3)"));
 }
 
+TEST(BadInputTest, ContactStaticBelowDynamicFriction) {
+  const std::string e = ErrorOf(
+      "<contact name='c' type='points_plane' body1='A' points='0 0 0' body2='Base0' "
+      "normal='1 0 0' stiffness='10' mu='0.4' mu_static='0.3'/>");
+  EXPECT_THAT(e, HasSubstr("mu_static must not be below mu (static below dynamic friction) (found 0.3)"));
+  EXPECT_THAT(ErrorOf("<contact name='c' type='points_plane' body1='A' points='0 0 0' body2='Base0' "
+                      "normal='1 0 0' stiffness='10' mu='0.4' stribeck_velocity='0'/>"),
+              HasSubstr("stribeck_velocity must be > 0"));
+}
+
 TEST(BadInputTest, ContactPlaneWithZeroNormal) {
   EXPECT_THAT(ErrorOf("<contact name='c' type='points_plane' body1='A' points='0 0 0' body2='Base0' normal='0 0 0'/>"),
               StartsWith("test.xml:5: contact 'c': the plane normal must be non-zero"));
