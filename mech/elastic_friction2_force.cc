@@ -46,6 +46,7 @@ ElasticFriction2Force::ElasticFriction2Force(std::string name, std::string origi
     fail_if(mu, mu.value * c2.value >= c1.value + c2.value, "mu c2 must be below c1 + c2 for the spring limit");
   if (p_.limit == FrictionLimit::kConstant)
     fail_if(p_.normal_force, p_.normal_force.value < 0.0, "the normal force must not be negative");
+  DeclareBodies({body1_, body2_});  // its footprint in the sparse Jacobian
   for (const char* s : {"force", "length", "rate", "mode", "deflection"}) DeclareSensor(s);
   DeclareStates(1);  // x2
   DeclareModes(1);

@@ -30,6 +30,7 @@ ElasticFrictionForce::ElasticFrictionForce(std::string name, std::string origin,
     throw InputError(what + ": friction F, stiffness c and damping d must not be negative");
   if (zero(p_.damping) && zero(p_.stiffness) && !zero(p_.friction))
     throw InputError(what + " needs a positive stiffness c when d = 0 (the deflection while sliding is F/c)");
+  DeclareBodies({body1_, body2_});  // its footprint in the sparse Jacobian
   for (const char* s : {"force", "length", "rate", "mode", "deflection"}) DeclareSensor(s);
   DeclareStates(1);
   DeclareModes(1);

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
@@ -234,6 +235,22 @@ TEST(SparsityPatternTest, TreesCoupleOnlyThroughElements) {
   // q' reads its own v only
   EXPECT_TRUE(p.Contains(qE, vE));
   EXPECT_FALSE(p.Contains(qE, rhs.State("m", "v:jA")));
+}
+
+// Every example diagram: whatever its elements, blocks and loops, no entry of
+// the Jacobian falls outside the pattern (an element that forgot to declare
+// its footprint would show here).
+TEST(SparsityPatternTest, CoversEveryExample) {
+  namespace fs = std::filesystem;
+  int examples = 0;
+  for (const auto& entry : fs::directory_iterator(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples")) {
+    if (entry.path().extension() != ".xml") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(entry.path().string());
+    ExpectPatternCovers(*loaded.diagram, 1e-3);
+    ++examples;
+  }
+  EXPECT_GT(examples, 20);
 }
 
 TEST(SparsityPatternTest, FrictionChainIsBanded) {
