@@ -18,6 +18,7 @@ Gearing::Gearing(std::string name, std::string origin, int body1, Vec3 centre1, 
       centre1_(centre1),
       centre2_(centre2),
       p_(parameters) {
+  DeclareBodies({body1_, body2_});
   const std::string where = this->origin() + (this->origin().empty() ? "" : ": ") + "gearing '" + this->name() + "': ";
   if (!(axis1.norm() > 0) || !(axis2.norm() > 0)) throw InputError(where + "the gear axes must be non-zero");
   if (!(p_.ratio > 0) || p_.clearance < 0 || p_.stiffness < 0 || p_.damping < 0)
