@@ -18,17 +18,20 @@
 // P2's and P3's diagrams are generated (bench/friction_diagram.h) from the
 // same description the direct program integrates, loaded outside the timing.
 //
-// Contenders: mechflow (blocks::Simulator: dense LU, difference-quotient
-// Jacobian); direct-dense (the same linear solver, so counts compare);
-// for P3 also direct-band (banded LU with the analytic Jacobian) and
+// Contenders: mechflow (blocks::Simulator with the diagram's solver, linear
+// solver auto: dense LU with difference-quotient Jacobian below 100 states,
+// else coloured sparse Jacobian and KLU when the pattern is sparse);
+// direct-dense (dense LU, difference-quotient Jacobian, as the simulator's
+// dense path, so counts compare); for P3 also mechflow-dense (the simulator
+// forced dense), direct-band (banded LU with the analytic Jacobian) and
 // direct-band-ftz (the same with flush-to-zero, BENCH.md's trap). Dense
-// contenders are skipped above --dense-max (default 100): until the
-// simulator has a sparse solver, N = 1000 takes minutes per run.
+// contenders are skipped above --dense-max (default 100: at N = 1000 a run
+// would take an hour or more), mechflow above --mechflow-max (1000).
 // Final states are compared with a tight run of the direct program (rtol
 // 1e-10, atol 1e-12, untimed). One untimed warm-up of each contender, then
 // --repeat timed runs, the starting contender rotating.
 //
-// Usage: bench_friction [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000] [--dense-max N]
+// Usage: bench_friction [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000] [--dense-max N] [--mechflow-max N]
 
 #include <algorithm>
 #include <chrono>
@@ -92,7 +95,9 @@ Outcome Direct(const mb::FrictionLine& line, const std::vector<double>& x0, cons
 // (stop forward = 0, break forward = 2). creep_force: with the logged friction
 // force F_s, x - x_s = -(F_s + d v)/c while stuck.
 std::function<Outcome()> Mechflow(std::shared_ptr<const mechflow::diagrams::LoadedDiagram> loaded, int n,
-                                  const mb::FrictionLaw* creep_law = nullptr) {
+                                  const mb::FrictionLaw* creep_law = nullptr, bool force_dense = false) {
+  mechflow::blocks::SolverOptions solver = loaded->solver;
+  if (force_dense) solver.linear_solver = mechflow::blocks::LinearSolverKind::kDense;
   const mechflow::blocks::Results columns(
       [&] {
         std::vector<std::string> names;
@@ -109,9 +114,9 @@ std::function<Outcome()> Mechflow(std::shared_ptr<const mechflow::diagrams::Load
   const int fc = creep_law ? columns.FindColumn("m.force") : -1;
   if (creep_law && fc < 0) throw std::runtime_error("diagram does not log m.force");
   const mb::FrictionLaw law = creep_law ? *creep_law : mb::FrictionLaw{};
-  return [loaded, n, xc, vc, fc, law] {
+  return [loaded, solver, n, xc, vc, fc, law] {
     const auto start = Clock::now();
-    mechflow::blocks::Simulator sim(*loaded->diagram, loaded->solver, loaded->logged);
+    mechflow::blocks::Simulator sim(*loaded->diagram, solver, loaded->logged);
     const auto outcome = sim.Run();
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (!outcome.ok) throw std::runtime_error("mechflow run failed: " + outcome.failure);
@@ -299,14 +304,15 @@ void RunP2(int repeat) {
   std::printf("        closed form: first break-away at mu_s m g/(c V) = %.6f s\n\n", 0.6 * 9.81 / (100.0 * 0.1));
 }
 
-void RunP3(int repeat, const std::vector<int>& sizes, int dense_max) {
+void RunP3(int repeat, const std::vector<int>& sizes, int dense_max, int mechflow_max) {
   const double t_end = 1.0;
   const int outputs = 1000;
   std::printf("P3 chain-N: masses 1 kg, spring-dampers 1e4 N/m + 10 N s/m, friction 0.3*9.81 N (ratio 1.2, stick at 50 Hz, "
               "damping ratio 0.1), 50 sin(2 pi 5 t) N on the last mass, t = 0..%g s, rtol %g, atol %g, median of %d runs\n",
               t_end, kRtol, kAtol, repeat);
   Header();
-  const std::vector<std::string> names = {"mechflow", "direct-dense", "direct-band", "direct-band-ftz"};
+  const std::vector<std::string> names = {"mechflow", "mechflow-dense", "direct-dense", "direct-band",
+                                          "direct-band-ftz"};
   std::vector<std::vector<double>> ns(names.size()), cost(names.size());
   for (const int n : sizes) {
     const mb::FrictionLine line = mb::ChainLine(n);
@@ -315,15 +321,16 @@ void RunP3(int repeat, const std::vector<int>& sizes, int dense_max) {
     std::shared_ptr<const mechflow::diagrams::LoadedDiagram> loaded;
     mb::DiagramSettings settings;
     settings.t_end = t_end, settings.num_outputs = outputs, settings.rtol = kRtol, settings.atol = kAtol;
-    if (n <= dense_max) loaded = LoadText(mb::FrictionLineDiagram(line, zero, zero, settings));
+    if (n <= mechflow_max) loaded = LoadText(mb::FrictionLineDiagram(line, zero, zero, settings));
     auto direct = [line, zero, t_end](mb::LinearSolver solver, bool ftz) {
       return std::function<Outcome()>([=] { return Direct(line, zero, zero, Options(t_end, outputs, kRtol, kAtol, solver, ftz)); });
     };
     const std::vector<Contender> contenders = {
         {names[0], loaded ? Mechflow(loaded, n) : std::function<Outcome()>()},
-        {names[1], n <= dense_max ? direct(mb::LinearSolver::kDenseDifferenceQuotient, false) : std::function<Outcome()>()},
-        {names[2], direct(mb::LinearSolver::kBandAnalytic, false)},
-        {names[3], direct(mb::LinearSolver::kBandAnalytic, true)}};
+        {names[1], loaded && n <= dense_max ? Mechflow(loaded, n, nullptr, true) : std::function<Outcome()>()},
+        {names[2], n <= dense_max ? direct(mb::LinearSolver::kDenseDifferenceQuotient, false) : std::function<Outcome()>()},
+        {names[3], direct(mb::LinearSolver::kBandAnalytic, false)},
+        {names[4], direct(mb::LinearSolver::kBandAnalytic, true)}};
     const Measured m = Measure(contenders, repeat, tight, ("N=" + std::to_string(n)).c_str());
     for (std::size_t c = 0; c < names.size(); ++c)
       if (contenders[c].run) ns[c].push_back(n), cost[c].push_back(m.median[c]);
@@ -342,14 +349,15 @@ std::vector<int> List(const char* text) {
 }
 
 int Usage(const char* argv0) {
-  std::fprintf(stderr, "usage: %s [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000] [--dense-max N]\n", argv0);
+  std::fprintf(stderr, "usage: %s [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000] [--dense-max N] [--mechflow-max N]\n",
+               argv0);
   return 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  int repeat = 5, dense_max = 100;
+  int repeat = 5, dense_max = 100, mechflow_max = 1000;
   std::vector<int> problems = {1, 2, 3}, sizes = {10, 100, 1000};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -358,6 +366,8 @@ int main(int argc, char** argv) {
       repeat = std::atoi(argv[++i]);
     } else if (arg == "--dense-max") {
       dense_max = std::atoi(argv[++i]);
+    } else if (arg == "--mechflow-max") {
+      mechflow_max = std::atoi(argv[++i]);
     } else if (arg == "--problems") {
       problems = List(argv[++i]);
     } else if (arg == "--sizes") {
@@ -371,7 +381,7 @@ int main(int argc, char** argv) {
     for (const int p : problems) {
       if (p == 1) RunP1(repeat);
       else if (p == 2) RunP2(repeat);
-      else if (p == 3) RunP3(repeat, sizes, dense_max);
+      else if (p == 3) RunP3(repeat, sizes, dense_max, mechflow_max);
       else return Usage(argv[0]);
       std::fflush(stdout);
     }
