@@ -11,9 +11,6 @@
 // set-up, outside the right-hand side), and the event/reinitialisation path.
 
 #include <algorithm>
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <string>
 #include <vector>
 
@@ -24,56 +21,7 @@
 #include "diagrams/loader.h"
 #include "scripting/lua_state.h"
 #include "tests/blocks/block_test_util.h"
-
-// ---------------------------------------------------------------------------
-// counting replacements of the C allocation functions: operator new calls
-// malloc, and Eigen calls malloc directly, so both are seen. The executable's
-// malloc family replaces the C library's for the whole process (glibc
-// forwards to its __libc_* entry points).
-
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* __libc_memalign(std::size_t, std::size_t);
-void __libc_free(void*);
-}
-
-namespace {
-
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_new_calls{0};
-
-void Count() {
-  if (g_counting.load(std::memory_order_relaxed)) g_new_calls.fetch_add(1, std::memory_order_relaxed);
-}
-
-}  // namespace
-
-extern "C" {
-void* malloc(std::size_t n) {
-  Count();
-  return __libc_malloc(n);
-}
-void* calloc(std::size_t n, std::size_t size) {
-  Count();
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, std::size_t n) {
-  Count();
-  return __libc_realloc(p, n);
-}
-void* aligned_alloc(std::size_t alignment, std::size_t n) {
-  Count();
-  return __libc_memalign(alignment, n);
-}
-int posix_memalign(void** out, std::size_t alignment, std::size_t n) {
-  Count();
-  *out = __libc_memalign(alignment, n);
-  return *out ? 0 : 12;  // ENOMEM
-}
-void free(void* p) { __libc_free(p); }
-}
+#include "tests/malloc_counter.h"
 
 // ---------------------------------------------------------------------------
 
@@ -85,11 +33,11 @@ namespace {
 class CountAllocations {
  public:
   CountAllocations() {
-    g_new_calls = 0;
+    g_calls = 0;
     g_counting = true;
   }
   ~CountAllocations() { g_counting = false; }
-  long calls() const { return g_new_calls.load(); }
+  long calls() const { return g_calls.load(); }
 };
 
 // The counter itself works: an allocation in the counted region is seen.

@@ -1,58 +1,12 @@
 // Evaluating a mechanism allocates nothing once set up (house rule: no
 // allocation in the right-hand side). Eigen allocates through malloc, not
-// operator new, so this test counts malloc itself: the executable's malloc
-// family replaces the C library's for the whole process (glibc forwards to
-// its __libc_* entry points).
-
-#include <atomic>
-#include <cstddef>
-#include <cstdlib>
+// operator new, so this test counts malloc itself (tests/malloc_counter.h).
 
 #include <gtest/gtest.h>
 
 #include "mech/mechanism.h"
+#include "tests/malloc_counter.h"
 #include "tests/mech/mech_test_util.h"
-
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* __libc_memalign(std::size_t, std::size_t);
-void __libc_free(void*);
-}
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_calls{0};
-void Count() {
-  if (g_counting.load(std::memory_order_relaxed)) g_calls.fetch_add(1, std::memory_order_relaxed);
-}
-}  // namespace
-
-extern "C" {
-void* malloc(std::size_t n) {
-  Count();
-  return __libc_malloc(n);
-}
-void* calloc(std::size_t n, std::size_t size) {
-  Count();
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, std::size_t n) {
-  Count();
-  return __libc_realloc(p, n);
-}
-void* aligned_alloc(std::size_t alignment, std::size_t n) {
-  Count();
-  return __libc_memalign(alignment, n);
-}
-int posix_memalign(void** out, std::size_t alignment, std::size_t n) {
-  Count();
-  *out = __libc_memalign(alignment, n);
-  return *out ? 0 : 12;  // ENOMEM
-}
-void free(void* p) { __libc_free(p); }
-}
 
 namespace mechflow::mech {
 namespace {

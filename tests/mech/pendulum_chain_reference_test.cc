@@ -5,7 +5,7 @@
 // direct CVODE program against conservation of energy.
 //
 // Eigen allocates through malloc, so the allocation test counts malloc itself
-// (as tests/mech/no_allocation_test.cc does): this executable's malloc family
+// (tests/malloc_counter.h): this executable's malloc family
 // replaces the C library's for the whole process.
 
 #include <atomic>
@@ -18,47 +18,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/pendulum_chain_direct.h"
-
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* __libc_memalign(std::size_t, std::size_t);
-void __libc_free(void*);
-}
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_calls{0};
-void Count() {
-  if (g_counting.load(std::memory_order_relaxed)) g_calls.fetch_add(1, std::memory_order_relaxed);
-}
-}  // namespace
-
-extern "C" {
-void* malloc(std::size_t n) {
-  Count();
-  return __libc_malloc(n);
-}
-void* calloc(std::size_t n, std::size_t size) {
-  Count();
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, std::size_t n) {
-  Count();
-  return __libc_realloc(p, n);
-}
-void* aligned_alloc(std::size_t alignment, std::size_t n) {
-  Count();
-  return __libc_memalign(alignment, n);
-}
-int posix_memalign(void** out, std::size_t alignment, std::size_t n) {
-  Count();
-  *out = __libc_memalign(alignment, n);
-  return *out ? 0 : 12;  // ENOMEM
-}
-void free(void* p) { __libc_free(p); }
-}
+#include "tests/malloc_counter.h"
 
 namespace mechflow::bench {
 namespace {
