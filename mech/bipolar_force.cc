@@ -25,14 +25,21 @@ double BipolarLength(const Kinematics& kin, int body1, const Vec3& point1, int b
   return (PointPosition(kin, body2, point2) - PointPosition(kin, body1, point1)).norm();
 }
 
+BipolarGeometry MeasureBipolar(const Kinematics& kin, int body1, const Vec3& point1, int body2, const Vec3& point2) {
+  BipolarGeometry g;
+  g.pa = PointPosition(kin, body1, point1);
+  g.pb = PointPosition(kin, body2, point2);
+  const Vec3 d = g.pb - g.pa;
+  g.x = d.norm();
+  g.u = g.x > 0.0 ? Vec3(d / g.x) : Vec3(Vec3::Zero());
+  g.v = (PointVelocity(kin, body2, point2) - PointVelocity(kin, body1, point1)).dot(g.u);
+  return g;
+}
+
 void BipolarForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
                             std::span<double> sensors) const {
   const Kinematics& kin = *ctx.kin;
-  const Vec3 pa = PointPosition(kin, body1_, point1_), pb = PointPosition(kin, body2_, point2_);
-  const Vec3 d = pb - pa;
-  const double x = d.norm();
-  const Vec3 u = x > 0.0 ? Vec3(d / x) : Vec3(Vec3::Zero());
-  const double v = (PointVelocity(kin, body2_, point2_) - PointVelocity(kin, body1_, point1_)).dot(u);
+  const auto [pa, pb, u, x, v] = MeasureBipolar(kin, body1_, point1_, body2_, point2_);
   const double f = law_->Force(x, v, ctx);
   if (x == 0.0 && f != 0.0) {
     std::ostringstream out;

@@ -28,4 +28,13 @@ class BipolarForce final : public ForceElement {
 // Length of the element in the configuration `kin` (for a default free length).
 double BipolarLength(const Kinematics& kin, int body1, const Vec3& point1, int body2, const Vec3& point2);
 
+// The line of a bipolar element (also the friction elements'): its ends pa
+// (body 1) and pb (body 2), length x, unit direction u from pa to pb (zero at
+// zero length) and rate of lengthening v.
+struct BipolarGeometry {
+  Vec3 pa, pb, u;
+  double x = 0.0, v = 0.0;
+};
+BipolarGeometry MeasureBipolar(const Kinematics& kin, int body1, const Vec3& point1, int body2, const Vec3& point2);
+
 }  // namespace mechflow::mech

@@ -57,14 +57,8 @@ ElasticFriction2Force::ElasticFriction2Force(std::string name, std::string origi
 }
 
 ElasticFriction2Force::Values ElasticFriction2Force::Compute(const ElementContext& ctx, double mode) const {
-  const Kinematics& kin = *ctx.kin;
   Values r;
-  r.pa = PointPosition(kin, body1_, point1_);
-  r.pb = PointPosition(kin, body2_, point2_);
-  const Vec3 d = r.pb - r.pa;
-  r.x = d.norm();
-  r.u = r.x > 0 ? Vec3(d / r.x) : Vec3(Vec3::Zero());
-  r.v = (PointVelocity(kin, body2_, point2_) - PointVelocity(kin, body1_, point1_)).dot(r.u);
+  static_cast<BipolarGeometry&>(r) = MeasureBipolar(*ctx.kin, body1_, point1_, body2_, point2_);
   const double xp = r.x - p_.free_length.Get(ctx);
   const double c1 = p_.series_stiffness.Get(ctx), c2 = p_.parallel_stiffness.Get(ctx), mu = p_.mu.Get(ctx);
   if (mode == kStick) {

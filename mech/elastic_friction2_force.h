@@ -21,6 +21,7 @@
 // (x2' = dx2/dx' v; law c ignores a time-varying F_N there) but the forces
 // use the algebraic value. Sensors: force, length, rate, mode, deflection.
 
+#include "mech/bipolar_force.h"
 #include "mech/force_element.h"
 
 namespace mechflow::mech {
@@ -55,9 +56,7 @@ class ElasticFriction2Force final : public ForceElement {
   bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
 
  private:
-  struct Values {
-    Vec3 pa, pb, u;
-    double x, v;
+  struct Values : BipolarGeometry {
     double x2, x2_rate, tension, slider_force, limit_force;  // limit_force = N
   };
   Values Compute(const ElementContext& ctx, double mode) const;

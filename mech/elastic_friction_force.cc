@@ -41,14 +41,8 @@ ElasticFrictionForce::ElasticFrictionForce(std::string name, std::string origin,
 }
 
 ElasticFrictionForce::Values ElasticFrictionForce::Compute(const ElementContext& ctx, double mode) const {
-  const Kinematics& kin = *ctx.kin;
   Values r;
-  r.pa = PointPosition(kin, body1_, point1_);
-  r.pb = PointPosition(kin, body2_, point2_);
-  const Vec3 d = r.pb - r.pa;
-  r.x = d.norm();
-  r.u = r.x > 0 ? Vec3(d / r.x) : Vec3(Vec3::Zero());
-  r.v = (PointVelocity(kin, body2_, point2_) - PointVelocity(kin, body1_, point1_)).dot(r.u);
+  static_cast<BipolarGeometry&>(r) = MeasureBipolar(*ctx.kin, body1_, point1_, body2_, point2_);
   const double delta = ctx.state[0];
   const double c = p_.stiffness.Get(ctx), damping = p_.damping.Get(ctx), f = p_.friction.Get(ctx);
   if (mode == 0.0) {

@@ -33,9 +33,7 @@ class ElasticFrictionForce final : public ForceElement {
                   std::span<double> modes) const override;
 
  private:
-  struct Values {
-    Vec3 pa, pb, u;
-    double x, v;
+  struct Values : BipolarGeometry {
     double delta_rate, tension;
   };
   Values Compute(const ElementContext& ctx, double mode) const;

@@ -33,27 +33,19 @@ FrictionalForce::FrictionalForce(std::string name, std::string origin, int body1
   DeclareCrossing(mech::Crossing::kRising);   // kBreaksBackward: -holding - ratio F
 }
 
-FrictionalForce::Geometry FrictionalForce::Measure(const ElementContext& ctx) const {
-  const Kinematics& kin = *ctx.kin;
-  Geometry g;
-  g.pa = PointPosition(kin, body1_, point1_);
-  g.pb = PointPosition(kin, body2_, point2_);
-  const Vec3 d = g.pb - g.pa;
-  g.x = d.norm();
-  g.u = g.x > 0 ? Vec3(d / g.x) : Vec3(Vec3::Zero());
-  g.v = (PointVelocity(kin, body2_, point2_) - PointVelocity(kin, body1_, point1_)).dot(g.u);
-  return g;
+BipolarGeometry FrictionalForce::Measure(const ElementContext& ctx) const {
+  return MeasureBipolar(*ctx.kin, body1_, point1_, body2_, point2_);
 }
 
 void FrictionalForce::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
-  const Geometry g = Measure(ctx);
+  const BipolarGeometry g = Measure(ctx);
   modes[0] = g.v > 0 ? kSlipPlus : g.v < 0 ? kSlipMinus : kStick;
   modes[1] = g.x;
 }
 
 void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
                                std::span<double> sensors) const {
-  const Geometry g = Measure(ctx);
+  const BipolarGeometry g = Measure(ctx);
   const double mode = ctx.modes[0];
   const double f = mode == kStick ? -p_.stiffness.Get(ctx) * (g.x - ctx.modes[1]) - p_.damping.Get(ctx) * g.v
                                   : -mode * p_.friction.Get(ctx);
@@ -67,7 +59,7 @@ void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::spa
 }
 
 void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
-  const Geometry g = Measure(ctx);
+  const BipolarGeometry g = Measure(ctx);
   const double mode = ctx.modes[0];
   // Inactive functions sit at a constant away from zero, on the side that
   // cannot trigger.

@@ -16,6 +16,7 @@
 // (LeafSpring feeds F from a normal force).
 // Sensors: force, length, rate, mode.
 
+#include "mech/bipolar_force.h"
 #include "mech/force_element.h"
 
 namespace mechflow::mech {
@@ -45,11 +46,7 @@ class FrictionalForce final : public ForceElement {
                   std::span<double> modes) const override;
 
  private:
-  struct Geometry {
-    Vec3 pa, pb, u;
-    double x, v;
-  };
-  Geometry Measure(const ElementContext& ctx) const;
+  BipolarGeometry Measure(const ElementContext& ctx) const;
 
   int body1_, body2_;
   Vec3 point1_, point2_;
