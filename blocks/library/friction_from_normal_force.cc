@@ -1,5 +1,7 @@
 #include "blocks/library/friction_from_normal_force.h"
 
+#include <algorithm>
+
 namespace mechflow::blocks {
 
 FrictionFromNormalForceBlock::FrictionFromNormalForceBlock(const std::string& name,
@@ -8,10 +10,14 @@ FrictionFromNormalForceBlock::FrictionFromNormalForceBlock(const std::string& na
   DeclareInputPort("N");
   DeclareInputPort("v");
   DeclareOutputPort("F");
+  DeclareOutputPort("sliding");
+  SetFeedthrough(1, 1, false);
 }
 
-void FrictionFromNormalForceBlock::DoCalcOutput(int, const BlockContext& ctx) const {
-  ctx.output(0)[0] = mech::FrictionForce(law_, ctx.input_scalar(0), ctx.input_scalar(1));
+void FrictionFromNormalForceBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
+  const double normal = ctx.input_scalar(0);
+  ctx.output(port)[0] =
+      port == 0 ? mech::FrictionForce(law_, normal, ctx.input_scalar(1)) : law_.mu_dynamic * std::max(normal, 0.0);
 }
 
 }  // namespace mechflow::blocks

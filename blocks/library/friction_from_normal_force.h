@@ -6,8 +6,11 @@
 //   F     = -( mu(v) max(N, 0) tanh(v / v_reg) + c_visc v )
 //
 //   ports:   inputs N (normal force [N]; a pulling N < 0 gives no dry
-//            friction) and v (sliding velocity [m/s]); output F (friction
-//            force [N], opposing v); all width 1, both inputs feed F directly
+//            friction) and v (sliding velocity [m/s]); outputs F (friction
+//            force [N], opposing v; both inputs feed it directly) and
+//            sliding = mu_d max(N, 0) (the size of the sliding friction, for
+//            a friction element with stick/slip memory, whose own modes
+//            decide its direction and sticking; fed by N only); all width 1
 //   params:  mu_static mu_s, mu_dynamic mu_d (required, >= 0),
 //            stribeck_velocity v_s [m/s] (0.01, > 0), viscous c_visc [N s/m]
 //            (0, >= 0), regularisation_velocity v_reg [m/s] (1e-4, > 0)

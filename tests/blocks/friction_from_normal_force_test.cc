@@ -2,6 +2,7 @@
 // out here independently of mech/friction_law.cc, no dry friction for a
 // pulling N, the force opposing v, and parameter checks.
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -75,8 +76,23 @@ TEST(FrictionFromNormalForceTest, PortsAndFeedthrough) {
   EXPECT_EQ(f->input_port(0).name, "N");
   EXPECT_EQ(f->input_port(1).name, "v");
   EXPECT_EQ(f->output_port(0).name, "F");
+  EXPECT_EQ(f->output_port(1).name, "sliding");
   EXPECT_TRUE(f->HasFeedthrough(0, 0));
   EXPECT_TRUE(f->HasFeedthrough(1, 0));
+  EXPECT_TRUE(f->HasFeedthrough(0, 1));
+  EXPECT_FALSE(f->HasFeedthrough(1, 1));  // the sliding force does not read v
+}
+
+// sliding = mu_d max(N, 0), whatever v is.
+TEST(FrictionFromNormalForceTest, SlidingForceIsMuDynamicTimesN) {
+  const testing::Run run = Simulate(Blocks(MakeBlock("friction_from_normal_force", "f",
+                                            {{"mu_static", "0.5"}, {"mu_dynamic", "0.3"}}),
+                                  MakeBlock("sine", "n", {{"amplitude", "10"}, {"frequency", "1"}}),
+                                  MakeBlock("constant", "v", {{"value", "2"}})),
+                           {{"n.y", "f.N"}, {"v.y", "f.v"}}, {"n.y", "f.sliding"}, Options(1.0, 0.01));
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto n = run.Column("n.y"), s = run.Column("f.sliding");
+  for (std::size_t i = 0; i < n.size(); ++i) EXPECT_NEAR(s[i], 0.3 * std::max(n[i], 0.0), 1e-12);
 }
 
 TEST(FrictionFromNormalForceTest, FactoryRejectsUnusableParameters) {
