@@ -220,7 +220,7 @@ void RegisterAllBlocks(blocks::BlockRegistry* registry, scripting::LuaState* lua
 
 LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& options) {
   LoadedDiagram out;
-  out.lua = std::make_unique<scripting::LuaState>(options.unsafe_lua);
+  out.lua = std::make_unique<scripting::LuaState>(scripting::LuaState::Options{.unsafe = options.unsafe_lua});
   out.identifiers = std::make_unique<scripting::IdentifierTable>();
   scripting::IdentifierTable& ids = *out.identifiers;
 

@@ -223,11 +223,13 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
     lua_settop(L, top);
     throw InputError("expression '" + expression + "' uses too many names");
   }
+  bounded_ = scan.defines_function || scan.rewritten.find_first_of("\"'[:") != std::string::npos;
   for (const auto& name : upvalues) {
     if (identifiers.Has(name)) {
       lua_pushnumber(L, identifiers.Value(name));
     } else {
       lua_getglobal(L, name.c_str());
+      if (lua_type(L, -1) != LUA_TNUMBER && !lua_iscfunction(L, -1)) bounded_ = true;
     }
   }
   std::string error;
@@ -254,7 +256,13 @@ double CompiledExpression::Evaluate(const double* args) const {
   lua_rawgeti(L, LUA_REGISTRYINDEX, handler_ref_);
   lua_rawgeti(L, LUA_REGISTRYINDEX, function_ref_);
   for (int i = 0; i < n; ++i) lua_pushnumber(L, args[i]);
-  const int status = lua_pcall(L, n, 1, top + 1);
+  int status;
+  if (bounded_) {
+    BoundedCall bounded(lua_);
+    status = lua_pcall(L, n, 1, top + 1);
+  } else {
+    status = lua_pcall(L, n, 1, top + 1);
+  }
   if (status != LUA_OK) {
     const std::string message = lua_.ErrorText(status);
     lua_settop(L, top);

@@ -27,10 +27,6 @@ constexpr const char* kLuaGlobals[] = {
     "setmetatable", "tonumber", "tostring", "type", "xpcall", "warn", "_g", "_version", "_env", "math",
     "string", "table", "utf8", "io", "os", "debug", "package", "coroutine"};
 
-// Load-time expressions get this many VM instructions before they are stopped
-// (about 0.1 s; a real identifier expression needs tens).
-constexpr long kInstructionLimit = 10'000'000;
-
 // Chunk name of load-time expressions; Lua's "expression:1: " is cut from
 // messages, which already say which identifier or parameter failed.
 constexpr char kChunkName[] = "=expression";
@@ -206,7 +202,7 @@ double IdentifierTable::Eval(LuaState& lua, const std::string& text, int visible
 
   // run, bounded
   {
-    InstructionLimit limit(lua, kInstructionLimit);
+    BoundedCall bounded(lua);
     status = lua_pcall(L, 0, LUA_MULTRET, 0);
   }
   if (status != LUA_OK) {

@@ -20,14 +20,6 @@ namespace {
 // so a script that catches it with pcall is stopped soon after.
 constexpr int kRepeatInstructions = 1000;
 
-void InstructionHook(lua_State* L, lua_Debug*) {
-  lua_sethook(L, &InstructionHook, LUA_MASKCOUNT, kRepeatInstructions);
-  luaL_where(L, 0);  // in a hook, level 0 is the Lua function that was running
-  lua_pushliteral(L, "instruction limit exceeded (endless loop?)");
-  lua_concat(L, 2);
-  lua_error(L);
-}
-
 // load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t":
 // precompiled bytecode is not checked by Lua and can crash the interpreter.
 int TextOnlyLoad(lua_State* L) {
@@ -124,6 +116,17 @@ int Panic(lua_State* L) {
 
 }  // namespace
 
+// Called by Lua (may long-jump): owns no C++ object with a destructor.
+void LuaState::InstructionHook(lua_State* L, lua_Debug*) {
+  const LuaState* lua = *static_cast<LuaState**>(lua_getextraspace(L));
+  lua_sethook(L, &InstructionHook, LUA_MASKCOUNT, kRepeatInstructions);
+  luaL_where(L, 0);  // in a hook, level 0 is the Lua function that was running
+  lua_pushfstring(L, "instruction limit exceeded (%I instructions in one call; endless loop?)",
+                  static_cast<lua_Integer>(lua->instruction_limit_));
+  lua_concat(L, 2);
+  lua_error(L);
+}
+
 void* LuaState::Allocate(void* ud, void* ptr, std::size_t old_size, std::size_t new_size) {
   auto* memory = static_cast<Memory*>(ud);
   const std::size_t old_bytes = ptr ? old_size : 0;  // for new blocks old_size is a type tag
@@ -138,12 +141,15 @@ void* LuaState::Allocate(void* ud, void* ptr, std::size_t old_size, std::size_t 
   return block;
 }
 
-LuaState::LuaState(bool unsafe) : unsafe_(unsafe) {
+LuaState::LuaState(Options options) : unsafe_(options.unsafe) {
+  memory_.limit = options.memory_limit;
+  set_instruction_limit(options.instruction_limit);
   L_ = lua_newstate(&LuaState::Allocate, &memory_);
   if (!L_) throw std::runtime_error("cannot create a Lua state (out of memory)");
+  *static_cast<LuaState**>(lua_getextraspace(L_)) = this;  // for the hook
   lua_atpanic(L_, &Panic);
   lua_pushcfunction(L_, &SetUp);
-  lua_pushboolean(L_, unsafe);
+  lua_pushboolean(L_, unsafe_);
   std::string error;
   if (!Call(1, 0, &error)) {
     lua_close(L_);
@@ -155,12 +161,18 @@ LuaState::~LuaState() {
   if (L_) lua_close(L_);
 }
 
-void LuaState::set_instruction_limit(long count) {
-  if (count > 0) {
-    lua_sethook(L_, &InstructionHook, LUA_MASKCOUNT, static_cast<int>(std::min<long>(count, INT_MAX)));
-  } else {
-    lua_sethook(L_, nullptr, 0, 0);
+BoundedCall::BoundedCall(LuaState& lua) : L_(lua.get()) {
+  // a hook already set means an enclosing call is bounded (ours is removed
+  // when that call returns)
+  if (lua.instruction_limit_ > 0 && !lua_gethook(L_)) {
+    lua_sethook(L_, &LuaState::InstructionHook, LUA_MASKCOUNT,
+                static_cast<int>(std::min<long>(lua.instruction_limit_, INT_MAX)));
+    armed_ = true;
   }
+}
+
+BoundedCall::~BoundedCall() {
+  if (armed_) lua_sethook(L_, nullptr, 0, 0);
 }
 
 std::string LuaState::ErrorText(int status) const {
@@ -179,7 +191,11 @@ bool LuaState::Call(int num_args, int num_results, std::string* error) {
   const int handler = lua_gettop(L_) - num_args;  // where the function is now
   lua_pushcfunction(L_, &TracebackHandler);
   lua_insert(L_, handler);
-  const int status = lua_pcall(L_, num_args, num_results, handler);
+  int status;
+  {
+    BoundedCall bounded(*this);
+    status = lua_pcall(L_, num_args, num_results, handler);
+  }
   lua_remove(L_, handler);
   if (status == LUA_OK) return true;
   if (error) *error = ErrorText(status);

@@ -12,31 +12,44 @@
 // sqrt sqr abs sign min max floor ceil sinh cosh tanh pi. `^` is Lua's power
 // operator (right-associative, always a float).
 //
-// Limits:
+// Limits (LuaState::Options, both adjustable later):
 //   - memory: a counting allocator refuses to grow Lua's heap past the limit
-//     (default 256 MiB); the script sees the error "not enough memory".
-//   - instructions: set_instruction_limit(n) makes Lua code raise
-//     "instruction limit exceeded" after n VM instructions. A script cannot
-//     swallow it with pcall: once exceeded, the error is raised again every
-//     1000 instructions until the limit is removed. Armed by callers around
-//     code that must not hang (load-time evaluation).
+//     (default 256 MiB); the script sees the error "not enough memory", the
+//     caller "not enough memory (Lua may use at most 256 MiB)".
+//   - instructions: each protected call from C++ (Call, Run, or a lua_pcall
+//     inside a BoundedCall) may run at most instruction_limit VM instructions
+//     (default 10 million, about 0.1 s); then Lua raises "chunk:line:
+//     instruction limit exceeded (...)". A script cannot swallow it with
+//     pcall: once exceeded, the error is raised again every 1000 instructions
+//     until the call returns. The count is a count hook, armed at the start of
+//     the call and removed at its end, so there is no cost between calls.
 //
 // Lua errors long-jump: no C++ frame owning resources may sit between a
 // lua_pcall and the code that raises. Every call into Lua from C++ goes
 // through a protected call (Call, Run, or lua_pcall directly).
 
+#include <algorithm>
+#include <climits>
 #include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
 
 struct lua_State;
+struct lua_Debug;
 
 namespace mechflow::scripting {
 
 class LuaState {
  public:
-  explicit LuaState(bool unsafe = false);
+  struct Options {
+    bool unsafe = false;                                // every standard library
+    std::size_t memory_limit = std::size_t(256) << 20;  // bytes of Lua heap
+    long instruction_limit = 10'000'000;                // per call from C++; 0: none
+  };
+
+  explicit LuaState(Options options);
+  LuaState() : LuaState(Options{}) {}
   ~LuaState();
   LuaState(const LuaState&) = delete;
   LuaState& operator=(const LuaState&) = delete;
@@ -49,12 +62,13 @@ class LuaState {
   std::size_t memory_limit() const { return memory_.limit; }
   std::size_t memory_in_use() const { return memory_.used; }
 
-  // Raises "instruction limit exceeded" in Lua code after `count` VM
-  // instructions from now; 0 (or less) removes the limit.
-  void set_instruction_limit(long count);
+  // VM instructions one protected call from C++ may run; 0 (or less): any.
+  void set_instruction_limit(long count) { instruction_limit_ = count > 0 ? std::min<long>(count, INT_MAX) : 0; }
+  long instruction_limit() const { return instruction_limit_; }
 
   // Calls the function lying below `num_args` arguments on the stack in
-  // protected mode, with TracebackHandler as message handler. On success
+  // protected mode (bounded by the instruction limit), with TracebackHandler
+  // as message handler. On success
   // leaves `num_results` results (LUA_MULTRET: all) and returns true. On
   // failure removes the function and arguments, stores the message (with a
   // traceback) in *error and returns false.
@@ -86,21 +100,31 @@ class LuaState {
   };
   static void* Allocate(void* ud, void* ptr, std::size_t old_size, std::size_t new_size);
 
+  friend class BoundedCall;
+  static void InstructionHook(lua_State* L, lua_Debug* ar);
+
   Memory memory_;
+  long instruction_limit_ = 0;
   bool unsafe_ = false;
   lua_State* L_ = nullptr;
 };
 
-// Arms an instruction limit for the lifetime of the guard.
-class InstructionLimit {
+// Bounds one protected call from C++ by the instruction limit: arms the count
+// hook afresh on construction (so the count is per call) and removes it on
+// destruction. Wrap every direct lua_pcall in one. Inside a call already
+// bounded (Lua called C++ which calls Lua again) it does nothing, so code
+// cannot reset its own count that way. The unsafe debug library can, by
+// design, change the hook.
+class BoundedCall {
  public:
-  InstructionLimit(LuaState& lua, long count) : lua_(lua) { lua_.set_instruction_limit(count); }
-  ~InstructionLimit() { lua_.set_instruction_limit(0); }
-  InstructionLimit(const InstructionLimit&) = delete;
-  InstructionLimit& operator=(const InstructionLimit&) = delete;
+  explicit BoundedCall(LuaState& lua);
+  ~BoundedCall();
+  BoundedCall(const BoundedCall&) = delete;
+  BoundedCall& operator=(const BoundedCall&) = delete;
 
  private:
-  LuaState& lua_;
+  lua_State* L_;
+  bool armed_ = false;
 };
 
 }  // namespace mechflow::scripting

@@ -67,7 +67,7 @@ TEST(LuaStateTest, LoadTakesTextOnly) {
 }
 
 TEST(LuaStateTest, UnsafeStateOpensEverythingButStillRefusesBytecode) {
-  LuaState lua(/*unsafe=*/true);
+  LuaState lua({.unsafe = true});
   EXPECT_TRUE(lua.is_unsafe());
   EXPECT_EQ(RunLua(lua, "assert(io and os and require and debug and coroutine and dofile)"), "");
   EXPECT_EQ(RunLua(lua, "assert(not load(string.dump(function() end)))"), "");
@@ -127,19 +127,23 @@ TEST(LuaStateTest, MemoryLimitStopsRunawayAllocation) {
 }
 
 TEST(LuaStateTest, InstructionLimitStopsEndlessLoops) {
-  LuaState lua;
-  {
-    InstructionLimit limit(lua, 1'000'000);
-    EXPECT_THAT(RunLua(lua, "while true do end"), StartsWith("test:1: instruction limit exceeded"));
-    // catching the error does not escape the limit: it is raised again
-    EXPECT_THAT(RunLua(lua, "for i = 1, 10 do pcall(function() while true do end end) end while true do end"),
-                HasSubstr("instruction limit exceeded"));
-  }
-  // without the guard, long loops run to the end
-  EXPECT_EQ(Number(lua, "(function() local n = 0 for i = 1, 3e6 do n = n + 1 end return n end)()"), 3e6);
-  lua.set_instruction_limit(100);
-  EXPECT_EQ(Number(lua, "1 + 1"), 2.0);  // short code is not affected
+  LuaState lua({.instruction_limit = 1'000'000});
+  EXPECT_EQ(LuaState().instruction_limit(), 10'000'000);
+  EXPECT_EQ(lua.instruction_limit(), 1'000'000);
+  EXPECT_THAT(RunLua(lua, "while true do end"),
+              StartsWith("test:1: instruction limit exceeded (1000000 instructions in one call; endless loop?)"));
+  // catching the error does not escape the limit: it is raised again
+  EXPECT_THAT(RunLua(lua, "for i = 1, 10 do pcall(function() while true do end end) end while true do end"),
+              HasSubstr("instruction limit exceeded"));
+  // the count is per call: ten calls of 200000 instructions each (an add and a
+  // loop step per pass) run, two million in all
+  for (int i = 0; i < 10; ++i)
+    EXPECT_EQ(Number(lua, "(function() local n = 0 for i = 1, 1e5 do n = n + 1 end return n end)()"), 1e5) << i;
+  // and the hook is gone between calls
+  EXPECT_EQ(lua_gethook(lua.get()), nullptr);
+  // without a limit, long loops run to the end
   lua.set_instruction_limit(0);
+  EXPECT_EQ(Number(lua, "(function() local n = 0 for i = 1, 3e6 do n = n + 1 end return n end)()"), 3e6);
 }
 
 TEST(LuaStateTest, CallsReportErrorsWithATraceback) {
