@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include <cvode/cvode_ls.h>
@@ -84,6 +85,8 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   last_fired_.assign(diagram_.num_zero_crossings(), 0.0);
   fired_in_a_row_.assign(diagram_.num_zero_crossings(), 0);
   next_hit_.assign(diagram_.periodic_blocks().size(), 0);
+  reuse_evaluations_ = diagram_.loops().empty();
+  evaluated_g_.assign(diagram_.num_zero_crossings(), 0.0);
   // the Jacobian's structure is the diagram's: found and coloured once
   const int n = std::max(1, diagram_.num_states());
   const LinearSolverKind kind = options_.linear_solver;
@@ -192,8 +195,27 @@ void Simulator::EvaluateAt(double t, double* x) {
   EvaluateOutputs(diagram_, &ctx_);
 }
 
+bool Simulator::StillEvaluated(double t, const double* x) const {
+  return evaluated_valid_ && evaluated_at_ == ctx_.evaluation && t == evaluated_t_ &&
+         std::memcmp(x, evaluated_x_.data(), evaluated_x_.size() * sizeof(double)) == 0;
+}
+
+void Simulator::RememberEvaluated(double t, const double* x, const double* g) {
+  if (!reuse_evaluations_) return;
+  evaluated_valid_ = true;
+  evaluated_at_ = ctx_.evaluation;
+  evaluated_t_ = t;
+  std::copy(x, x + evaluated_x_.size(), evaluated_x_.begin());
+  evaluated_crossings_ = g != nullptr;
+  if (g) std::copy(g, g + evaluated_g_.size(), evaluated_g_.begin());
+}
+
 void Simulator::Record(double t, double* x) {
-  EvaluateAt(t, x);
+  // the signals of the root functions' evaluation at this output time, if any
+  if (!StillEvaluated(t, x)) {
+    EvaluateAt(t, x);
+    RememberEvaluated(t, x, nullptr);
+  }
   row_[0] = t;
   int column = 1;
   for (const SignalRef& s : logged_)
@@ -300,6 +322,11 @@ int Simulator::Project(double t, N_Vector y, N_Vector correction, double, N_Vect
 
 int Simulator::Roots(double t, N_Vector y, double* g, void* user) {
   auto* self = static_cast<Simulator*>(user);
+  const double* x = N_VGetArrayPointer(y);
+  if (self->StillEvaluated(t, x) && self->evaluated_crossings_) {
+    std::copy(self->evaluated_g_.begin(), self->evaluated_g_.end(), g);
+    return 0;
+  }
   try {
     Context& ctx = self->ctx_;
     ctx.time = t;
@@ -308,6 +335,7 @@ int Simulator::Roots(double t, N_Vector y, double* g, void* user) {
     ++ctx.evaluation;
     EvaluateOutputs(self->diagram_, &ctx);
     EvaluateZeroCrossings(self->diagram_, &ctx);
+    self->RememberEvaluated(t, x, g);
   } catch (const std::exception& e) {
     self->callback_failure_ = e.what();
     return -1;
@@ -331,6 +359,7 @@ double Simulator::NextSampleHit() const {
 }
 
 void Simulator::HandleSampleHits(double t) {
+  evaluated_valid_ = false;  // discrete states change
   const auto& periodic = diagram_.periodic_blocks();
   EvaluateAt(t, ctx_.x);
   for (size_t i = 0; i < periodic.size(); ++i) {
@@ -344,6 +373,7 @@ void Simulator::HandleSampleHits(double t) {
 }
 
 void Simulator::HandleCrossings(double t) {
+  evaluated_valid_ = false;  // states and modes change
   Check(CVodeGetRootInfo(solver_->cvode.get(), roots_found_.data()), "CVodeGetRootInfo");
   EvaluateAt(t, ctx_.x);
   const double instant = kInstant * std::max(1.0, std::abs(t));
@@ -391,6 +421,7 @@ void Simulator::AccumulateStats() {
 }
 
 void Simulator::Reinitialize(double t) {
+  evaluated_valid_ = false;
   if (!SettleModes(diagram_, &ctx_))
     throw SimulationError("modes did not settle at t = " + std::to_string(t) +
                           " (blocks keep switching each other's modes)");
@@ -425,6 +456,8 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   root_pending_ = false;
   pending_root_y_.assign(n, 0.0);
   watch_y_.assign(n, 0.0);
+  evaluated_valid_ = false;
+  evaluated_x_.assign(n, 0.0);
   if (watch_vector_) N_VDestroy(watch_vector_);
   watch_vector_ = N_VMake_Serial(n, watch_y_.data(), solver_->ctx.get());
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;

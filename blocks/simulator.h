@@ -147,6 +147,8 @@ class Simulator {
 
   int EvaluateRhs(double t, double* x, double* xdot);
   void EvaluateAt(double t, double* x);
+  bool StillEvaluated(double t, const double* x) const;
+  void RememberEvaluated(double t, const double* x, const double* g);
   void Record(double t, double* x);
   void HandleCrossings(double t);
   void HandleSampleHits(double t);
@@ -192,6 +194,17 @@ class Simulator {
   bool root_pending_ = false;
   double pending_root_time_ = 0.0;
   std::vector<double> pending_root_y_;
+  // The signals (and root functions) of the last evaluation at (t, x): CVODE
+  // evaluates the root functions at an output time, the row is recorded
+  // there, and the next CVode call evaluates them there again. Reused only
+  // while no other evaluation, event or sample hit came in between, and not
+  // with algebraic loops (a new solve may differ in the last bits).
+  bool reuse_evaluations_ = false;
+  bool evaluated_valid_ = false;
+  bool evaluated_crossings_ = false;
+  std::uint64_t evaluated_at_ = 0;  // ctx_.evaluation of it
+  double evaluated_t_ = 0.0;
+  std::vector<double> evaluated_x_, evaluated_g_;
   std::unique_ptr<ColouredJacobian> jacobian_;  // sparse runs only
   std::vector<double> increments_;              // sparse: per state, for each fill
   std::unique_ptr<Solver> solver_;

@@ -105,7 +105,10 @@ void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
 
 void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
   const mech::SensorSpec& sensor = sensors_[port];
-  if (sensor.kind == mech::SensorKind::kElement && !mech::SensorDependsOnInputs(*mechanism_, sensor)) {
+  // Without inputs the full solve is valid at once, and the derivatives and
+  // crossings of this evaluation reuse it (the elements are evaluated once).
+  if (sensor.kind == mech::SensorKind::kElement && !mech::SensorDependsOnInputs(*mechanism_, sensor) &&
+      num_inputs() > 0) {
     // Its inputs may not be computed yet in this evaluation (it does not feed
     // through): evaluate the elements only, and keep no solve cached.
     if (full_at_ != ctx.evaluation() && elements_at_ != ctx.evaluation()) {
