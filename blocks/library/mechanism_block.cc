@@ -136,7 +136,14 @@ void MechanismBlock::DoCalcDerivatives(const BlockContext& ctx) const {
 }
 
 void MechanismBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
-  EnsureEvaluated(ctx, true);
+  // The crossings read positions, velocities, element states and parameters
+  // (of t and the inputs, all computed by now), not accelerations: evaluating
+  // the elements is enough when no solve of this evaluation is at hand.
+  const std::uint64_t now = ctx.evaluation();
+  if (full_at_ != now) {
+    mech::EvaluateElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
+    elements_at_ = positions_at_ = now;
+  }
   mech::EvaluateCrossings(*mechanism_, ctx.state(), ctx.discrete(), &ws_, ctx.zero_crossings());
 }
 
