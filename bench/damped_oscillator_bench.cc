@@ -37,6 +37,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "bench/direct_cvode.h"
 #include "blocks/simulator.h"
 #include "diagrams/loader.h"
 
@@ -99,30 +100,9 @@ int ReferenceRhs(double, N_Vector y, N_Vector ydot, void* user) {
   return 0;
 }
 
-void Check(int flag, const char* function) {
-  if (flag < 0) throw std::runtime_error(std::string(function) + " failed with flag " + std::to_string(flag));
-}
-template <typename T>
-T* CheckPointer(T* p, const char* function) {
-  if (!p) throw std::runtime_error(std::string(function) + " returned null");
-  return p;
-}
-
-// The SUNDIALS objects of one reference run, freed in reverse order of creation.
-struct ReferenceSolver {
-  SUNContext ctx = nullptr;
-  N_Vector y = nullptr;
-  SUNMatrix a = nullptr;
-  SUNLinearSolver ls = nullptr;
-  void* cvode = nullptr;
-  ~ReferenceSolver() {
-    if (cvode) CVodeFree(&cvode);
-    if (ls) SUNLinSolFree(ls);
-    if (a) SUNMatDestroy(a);
-    if (y) N_VDestroy(y);
-    if (ctx) SUNContext_Free(&ctx);
-  }
-};
+using mechflow::bench::direct::Check;
+using mechflow::bench::direct::CheckPointer;
+using ReferenceSolver = mechflow::bench::direct::Solver;
 
 Run RunReference(const Oscillator& osc, const mechflow::blocks::SolverOptions& options) {
   const auto start = Clock::now();

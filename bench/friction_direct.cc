@@ -19,6 +19,8 @@
 #define MECHFLOW_BENCH_HAVE_MXCSR 1
 #endif
 
+#include "bench/direct_cvode.h"
+
 namespace mechflow::bench {
 namespace {
 
@@ -187,31 +189,9 @@ int Roots(double, N_Vector yv, double* g, void* user) {
   return 0;
 }
 
-void Check(int flag, const char* function) {
-  if (flag < 0) throw std::runtime_error(std::string(function) + " failed with flag " + std::to_string(flag));
-}
-
-template <typename T>
-T* CheckPointer(T* p, const char* function) {
-  if (!p) throw std::runtime_error(std::string(function) + " returned null");
-  return p;
-}
-
-// The SUNDIALS objects of one run, freed in reverse order of creation.
-struct Solver {
-  SUNContext ctx = nullptr;
-  N_Vector y = nullptr;
-  SUNMatrix a = nullptr;
-  SUNLinearSolver ls = nullptr;
-  void* cvode = nullptr;
-  ~Solver() {
-    if (cvode) CVodeFree(&cvode);
-    if (ls) SUNLinSolFree(ls);
-    if (a) SUNMatDestroy(a);
-    if (y) N_VDestroy(y);
-    if (ctx) SUNContext_Free(&ctx);
-  }
-};
+using direct::Check;
+using direct::CheckPointer;
+using direct::Solver;
 
 // Flush-to-zero and denormals-are-zero for its lifetime (BENCH.md's trap:
 // the far end of a long chain fills with subnormals).

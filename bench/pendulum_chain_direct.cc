@@ -12,6 +12,8 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "bench/direct_cvode.h"
+
 namespace mechflow::bench {
 namespace {
 
@@ -142,31 +144,9 @@ int ChainRhs(double, N_Vector y, N_Vector ydot, void* user) {
   return chain.Accelerations(theta, omega, omega_rate) ? 0 : -1;
 }
 
-void Check(int flag, const char* function) {
-  if (flag < 0) throw std::runtime_error(std::string(function) + " failed with flag " + std::to_string(flag));
-}
-
-template <typename T>
-T* CheckPointer(T* p, const char* function) {
-  if (!p) throw std::runtime_error(std::string(function) + " returned null");
-  return p;
-}
-
-// The SUNDIALS objects of one run, freed in reverse order of creation.
-struct Solver {
-  SUNContext ctx = nullptr;
-  N_Vector y = nullptr;
-  SUNMatrix a = nullptr;
-  SUNLinearSolver ls = nullptr;
-  void* cvode = nullptr;
-  ~Solver() {
-    if (cvode) CVodeFree(&cvode);
-    if (ls) SUNLinSolFree(ls);
-    if (a) SUNMatDestroy(a);
-    if (y) N_VDestroy(y);
-    if (ctx) SUNContext_Free(&ctx);
-  }
-};
+using direct::Check;
+using direct::CheckPointer;
+using direct::Solver;
 
 }  // namespace
 
