@@ -10,6 +10,7 @@
 
 #include "blocks/suggest.h"
 #include "mech/errors.h"
+#include "scripting/identifier_bindings.h"
 #include "scripting/identifiers.h"
 #include "scripting/lua_state.h"
 
@@ -237,6 +238,7 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
     lua_settop(L, top);
     throw InputError("expression '" + expression + "': " + (error.empty() ? "did not compile to a function" : error));
   }
+  if (!identifiers_used_.empty()) BindIdentifiers(L, -1);
   function_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
   lua_pushstring(L, chunk_name.c_str());
   lua_pushcclosure(L, &ExpressionMessageHandler, 1);
@@ -280,18 +282,6 @@ double CompiledExpression::Evaluate(const double* args) const {
     throw SimulationError(label_ + ": expression '" + expression_ + "' gives " + std::to_string(value) +
                           (n > 0 ? " " + DescribeArguments(args) : ""));
   return value;
-}
-
-void CompiledExpression::Rebind(const IdentifierTable& identifiers) {
-  lua_State* L = lua_.get();
-  lua_rawgeti(L, LUA_REGISTRYINDEX, function_ref_);
-  for (int i = 1; const char* name = lua_getupvalue(L, -1, i); ++i) {
-    lua_pop(L, 1);
-    if (std::find(identifiers_used_.begin(), identifiers_used_.end(), name) == identifiers_used_.end()) continue;
-    lua_pushnumber(L, identifiers.Value(name));
-    lua_setupvalue(L, -2, i);
-  }
-  lua_pop(L, 1);
 }
 
 std::string CompiledExpression::DescribeArguments(const double* args) const {

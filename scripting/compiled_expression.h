@@ -18,8 +18,9 @@
 // and table-constructor keys are left alone. The expression stays on line 1,
 // so Lua's messages point at it ("block 'f':1: ...").
 //
-// Identifier values are fixed at compilation; Rebind() re-reads them after the
-// table was re-evaluated (a control script changed an identifier).
+// Identifier values are taken at compilation; the function is registered with
+// BindIdentifiers (scripting/identifier_bindings.h), so RebindIdentifiers
+// gives it new values when a control script changes identifiers.
 //
 // Evaluation is bounded by the LuaState's instruction limit, except for
 // straight-line expressions, which cannot loop and so skip the count hook (a
@@ -61,9 +62,6 @@ class CompiledExpression {
   // not a finite number, throws SimulationError:
   //   "block 'f': expression error at t = 0.5, u = 2: block 'f':1: too big".
   double Evaluate(const double* args) const;
-
-  // Takes the current values of the identifiers it uses from `identifiers`.
-  void Rebind(const IdentifierTable& identifiers);
 
  private:
   // "at t = 0.5, u = 2" for messages ("" without arguments).

@@ -2,6 +2,7 @@
 set(MECHFLOW_SCRIPTING_SOURCES
   scripting/compiled_expression.cc
   scripting/expression_block.cc
+  scripting/identifier_bindings.cc
   scripting/identifiers.cc
   scripting/lua_state.cc
   scripting/time_function.cc

@@ -2,6 +2,7 @@
 // name look-up and no allocation.
 
 #include "scripting/compiled_expression.h"
+#include "scripting/identifier_bindings.h"
 
 #include <cmath>
 #include <string>
@@ -101,7 +102,7 @@ TEST_F(CompiledExpressionTest, UsesGlobalsAsTheyAreAtCompilation) {
   EXPECT_EQ(e.Evaluate(&u), 10.0);
 }
 
-TEST_F(CompiledExpressionTest, RebindTakesNewIdentifierValues) {
+TEST_F(CompiledExpressionTest, RebindIdentifiersTakesNewValues) {
   IdentifierTable ids;
   ids.Add("k", "2", "f:1");
   ids.Add("k2", "k^2", "f:2");
@@ -112,9 +113,26 @@ TEST_F(CompiledExpressionTest, RebindTakesNewIdentifierValues) {
   ids.Override("k", 3);
   ids.Evaluate(lua_);
   EXPECT_EQ(e.Evaluate(&u), 24.0);  // values are taken at compilation...
-  e.Rebind(ids);
-  EXPECT_EQ(e.Evaluate(&u), 39.0);  // ...and on request
+  // ...and on request: k and k2 changed; `u` is an argument, not an upvalue
+  EXPECT_EQ(RebindIdentifiers(lua_.get(), ids, {"k", "k2"}), 2);
+  EXPECT_EQ(e.Evaluate(&u), 39.0);
   EXPECT_EQ(lua_gettop(lua_.get()), 0);
+}
+
+TEST_F(CompiledExpressionTest, RebindReachesOnlyLiveExpressionsUsingTheChangedNames) {
+  IdentifierTable ids;
+  ids.Add("a", "1", "f:1");
+  ids.Add("b", "2", "f:2");
+  ids.Evaluate(lua_);
+  CompiledExpression uses_a(lua_, "a", {}, ids, "=f");
+  { CompiledExpression gone(lua_, "a + 1", {}, ids, "=g"); }
+  CompiledExpression uses_b(lua_, "b", {}, ids, "=h");
+  lua_gc(lua_.get(), LUA_GCCOLLECT);  // the destroyed expression's function is collected
+  ids.Override("a", 5);
+  ids.Evaluate(lua_);
+  EXPECT_EQ(RebindIdentifiers(lua_.get(), ids, {"a"}), 1);
+  EXPECT_EQ(uses_a.Evaluate(nullptr), 5.0);
+  EXPECT_EQ(uses_b.Evaluate(nullptr), 2.0);
 }
 
 TEST_F(CompiledExpressionTest, CompileErrorsNameTheExpressionAndChunk) {
