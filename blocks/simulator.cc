@@ -430,6 +430,41 @@ void Simulator::Reinitialize(double t) {
   ++stats_.reinits;
 }
 
+class Simulator::Point final : public ControlPoint {
+ public:
+  explicit Point(Simulator& sim) : sim_(sim) {}
+  double time() const override { return sim_.ctx_.time; }
+  std::span<const double> signals() const override { return sim_.ctx_.signals; }
+  std::span<double> discrete() override { return sim_.ctx_.discrete; }
+  void Changed() override {
+    sim_.control_changed_ = true;
+    sim_.evaluated_valid_ = false;
+    sim_.EvaluateAt(sim_.ctx_.time, sim_.ctx_.x);
+  }
+  void Stop(std::string reason) override {
+    sim_.stop_requested_ = true;
+    sim_.stop_reason_ = std::move(reason);
+  }
+
+ private:
+  Simulator& sim_;
+};
+
+bool Simulator::CallControl(double t, double* x, void (RunControl::*call)(ControlPoint&)) {
+  if (!StillEvaluated(t, x)) EvaluateAt(t, x);
+  control_changed_ = false;
+  Point point(*this);
+  (control_->*call)(point);
+  if (control_changed_ && !SettleModes(diagram_, &ctx_))
+    throw SimulationError("modes did not settle at t = " + std::to_string(t) + " after the control script's changes");
+  return control_changed_;
+}
+
+double Simulator::NextStop() const {
+  const double timer = control_ ? control_->NextTimer() : std::numeric_limits<double>::infinity();
+  return std::min({NextSampleHit(), timer, options_.t_end});
+}
+
 RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   const double t0 = options_.t_start, t_end = options_.t_end;
   const sunindextype n = std::max(1, diagram_.num_states());
@@ -448,6 +483,9 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     stats_.nonzeros = jacobian_->pattern().nonzeros();
   }
   callback_failures_ = 0;
+  callback_failure_.clear();
+  stop_requested_ = false;
+  stop_reason_.clear();
   std::fill(last_fired_.begin(), last_fired_.end(), -std::numeric_limits<double>::infinity());
   std::fill(fired_in_a_row_.begin(), fired_in_a_row_.end(), 0);
   linear_solver_attached_ = false;
@@ -463,10 +501,9 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
 
-  // initial state, modes and the sample hits due at t_start
+  // initial state, modes, the control's start and the sample hits due at t_start
   ctx_.time = t0;
   ctx_.x = y;
-  InitializeStates(diagram_, &ctx_);
   const auto& periodic = diagram_.periodic_blocks();
   for (size_t i = 0; i < periodic.size(); ++i) {
     const SampleTime& st = diagram_.block(periodic[i]).sample_time();
@@ -474,8 +511,11 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   }
   RunOutcome outcome;
   try {
+    InitializeStates(diagram_, &ctx_);
     if (!SettleModes(diagram_, &ctx_)) throw SimulationError("modes did not settle at t_start");
+    if (control_) CallControl(t0, y, &RunControl::Start);
     if (NextSampleHit() == t0) HandleSampleHits(t0);
+    if (control_ && control_->NextTimer() == t0) CallControl(t0, y, &RunControl::Timer);
     SettleModes(diagram_, &ctx_);
 
     Check(CVodeInit(mem, &Simulator::Rhs, t0, solver_->y.get()), "CVodeInit");
@@ -520,13 +560,14 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     double t = t0;
     // output times are computed from an integer index: no drift over long runs
     auto output_time = [&](long k) { return std::min(t0 + k * options_.output_interval, t_end); };
-    while (t < t_end) {
-      const double stop = std::min(NextSampleHit(), t_end);
+    while (t < t_end && !stop_requested_) {
+      const double stop = NextStop();
       double t_out = std::min(output_time(next_output), stop);
       // an output time that rounding puts a hair before a sample hit is taken
       // at the hit, so the row shows the values after it (right-continuous)
       if (stop - t_out <= 1e-12 * std::max(1.0, std::abs(stop))) t_out = stop;
       if (t_out <= t) {  // an output time that coincides with the last event
+        if (control_ && CallControl(t, y, &RunControl::Output)) Reinitialize(t);
         Record(t, y);
         ++next_output;
         continue;
@@ -565,21 +606,40 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       const bool at_stop = flag == CV_TSTOP_RETURN || t_ret >= stop;
       if (at_stop) std::copy(interpolated.begin(), interpolated.end(), y);
       if (at_stop && t_ret < t_end) {
-        // a sample hit: update the periodic blocks before the row is taken
+        // a sample hit or control timer: update before the row is taken
         ctx_.x = y;
         HandleSampleHits(t_ret);
+        if (control_ && control_->NextTimer() == t_ret) CallControl(t_ret, y, &RunControl::Timer);
         Reinitialize(t_ret);
       }
       if (t_ret >= t_out) {
         // reached an output time (with interpolation, the solver may be ahead)
-        Record(t_ret, at_stop ? y : interpolated.data());
+        double* x_out = at_stop ? y : interpolated.data();
+        if (control_ && CallControl(t_ret, x_out, &RunControl::Output)) {
+          // the control changed the model here: the solver must not go on
+          // from a point beyond it, computed with the old values
+          if (x_out != y) std::copy(interpolated.begin(), interpolated.end(), y);
+          ctx_.x = y;
+          Reinitialize(t_ret);
+          x_out = y;
+        }
+        Record(t_ret, x_out);
         if (progress) progress(t_ret);
         ++next_output;
       }
       t = std::max(t, t_ret);
       if (at_stop && t >= t_end) break;
     }
-    if (outcome.ok) outcome.t_reached = t_end;
+    if (outcome.ok && stop_requested_) {
+      // the row at the instant the control stopped the run, unless it was one
+      if (results_.num_rows() == 0 || results_.at(results_.num_rows() - 1, 0) != ctx_.time) Record(ctx_.time, ctx_.x);
+      outcome.stopped = true;
+      outcome.stop_reason = stop_reason_;
+      outcome.t_reached = ctx_.time;
+    } else if (outcome.ok) {
+      outcome.t_reached = t_end;
+    }
+    if (outcome.ok && control_) CallControl(ctx_.time, ctx_.x, &RunControl::Finish);
   } catch (const std::exception& e) {
     outcome.ok = false;
     outcome.t_reached = ctx_.time;

@@ -47,6 +47,7 @@
 #include "blocks/diagram.h"
 #include "blocks/report.h"
 #include "blocks/results.h"
+#include "blocks/run_control.h"
 
 #include <sundials/sundials_matrix.h>
 #include <sundials/sundials_nvector.h>
@@ -105,6 +106,8 @@ struct RunOutcome {
   bool ok = true;
   double t_reached = 0.0;
   std::string failure;  // when !ok: solver flag and reason
+  bool stopped = false;     // ended early by its control (ok stays true)
+  std::string stop_reason;  // when stopped: the control's reason
 };
 
 class Simulator {
@@ -119,6 +122,10 @@ class Simulator {
   // without, it runs to each output time at once. Signals must be scalar or
   // indexed within their width (InputError otherwise).
   void SetReports(std::vector<ReportRequest> reports);
+
+  // A control (e.g. a Lua control script) called during every run; not
+  // owned, nullptr for none. See blocks/run_control.h for when it runs.
+  void SetControl(RunControl* control) { control_ = control; }
 
   // Runs from t_start to t_end. `progress(t)` is called after every output row.
   RunOutcome Run(const std::function<void(double)>& progress = {});
@@ -155,6 +162,10 @@ class Simulator {
   double NextSampleHit() const;
   void Reinitialize(double t);
   void AccumulateStats();
+  // Calls the control (`call` is one of its methods) with the outputs
+  // evaluated at (t, x); returns true when it changed something.
+  bool CallControl(double t, double* x, void (RunControl::*call)(ControlPoint&));
+  double NextStop() const;
   // CVode towards t_out one internal step at a time, watching each step for
   // the reports; returns as CVode(..., CV_NORMAL) would.
   int Advance(double t_out, N_Vector yout, double* t_ret);
@@ -208,6 +219,11 @@ class Simulator {
   std::unique_ptr<ColouredJacobian> jacobian_;  // sparse runs only
   std::vector<double> increments_;              // sparse: per state, for each fill
   std::unique_ptr<Solver> solver_;
+  class Point;  // the ControlPoint the control sees
+  RunControl* control_ = nullptr;
+  bool control_changed_ = false;
+  bool stop_requested_ = false;
+  std::string stop_reason_;
 };
 
 }  // namespace mechflow::blocks

@@ -62,6 +62,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
   blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
   sim.SetReports(loaded.reports);
+  sim.SetControl(loaded.control.get());
 
   const auto wall_start = std::chrono::steady_clock::now();
   blocks::RunOutcome outcome;
@@ -72,12 +73,16 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
   out << "mechflow run " << args.file << ": t = " << loaded.solver.t_start << " .. " << loaded.solver.t_end << " s\n";
-  if (outcome.ok) {
+  if (outcome.stopped) {
+    out << "stopped by the control script at t = " << outcome.t_reached << " s: " << outcome.stop_reason
+        << " (" << wall << " s of wall time)\n";
+  } else if (outcome.ok) {
     out << "finished in " << wall << " s of wall time\n";
   } else {
     err << "simulation failed at t = " << outcome.t_reached << " s: " << outcome.failure << "\n";
   }
   PrintStats(sim.stats(), out);
+  if (loaded.control) PrintScriptChanges(*loaded.control, *loaded.identifiers, out);
   for (int b = 0; b < loaded.diagram->num_blocks(); ++b) {
     const auto* mechanism = dynamic_cast<const blocks::MechanismBlock*>(&loaded.diagram->block(b));
     if (mechanism && !mechanism->mechanism().constraints().empty())
@@ -119,6 +124,17 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
       return 2;
     }
     out << "wrote " << figures.string() << "\n";
+  }
+  if (loaded.control && !loaded.control->changes().empty()) {
+    fs::path changes = csv;
+    changes.replace_extension(".changes.csv");
+    try {
+      WriteScriptChanges(*loaded.control, *loaded.identifiers, changes.string());
+    } catch (const std::exception& e) {
+      err << e.what() << "\n";
+      return 2;
+    }
+    out << "wrote " << changes.string() << "\n";
   }
 
   if (!loaded.plot_file.empty()) {

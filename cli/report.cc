@@ -1,8 +1,10 @@
 #include "cli/report.h"
 
 #include <cstdio>
+#include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -39,6 +41,40 @@ std::string RecordText(const std::string& s) {
 }
 
 }  // namespace
+
+void PrintScriptChanges(const scripting::ControlScript& script, const scripting::IdentifierTable& identifiers,
+                        std::ostream& out) {
+  out << "control script: " << script.callbacks() << " callbacks";
+  const auto& changes = script.changes();
+  if (changes.empty()) {
+    out << ", no identifier changed\n";
+    return;
+  }
+  out << ", " << changes.size() << " identifier changes:\n";
+  for (int id = 0; id < identifiers.size(); ++id) {
+    const scripting::ControlScript::Change *first = nullptr, *last = nullptr;
+    long count = 0;
+    for (const auto& c : changes) {
+      if (c.identifier != id) continue;
+      if (!first) first = &c;
+      last = &c;
+      ++count;
+    }
+    if (!first) continue;
+    out << "  " << identifiers.name(id) << ": " << count << " times, first " << first->value << " at t = "
+        << first->time << " s, last " << last->value << " at t = " << last->time << " s\n";
+  }
+}
+
+void WriteScriptChanges(const scripting::ControlScript& script, const scripting::IdentifierTable& identifiers,
+                        const std::string& path) {
+  std::ofstream file(path);
+  if (!file) throw std::runtime_error("cannot write '" + path + "'");
+  file << "time,identifier,value\n";
+  file.precision(17);
+  for (const auto& c : script.changes()) file << c.time << "," << identifiers.name(c.identifier) << "," << c.value << "\n";
+  if (!file) throw std::runtime_error("error writing '" + path + "'");
+}
 
 void PrintStats(const blocks::SolverStats& s, std::ostream& out) {
   out << "solver: " << s.steps << " steps, " << s.rhs_evals << " RHS evaluations (+" << s.jac_rhs_evals

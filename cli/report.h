@@ -2,6 +2,7 @@
 // What the commands print: run summary, check listing, DOT graph.
 
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "blocks/simulator.h"
@@ -25,6 +26,16 @@ void PrintFigures(const std::vector<blocks::ReportFigure>& figures, bool finishe
 // per element, at the first such event, with its time.
 void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks::EventRecord>& events,
                         std::ostream& out);
+
+// What the control script did: callbacks run, and per identifier it set the
+// number of changes with the first and last (time, value).
+void PrintScriptChanges(const scripting::ControlScript& script, const scripting::IdentifierTable& identifiers,
+                        std::ostream& out);
+
+// Every change of the script, one CSV line each: time,identifier,value.
+// Throws std::runtime_error when the file cannot be written.
+void WriteScriptChanges(const scripting::ControlScript& script, const scripting::IdentifierTable& identifiers,
+                        const std::string& path);
 
 // `mechflow check`: identifiers, schedule, state layout, crossings, sampled blocks.
 void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out);

@@ -79,6 +79,14 @@ struct VariantDesc {
   SourceLoc loc;
 };
 
+// <script src="file.lua"/> or <script>code</script>: the control script.
+struct ScriptDesc {
+  std::string code;        // inline code is padded with newlines so that its
+  std::string chunk_name;  // lines are the XML file's: "@file" for both forms
+  SourceLoc loc;
+  bool present() const { return !chunk_name.empty(); }
+};
+
 struct DiagramDescription {
   std::string name;     // <diagram name=...>, default: the file's stem
   std::string comment;
@@ -94,6 +102,7 @@ struct DiagramDescription {
   SourceLoc output_loc;
   std::vector<LogDesc> logs;
   std::vector<ReportDesc> reports;
+  ScriptDesc script;
 };
 
 }  // namespace mechflow::diagrams

@@ -12,6 +12,7 @@
 #include "diagrams/xml_reader.h"
 #include "mech/errors.h"
 #include "scripting/expression_block.h"
+#include "scripting/identifier_block.h"
 
 namespace mechflow::diagrams {
 namespace {
@@ -216,6 +217,7 @@ void RegisterAllBlocks(blocks::BlockRegistry* registry, scripting::LuaState* lua
                        const scripting::IdentifierTable* identifiers) {
   blocks::RegisterStandardBlocks(registry);
   scripting::RegisterScriptingBlocks(registry, lua, identifiers);
+  scripting::RegisterIdentifierBlock(registry, identifiers);
 }
 
 LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& options) {
@@ -236,6 +238,13 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   }
   ids.Evaluate(*out.lua);
   const Evaluator eval(out.lua.get(), out.identifiers.get());
+
+  // the control script runs first: expressions may call functions it defines
+  if (d.script.present()) {
+    std::string error;
+    if (!out.lua->Run(d.script.code, d.script.chunk_name, &error))
+      throw InputError(d.script.loc.str() + ": control script: " + error);
+  }
 
   // blocks and connections
   blocks::BlockRegistry registry;
@@ -260,6 +269,9 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   }
   for (const auto& c : d.connections) builder.Connect(c.from, c.to, c.loc.str());
   out.diagram = builder.Build();
+  if (d.script.present())
+    out.control = std::make_unique<scripting::ControlScript>(*out.lua, ids, *out.diagram,
+                                                             d.script.chunk_name.substr(1));
 
   // solver and output settings
   BuildSolverOptions(d, eval, options, &out.solver);

@@ -18,6 +18,7 @@
 #include "blocks/diagram.h"
 #include "blocks/simulator.h"
 #include "diagrams/description.h"
+#include "scripting/control_script.h"
 #include "scripting/identifiers.h"
 #include "scripting/lua_state.h"
 
@@ -42,6 +43,9 @@ struct LoadedDiagram {
   std::unique_ptr<scripting::LuaState> lua;
   std::unique_ptr<scripting::IdentifierTable> identifiers;
   std::unique_ptr<blocks::Diagram> diagram;
+  // the <script>, if any (refers to the Lua state and the diagram; declared
+  // after them, so it goes first); give it to the simulator with SetControl
+  std::unique_ptr<scripting::ControlScript> control;
   blocks::SolverOptions solver;
   std::vector<blocks::SignalRef> logged;  // in column order; name = column label
   std::vector<PlotGroup> groups;

@@ -271,6 +271,7 @@ mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
       } else if (et_type == "tt" || et_type == "rt") {
         if (!r.Has(et, "value")) throw InputError(what + ": needs 'value', a function of t");
         spec.function = std::make_shared<scripting::CompiledTimeFunction>(et.Text("value"), *eval.identifiers(), what);
+        eval.identifiers()->NoteFixedUses(et.Text("value"), what);
       } else {
         spec.value = r.Number(et, "q0", 0.0);
         spec.rate = r.Number(et, "v0", 0.0);

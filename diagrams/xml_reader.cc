@@ -30,7 +30,8 @@ struct ElementSchema {
 const std::vector<ElementSchema>& Schema() {
   static const std::vector<ElementSchema> schema = {
       {"diagram", {}, {"name", "comment"},
-       {"identifiers", "variants", "mechanism", "blocks", "connections", "solver", "output"}},
+       {"identifiers", "variants", "mechanism", "blocks", "connections", "solver", "output", "script"}},
+      {"script", {}, {"src"}, {}},
       {"variants", {"name"}, {"comment"}, {"variant"}},
       {"variant", {"name"}, {"comment"}, {"set"}},
       {"set", {"identifier", "value"}, {}, {}},
@@ -144,9 +145,7 @@ class Reader {
     return out;
   }
 
-  // <mechanism name=... src="file"/>: the file's <mechanism> element (its own
-  // file:line in messages); attributes given here override the file's.
-  ElementDesc ReadMechanism(const XMLElement* e) const;
+  ScriptDesc ReadScript(const XMLElement* e) const;
 
   DiagramDescription Read(const tinyxml2::XMLDocument& doc) const {
     const XMLElement* root = doc.RootElement();
@@ -185,6 +184,7 @@ class Reader {
     for (const XMLElement* g = root->FirstChildElement("connections"); g; g = g->NextSiblingElement("connections"))
       for (const XMLElement* e = g->FirstChildElement("connect"); e; e = e->NextSiblingElement("connect"))
         d.connections.push_back({Text(e, "from"), Text(e, "to"), Loc(e)});
+    if (const XMLElement* s = Single(root, "script")) d.script = ReadScript(s);
     if (const XMLElement* s = Single(root, "solver")) {
       d.solver = Attributes(s);
       d.solver_loc = Loc(s);
@@ -244,6 +244,32 @@ ElementDesc Reader::ReadMechanism(const XMLElement* e) const {
     if (!replaced) m.attributes.push_back(a);
   }
   return m;
+}
+
+ScriptDesc Reader::ReadScript(const XMLElement* e) const {
+  ScriptDesc script;
+  script.loc = Loc(e);
+  const char* src = e->Attribute("src");
+  const tinyxml2::XMLNode* text = e->FirstChild();
+  const bool has_text =
+      text && text->ToText() && std::string(text->Value()).find_first_not_of(" \t\r\n") != std::string::npos;
+  if (src && has_text) Fail(e, "<script> has both src= and code; give one of them");
+  if (src) {
+    const std::string path = (std::filesystem::path(file_).parent_path() / src).lexically_normal().string();
+    script.code = ReadFileText(path, Loc(e).str() + ": script file: ");
+    script.chunk_name = "@" + path;
+  } else if (has_text) {
+    // Lua counts lines from the chunk's start: pad it so they are the file's.
+    // tinyxml2 gives the line of the text's first non-blank character.
+    const std::string code = text->Value();
+    const auto blank = code.substr(0, code.find_first_not_of(" \t\r\n"));
+    const int first_line = text->GetLineNum() - static_cast<int>(std::count(blank.begin(), blank.end(), '\n'));
+    script.code = std::string(std::max(0, first_line - 1), '\n') + code;
+    script.chunk_name = "@" + file_;
+  } else {
+    Fail(e, "<script> is empty; give src=\"file.lua\" or the code as its content");
+  }
+  return script;
 }
 
 }  // namespace

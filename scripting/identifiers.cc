@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include <lua.hpp>
@@ -252,7 +253,40 @@ void IdentifierTable::Evaluate(LuaState& lua) {
 }
 
 double IdentifierTable::EvaluateExpression(LuaState& lua, const std::string& text, const std::string& what) const {
-  return Eval(lua, text, size(), -1, what);
+  const double value = Eval(lua, text, size(), -1, what);
+  NoteFixedUses(text, what);
+  return value;
+}
+
+void IdentifierTable::NoteFixedUses(const std::string& text, const std::string& what) const {
+  // every name in the text that is an identifier; a field name after '.' or
+  // ':' is none (strings are not told apart: noting too much is safe)
+  for (std::size_t i = 0; i < text.size();) {
+    const unsigned char c = text[i];
+    if (!std::isalpha(c) && c != '_') {
+      i += std::isdigit(c) ? std::strspn(text.c_str() + i, "0123456789.eE") : 1;
+      continue;
+    }
+    const std::size_t end = text.find_first_not_of(
+        "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_", i);
+    const std::size_t stop = end == std::string::npos ? text.size() : end;
+    const bool field = i > 0 && (text[i - 1] == '.' || text[i - 1] == ':');
+    if (const int id = field ? -1 : Find(text.substr(i, stop - i)); id >= 0) {
+      auto& uses = items_[id].fixed_uses;
+      if (std::find(uses.begin(), uses.end(), what) == uses.end()) uses.push_back(what);
+    }
+    i = stop;
+  }
+}
+
+std::vector<double> IdentifierTable::Values() const {
+  std::vector<double> values;
+  for (const auto& item : items_) values.push_back(item.value);
+  return values;
+}
+
+void IdentifierTable::SetValues(const std::vector<double>& values) {
+  for (int i = 0; i < size(); ++i) items_[i].value = values.at(i);
 }
 
 int IdentifierTable::Find(const std::string& name) const {

@@ -52,6 +52,20 @@ class IdentifierTable {
   // InputError starting with `what` (e.g. "d.xml:12: block 'k' parameter 'k'").
   double EvaluateExpression(LuaState& lua, const std::string& text, const std::string& what) const;
 
+  // Fixed uses: places that took an identifier's value once, when the diagram
+  // was built (a block parameter, a mass, a time function). A control script
+  // may not change such an identifier during a run, since the change could
+  // not reach them; compiled expressions and identifier blocks follow changes
+  // and are no fixed uses. EvaluateExpression notes the identifiers its text
+  // names; other builders call NoteFixedUses. Bookkeeping only, hence const.
+  void NoteFixedUses(const std::string& text, const std::string& what) const;
+  const std::vector<std::string>& fixed_uses(int i) const { return items_.at(i).fixed_uses; }
+
+  // Every value, in order, and their restoration (a control script's changes
+  // undone before the next run).
+  std::vector<double> Values() const;
+  void SetValues(const std::vector<double>& values);
+
   int size() const { return static_cast<int>(items_.size()); }
   int Find(const std::string& name) const;  // index or -1, case-insensitive
   bool Has(const std::string& name) const { return Find(name) >= 0; }
@@ -74,6 +88,7 @@ class IdentifierTable {
     bool is_expression = false;
     bool overridden = false;
     double value = 0.0;
+    mutable std::vector<std::string> fixed_uses;
   };
   // Evaluates `text` seeing identifiers [0, visible); `self` is the index of
   // the identifier being defined, or -1. Errors start with `what`.

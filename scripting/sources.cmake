@@ -3,6 +3,8 @@ set(MECHFLOW_SCRIPTING_SOURCES
   scripting/compiled_expression.cc
   scripting/expression_block.cc
   scripting/identifier_bindings.cc
+  scripting/identifier_block.cc
+  scripting/control_script.cc
   scripting/identifiers.cc
   scripting/lua_state.cc
   scripting/time_function.cc

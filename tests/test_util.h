@@ -33,6 +33,7 @@ inline XmlRun RunXml(const std::string& xml, const diagrams::LoadOptions& option
   XmlRun run{LoadXml(xml, options), nullptr, {}};
   run.sim = std::make_unique<blocks::Simulator>(*run.loaded.diagram, run.loaded.solver, run.loaded.logged);
   run.sim->SetReports(run.loaded.reports);
+  run.sim->SetControl(run.loaded.control.get());
   run.outcome = run.sim->Run();
   return run;
 }

@@ -5,3 +5,4 @@ mechflow_test(compiled_expression_test unit tests/scripting/compiled_expression_
 mechflow_test(expression_block_test unit tests/scripting/expression_block_test.cc)
 mechflow_test(time_function_test unit tests/scripting/time_function_test.cc)
 mechflow_test(sandbox_test unit tests/scripting/sandbox_test.cc)
+mechflow_test(control_script_test unit tests/scripting/control_script_test.cc)
