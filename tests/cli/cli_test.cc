@@ -220,5 +220,60 @@ TEST(CliTest, FailedRunWritesResultsUpToTheFailure) {
   EXPECT_LE(CountLines(csv2), 103);
 }
 
+TEST(CliTest, ControlScriptChangesArePrintedAndWritten) {
+  const fs::path out = FreshDir("mechflow_molecule");
+  const Outcome run = Mechflow("run " + Example("molecule.xml") + " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("control script: 201 callbacks, 201 identifier changes"));
+  EXPECT_THAT(run.out, HasSubstr("mdeg: 201 times, first 3.1 at t = 0 s"));
+  const std::string changes = ReadFile(out / "molecule.changes.csv");
+  EXPECT_THAT(changes, StartsWith("time,identifier,value\n0,mdeg,3.1"));
+  EXPECT_EQ(CountLines(changes), 202);
+}
+
+TEST(CliTest, ControlScriptErrorsStopsAndTheSandboxFlag) {
+  const auto diagram = [](const std::string& name, const std::string& script) {
+    return WriteDiagram(name + ".xml", R"xml(<diagram name=")xml" + name + R"xml(">
+  <blocks><block type="clock" name="clk"/></blocks>
+  <script>
+    function step(sim)
+      )xml" + script + R"xml(
+    end
+  </script>
+  <solver t_end="1"/>
+  <output interval="0.1"><log signal="clk.y" label="t"/></output>
+</diagram>)xml");
+  };
+  const fs::path out = FreshDir("mechflow_scripts");
+  // a run-time error: exit 1, callback, time, file:line and traceback; rows kept
+  const Outcome failed =
+      Mechflow("run " + diagram("script_error", "if sim.t > 0.45 then error('no') end").string() + " --out " +
+               out.string());
+  EXPECT_EQ(failed.exit_code, 1);
+  EXPECT_THAT(failed.err, HasSubstr("step(sim) at t = 0.5 s failed: "));
+  EXPECT_THAT(failed.err, HasSubstr("script_error.xml:5: no"));
+  EXPECT_THAT(failed.err, HasSubstr("stack traceback"));
+  EXPECT_EQ(CountLines(ReadFile(out / "script_error.csv")), 6);  // header and t = 0 .. 0.4
+
+  // a stop is a finished run
+  const Outcome stopped =
+      Mechflow("run " + diagram("script_stop", "if sim.t >= 0.3 then sim:stop('enough') end").string() + " --out " +
+               out.string());
+  EXPECT_EQ(stopped.exit_code, 0) << stopped.err;
+  EXPECT_THAT(stopped.out, HasSubstr("stopped by the control script at t = 0.3 s: enough"));
+
+  // os exists only with --unsafe-lua
+  const fs::path uses_os = diagram("script_os", "sim:log(os.getenv('HOME') ~= nil)");
+  const Outcome sandboxed = Mechflow("run " + uses_os.string() + " --out " + out.string());
+  EXPECT_EQ(sandboxed.exit_code, 1);
+  EXPECT_THAT(sandboxed.err, HasSubstr("global 'os'"));
+  EXPECT_EQ(Mechflow("run " + uses_os.string() + " --unsafe-lua --out " + out.string()).exit_code, 0);
+
+  // a syntax error is bad input, at the script's line in the diagram
+  const Outcome syntax = Mechflow("check " + diagram("script_syntax", "local = 1").string());
+  EXPECT_EQ(syntax.exit_code, 2);
+  EXPECT_THAT(syntax.err, HasSubstr("script_syntax.xml:5:"));
+}
+
 }  // namespace
 }  // namespace mechflow::cli
