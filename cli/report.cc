@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "blocks/library/mechanism_block.h"
+#include "blocks/suggest.h"
 #include "mech/mechanism.h"
 
 namespace mechflow::cli {
@@ -205,6 +206,12 @@ void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
   for (const int bi : d.periodic_blocks()) {
     const auto& st = d.block(bi).sample_time();
     out << "  " << d.block(bi).name() << ": period " << st.period << " s, offset " << st.offset << " s\n";
+  }
+  if (loaded.control) {
+    const auto functions = loaded.control->functions();
+    out << "\ncontrol script: " << loaded.control->name() << " ("
+        << (functions.empty() ? "defines none of init, step, finish" : "defines " + blocks::JoinNames(functions))
+        << ")\n";
   }
   const auto& s = loaded.solver;
   out << "\nsolver: CVODE BDF, t = " << s.t_start << " .. " << s.t_end << " s, rtol " << s.rtol << ", atol "

@@ -69,6 +69,14 @@ ControlScript::~ControlScript() {
   for (const Sampled& timer : timers_) luaL_unref(L, LUA_REGISTRYINDEX, timer.function_ref);
 }
 
+std::vector<std::string> ControlScript::functions() const {
+  std::vector<std::string> names;
+  if (init_ref_ >= 0) names.push_back("init");
+  if (step_ref_ >= 0) names.push_back("step");
+  if (finish_ref_ >= 0) names.push_back("finish");
+  return names;
+}
+
 // --- the run -------------------------------------------------------------
 
 void ControlScript::Start(blocks::ControlPoint& point) {

@@ -70,6 +70,9 @@ class ControlScript final : public blocks::RunControl {
   void Timer(blocks::ControlPoint& point) override;
   void Finish(blocks::ControlPoint& point) override;
 
+  const std::string& name() const { return name_; }
+  // Which of init, step and finish the script defines.
+  std::vector<std::string> functions() const;
   const std::vector<Change>& changes() const { return changes_; }
   long callbacks() const { return callbacks_; }  // Lua callbacks run in the last run
 
