@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <stdexcept>
 
 #include "blocks/suggest.h"
@@ -9,7 +10,7 @@
 namespace mechflow::cli {
 namespace {
 
-const std::vector<std::string> kCommands = {"run", "check", "graph", "modes", "help"};
+const std::vector<std::string> kCommands = {"run", "check", "graph", "modes", "sweep", "help"};
 
 double ParseNumber(const std::string& text, const std::string& option) {
   double value = 0.0;
@@ -17,6 +18,25 @@ double ParseNumber(const std::string& text, const std::string& option) {
   if (text.empty() || error != std::errc() || end != text.data() + text.size())
     throw UsageError(option + ": '" + text + "' is not a number");
   return value;
+}
+
+// --vary NAME=V1,V2,...: finite numbers, at least one.
+std::pair<std::string, std::vector<double>> ParseVary(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw UsageError("--vary expects NAME=V1,V2,..., got '" + text + "'");
+  const std::string name = text.substr(0, eq);
+  std::vector<double> values;
+  for (size_t start = eq + 1;;) {
+    const size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const double v = ParseNumber(item, "--vary " + name);
+    if (!std::isfinite(v)) throw UsageError("--vary " + name + ": '" + item + "' is not a finite number");
+    values.push_back(v);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return {name, values};
 }
 
 }  // namespace
@@ -75,6 +95,31 @@ std::string HelpText(const std::string& command) {
            "\n"
            "Exit codes: 0 done, 1 no equilibrium found (or the rates are not finite),\n"
            "2 bad input.\n";
+  if (command == "sweep")
+    return "usage: mechflow sweep FILE --vary NAME=V1,V2,... [--vary ...] [--variant NAME]...\n"
+           "                      [--set NAME=VALUE]... [--t-end T] [--jobs N] [--out DIR] [--unsafe-lua]\n"
+           "\n"
+           "Runs the diagram FILE once for every combination of the varied identifiers'\n"
+           "values (the cartesian product; the last --vary changes fastest), N runs at a\n"
+           "time, each with its own model and Lua state. Writes each run's results as\n"
+           "NAME.runK.ID=VALUE....csv and one summary NAME.sweep.csv with a row per run in\n"
+           "that order: run, the varied values, status (ok or failed), t reached, error,\n"
+           "results file, then each <report> figure's value and time. A run that fails\n"
+           "(solver failure, a value the model refuses) is a row with its error; the\n"
+           "sweep goes on.\n"
+           "\n"
+           "  --vary NAME=V1,V2,...  values of an identifier defined by a number (repeatable)\n"
+           "  --jobs N          runs at a time (default: the number of cores)\n"
+           "  --variant, --set, --t-end, --unsafe-lua   as for mechflow run, for every run\n"
+           "  --out DIR         output folder (created if missing; default: current folder)\n"
+           "\n"
+           "Built with MPI (cmake -DMECHFLOW_MPI=ON), `mpirun -n K mechflow sweep ...`\n"
+           "deals the runs to the K processes in turn (run i to process i mod K, each\n"
+           "with N threads, default the cores divided by the processes on the machine);\n"
+           "process 0 writes the summary, each process its runs' results.\n"
+           "\n"
+           "Exit codes: 0 every run finished, 1 some failed (the summary is written),\n"
+           "2 bad input (an unknown or derived identifier, a value that is not a number).\n";
   return "usage: mechflow COMMAND FILE [options]\n"
          "\n"
          "mechflow simulates mechanisms with friction and contact described, with signal\n"
@@ -85,6 +130,7 @@ std::string HelpText(const std::string& command) {
          "  check   validate a diagram and print its schedule and state layout\n"
          "  graph   print the diagram as Graphviz DOT\n"
          "  modes   natural frequencies, damping ratios and mode shapes\n"
+         "  sweep   run every combination of identifier values, in parallel\n"
          "  help    help on a command: mechflow help run\n"
          "\n"
          "Options: --help (also after a command), --version.\n";
@@ -110,7 +156,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
   }
   if (std::find(kCommands.begin(), kCommands.end(), first) == kCommands.end())
     throw UsageError("unknown command '" + first + "'" + blocks::DidYouMean(first, kCommands) +
-                     "; commands: run, check, graph, modes, help");
+                     "; commands: run, check, graph, modes, sweep, help");
   a.command = first;
   for (i = 1; i < args.size(); ++i) {
     const std::string& arg = args[i];
@@ -135,9 +181,18 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.equilibrium = true;
     } else if (arg == "--unsafe-lua") {
       a.unsafe_lua = true;
+    } else if (arg == "--vary" && a.command == "sweep") {
+      a.vary.push_back(ParseVary(value(arg)));
+    } else if (arg == "--jobs" && a.command == "sweep") {
+      const std::string text = value(arg);
+      const double jobs = ParseNumber(text, arg);
+      if (!(jobs >= 1 && jobs <= 4096 && jobs == std::floor(jobs)))
+        throw UsageError("--jobs: '" + text + "' is not a whole number from 1 to 4096");
+      a.jobs = static_cast<int>(jobs);
     } else if (arg.rfind("--", 0) == 0) {
       std::vector<std::string> options = {"--set", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
       if (a.command == "modes") options.push_back("--equilibrium");
+      if (a.command == "sweep") options.insert(options.end(), {"--vary", "--jobs"});
       throw UsageError("unknown option '" + arg + "'" + blocks::DidYouMean(arg, options) + "; see mechflow help " +
                        a.command);
     } else if (a.file.empty()) {
@@ -147,6 +202,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
     }
   }
   if (!a.help && a.file.empty()) throw UsageError("mechflow " + a.command + " needs a diagram FILE");
+  if (!a.help && a.command == "sweep" && a.vary.empty())
+    throw UsageError("mechflow sweep needs at least one --vary NAME=V1,V2,...");
   return a;
 }
 

@@ -10,7 +10,7 @@
 namespace mechflow::cli {
 
 struct Arguments {
-  std::string command;  // run, check, graph, modes, help
+  std::string command;  // run, check, graph, modes, sweep, help
   std::string file;
   std::vector<std::string> variants;                      // --variant NAME
   std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE
@@ -18,6 +18,8 @@ struct Arguments {
   std::string out_dir = ".";                              // --out DIR
   bool unsafe_lua = false;                                // --unsafe-lua
   bool equilibrium = false;                               // modes --equilibrium
+  std::vector<std::pair<std::string, std::vector<double>>> vary;  // sweep --vary NAME=V1,V2,...
+  std::optional<int> jobs;                                // sweep --jobs N (>= 1)
   bool help = false;                                      // help for `command` (or general)
   bool version = false;
 };

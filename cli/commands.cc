@@ -11,6 +11,7 @@
 #include "cli/modes_report.h"
 #include "cli/plot.h"
 #include "cli/report.h"
+#include "cli/sweep.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/linearization.h"
 #include "diagrams/loader.h"
@@ -238,6 +239,7 @@ int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& 
     if (args.command == "check") return CheckCommand(args, out, err);
     if (args.command == "graph") return GraphCommand(args, out, err);
     if (args.command == "modes") return ModesCommand(args, out, err);
+    if (args.command == "sweep") return SweepCommand(args, out, err);
   } catch (const InputError& e) {
     err << e.what() << "\n";
     return 2;

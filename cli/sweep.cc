@@ -1,0 +1,357 @@
+#include "cli/sweep.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "blocks/simulator.h"
+#include "blocks/suggest.h"
+#include "cli/ranks.h"
+#include "diagrams/loader.h"
+#include "mech/errors.h"
+
+namespace mechflow::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The shortest text that reads back as the same double: "0.05", where %.17g
+// would write 0.050000000000000003 into file names and the summary; without
+// an exponent in the everyday range (500000, not 5e+05).
+std::string Shortest(double v) {
+  char buffer[64];
+  const double a = std::abs(v);
+  const bool fixed = a == 0.0 || (a >= 1e-4 && a < 1e15);
+  const auto end = fixed ? std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::fixed).ptr
+                         : std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+  return std::string(buffer, end);
+}
+
+// Full precision, as the results and report CSVs write numbers.
+std::string Full(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+// A CSV field: quoted when it holds a separator, a quote or a line break.
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// One line for the summary and the terminal (tracebacks span several).
+std::string OneLine(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\n') out += "; ";
+    else if (c != '\r') out += c;
+  }
+  while (out.size() >= 2 && out.compare(out.size() - 2, 2, "; ") == 0) out.resize(out.size() - 2);
+  return out;
+}
+
+// Everything a run needs besides its index; read-only while the runs go.
+struct Plan {
+  std::string file;
+  diagrams::LoadOptions common;            // variants, --set, t_end, unsafe_lua
+  std::vector<std::string> names;          // varied identifiers (lower-case)
+  std::vector<std::vector<double>> values; // per varied identifier
+  int runs = 1;
+  fs::path out_dir;                        // absolute
+  std::string width;                       // digits of the largest run number
+  std::vector<std::string> figure_labels;  // the header's figure columns
+};
+
+// The values of run `index`: mixed radix, the last identifier fastest.
+std::vector<double> Combination(const Plan& plan, int index) {
+  std::vector<double> v(plan.names.size());
+  for (int k = static_cast<int>(plan.names.size()) - 1; k >= 0; --k) {
+    const int n = static_cast<int>(plan.values[k].size());
+    v[k] = plan.values[k][index % n];
+    index /= n;
+  }
+  return v;
+}
+
+// "beta=0.05" or "beta=0.05.mass=2" (file names) with `separator`.
+std::string Assignments(const Plan& plan, const std::vector<double>& values, const std::string& separator) {
+  std::string s;
+  for (std::size_t k = 0; k < values.size(); ++k) s += (k ? separator : "") + plan.names[k] + "=" + Shortest(values[k]);
+  return s;
+}
+
+// damping_ratio.csv -> damping_ratio.run02.beta=0.1.csv (folder kept).
+std::string RunFileName(const Plan& plan, const std::string& csv_file, int index, const std::vector<double>& values) {
+  std::string number = std::to_string(index + 1);
+  number.insert(0, plan.width.size() - number.size(), '0');
+  const fs::path p(csv_file);
+  const std::string name = p.stem().string() + ".run" + number + "." + Assignments(plan, values, ".") +
+                           p.extension().string();
+  return (p.parent_path() / name).string();
+}
+
+// What a run leaves behind: its summary line and its line for the terminal.
+struct RunRow {
+  bool ok = false;
+  std::string csv;      // without the newline
+  std::string message;  // "run 2/3 (beta=0.1): ok, t = 10 s"
+};
+
+RunRow RunOne(const Plan& plan, int index) {
+  const std::vector<double> values = Combination(plan, index);
+  diagrams::LoadOptions options = plan.common;
+  for (std::size_t k = 0; k < values.size(); ++k) options.overrides.push_back({plan.names[k], values[k]});
+
+  bool ran = false, ok = false;
+  double t_reached = 0.0;
+  std::string error, results_file;
+  std::vector<blocks::ReportFigure> figures;
+  try {
+    const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(plan.file, options);
+    blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
+    sim.SetReports(loaded.reports);
+    const blocks::RunOutcome outcome = sim.Run();
+    ran = true;
+    ok = outcome.ok;
+    t_reached = outcome.t_reached;
+    if (!ok) error = outcome.failure;
+    figures = sim.results().figures();
+    // results are written whether or not the run finished, as `run` does
+    const std::string name = RunFileName(plan, loaded.csv_file, index, values);
+    const fs::path path = plan.out_dir / name;
+    std::error_code ec;
+    fs::create_directories(path.parent_path(), ec);
+    sim.results().WriteCsv(path.string());
+    results_file = name;
+  } catch (const std::exception& e) {
+    ok = false;
+    error += (error.empty() ? "" : "; ") + std::string(e.what());
+  }
+  error = OneLine(error);
+
+  RunRow row;
+  row.ok = ok;
+  row.csv = std::to_string(index + 1);
+  for (const double v : values) row.csv += "," + Shortest(v);
+  row.csv += ok ? ",ok," : ",failed,";
+  row.csv += (ran ? Full(t_reached) : "") + "," + CsvField(error) + "," + CsvField(results_file);
+  for (std::size_t i = 0; i < plan.figure_labels.size(); ++i) {
+    const bool found = i < figures.size() && figures[i].found;
+    row.csv += "," + (found ? Full(figures[i].value) : "") + "," + (found ? Full(figures[i].time) : "");
+  }
+
+  row.message = "run " + std::to_string(index + 1) + "/" + std::to_string(plan.runs) + " (" +
+                Assignments(plan, values, ", ") + "): ";
+  if (ok) row.message += "ok, t = " + Shortest(t_reached) + " s";
+  else if (ran) row.message += "failed at t = " + Shortest(t_reached) + " s: " + error;
+  else row.message += "failed: " + error;
+  return row;
+}
+
+std::string SummaryHeader(const Plan& plan, const diagrams::LoadedDiagram& base);
+
+// The checks before anything runs; every rank makes them alike, so all stop
+// together. Also the summary's header and file name. Throws InputError.
+Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_name) {
+  Plan plan;
+  plan.file = args.file;
+  plan.common.variants = args.variants;
+  plan.common.overrides = args.overrides;
+  plan.common.t_end = args.t_end;
+  plan.common.unsafe_lua = args.unsafe_lua;
+
+  // the diagram must load as given; its identifiers judge the --vary names
+  const diagrams::LoadedDiagram base = diagrams::LoadDiagram(args.file, plan.common);
+  const scripting::IdentifierTable& ids = *base.identifiers;
+  for (const auto& [name, values] : args.vary) {
+    const int i = ids.Find(name);
+    if (i < 0)
+      throw InputError("--vary " + name + ": " + args.file + " has no identifier '" + name + "'" +
+                       blocks::DidYouMean(name, ids.Names()));
+    if (ids.is_expression(i))
+      throw InputError("--vary " + name + ": identifier '" + ids.name(i) + "' (" + ids.origin(i) +
+                       ") is derived (= " + ids.definition(i) +
+                       "); it follows the identifiers it uses, vary one of those");
+    for (const std::string& seen : plan.names)
+      if (seen == ids.name(i)) throw InputError("--vary " + name + ": identifier '" + seen + "' is varied twice");
+    for (const auto& [set_name, unused] : args.overrides)
+      if (ids.Find(set_name) == i)
+        throw InputError("--vary " + name + ": identifier '" + ids.name(i) + "' is also given by --set");
+    plan.names.push_back(ids.name(i));
+    plan.values.push_back(values);
+  }
+  double runs = 1;
+  for (const auto& v : plan.values) runs *= static_cast<double>(v.size());
+  if (runs > 1e6) throw InputError("--vary: " + Shortest(runs) + " combinations; at most 1000000 runs per sweep");
+  plan.runs = static_cast<int>(runs);
+  plan.width = std::to_string(plan.runs);
+  for (const blocks::ReportRequest& r : base.reports) plan.figure_labels.push_back(r.label);
+  *header = SummaryHeader(plan, base);
+  const fs::path csv(base.csv_file);
+  *summary_name = (csv.parent_path() / (csv.stem().string() + ".sweep.csv")).string();
+  return plan;
+}
+
+std::string SummaryHeader(const Plan& plan, const diagrams::LoadedDiagram& base) {
+  std::string h = "run";
+  for (const std::string& name : plan.names) h += "," + CsvField(name);
+  h += ",status,t_reached,error,results";
+  for (const blocks::ReportRequest& r : base.reports) {
+    h += "," + CsvField(r.label + (r.unit.empty() ? "" : " [" + r.unit + "]"));
+    h += "," + CsvField(r.label + " time [s]");
+  }
+  return h;
+}
+
+// Runs done so far, on one line of a terminal (rank 0's own runs under MPI):
+// shown after a second, refreshed at most ten times a second, erased at the end.
+class SweepProgress {
+ public:
+  SweepProgress(int runs, bool enabled) : runs_(runs), enabled_(enabled && isatty(STDERR_FILENO)) {}
+  ~SweepProgress() {
+    if (shown_) std::fprintf(stderr, "\r%*s\r", 70, "");
+  }
+  void Done(bool failed) {
+    if (!enabled_) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    ++done_;
+    failed_ += failed;
+    const auto now = Clock::now();
+    if (now - start_ < std::chrono::seconds(1) || (shown_ && now - last_ < std::chrono::milliseconds(100))) return;
+    last_ = now;
+    shown_ = true;
+    std::fprintf(stderr, "\r  sweep: %d/%d runs done, %d failed, %8.1f s elapsed ", done_, runs_, failed_,
+                 std::chrono::duration<double>(now - start_).count());
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::mutex mutex_;
+  int runs_, done_ = 0, failed_ = 0;
+  bool enabled_, shown_ = false;
+  Clock::time_point start_ = Clock::now(), last_ = start_;
+};
+
+// A rank's rows for rank 0: "index\0ok\0csv\0message\0" each.
+std::string Pack(const std::vector<int>& indices, const std::vector<RunRow>& rows) {
+  std::string s;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    s += std::to_string(indices[k]) + '\0' + (rows[k].ok ? "1" : "0") + '\0' + rows[k].csv + '\0' +
+         rows[k].message + '\0';
+  }
+  return s;
+}
+
+void Unpack(const std::string& s, std::vector<RunRow>* all) {
+  std::vector<std::string> fields;
+  for (std::size_t start = 0; start < s.size();) {
+    const std::size_t end = s.find('\0', start);
+    fields.push_back(s.substr(start, end - start));
+    start = end + 1;
+  }
+  for (std::size_t f = 0; f + 3 < fields.size(); f += 4) {
+    RunRow& row = all->at(std::stoul(fields[f]));
+    row.ok = fields[f + 1] == "1";
+    row.csv = fields[f + 2];
+    row.message = fields[f + 3];
+  }
+}
+
+}  // namespace
+
+int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
+  std::unique_ptr<Ranks> ranks;
+  try {
+    ranks = std::make_unique<Ranks>();
+  } catch (const std::exception& e) {
+    err << "mechflow sweep: " << e.what() << "\n";
+    return 2;
+  }
+  Plan plan;
+  std::string header, summary_name;
+  try {
+    plan = MakePlan(args, &header, &summary_name);
+  } catch (const InputError& e) {
+    if (ranks->root()) err << e.what() << "\n";
+    return 2;
+  }
+  std::error_code ec;
+  fs::create_directories(args.out_dir, ec);
+  if (ec) {
+    if (ranks->root()) err << "cannot create output folder '" << args.out_dir << "': " << ec.message() << "\n";
+    return 2;
+  }
+  plan.out_dir = fs::absolute(args.out_dir);
+
+  // this rank's runs, dealt in turn; threads take them in order
+  std::vector<int> mine;
+  for (int i = ranks->rank(); i < plan.runs; i += ranks->size()) mine.push_back(i);
+  const int cores = std::max(1u, std::thread::hardware_concurrency());
+  const int jobs = std::max(1, std::min<int>(args.jobs.value_or(std::max(1, cores / ranks->local_size())),
+                                             static_cast<int>(mine.size())));
+  if (ranks->root())
+    out << "mechflow sweep " << args.file << ": " << plan.runs << " run" << (plan.runs == 1 ? "" : "s") << ", "
+        << jobs << " at a time" << (ranks->size() > 1 ? " in each of " + std::to_string(ranks->size()) + " processes" : "")
+        << "\n"
+        << std::flush;
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::vector<RunRow> rows(mine.size());
+  {
+    SweepProgress progress(static_cast<int>(mine.size()), ranks->root());
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (std::size_t k = next++; k < mine.size(); k = next++) {
+        rows[k] = RunOne(plan, mine[k]);
+        progress.Done(!rows[k].ok);
+      }
+    };
+    std::vector<std::thread> threads;
+    for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
+    worker();
+    for (std::thread& t : threads) t.join();
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+  int failed_here = 0;
+  for (const RunRow& row : rows) failed_here += !row.ok;
+  const std::vector<std::string> parts = ranks->GatherToRoot(Pack(mine, rows));
+  const bool any_failed = ranks->Max(failed_here > 0 ? 1 : 0) > 0;
+  if (!ranks->root()) return any_failed ? 1 : 0;
+
+  std::vector<RunRow> all(plan.runs);
+  for (const std::string& part : parts) Unpack(part, &all);
+  int failed = 0;
+  for (const RunRow& row : all) {
+    failed += !row.ok;
+    (row.ok ? out : err) << row.message << "\n";
+  }
+  const fs::path summary = plan.out_dir / summary_name;
+  fs::create_directories(summary.parent_path(), ec);
+  std::ofstream file(summary);
+  file << header << "\n";
+  for (const RunRow& row : all) file << row.csv << "\n";
+  file.close();
+  if (!file) {
+    err << "cannot write '" << summary.string() << "'\n";
+    return 2;
+  }
+  out << "finished in " << wall << " s of wall time: " << plan.runs - failed << " ok, " << failed << " failed\n"
+      << "wrote " << summary.string() << " (" << plan.runs << " run" << (plan.runs == 1 ? "" : "s") << ")\n";
+  return failed > 0 ? 1 : 0;
+}
+
+}  // namespace mechflow::cli

@@ -1,0 +1,35 @@
+#pragma once
+// `mechflow sweep`: the diagram run once for every combination of the varied
+// identifiers' values (the cartesian product, last --vary fastest), several
+// runs at a time.
+//
+// Each run loads the diagram afresh (LoadDiagram with the values as --set
+// overrides after the common ones), so it owns its Lua state, identifiers,
+// blocks and solver: runs share nothing that changes, and a run gives the
+// same numbers whether it runs alone, on a worker thread or on another MPI
+// rank. Threads take the runs in index order from a shared counter; results
+// are kept by index, so the summary is in cartesian order whatever finishes
+// first. Under mpirun (cli/ranks.h) run i belongs to rank i mod K, each rank
+// runs its share on its own threads and writes those runs' results, and the
+// summary rows go to rank 0, which alone writes the summary.
+//
+// Files (in the output folder, beside where `run` puts NAME.csv):
+//   NAME.runK.ID=VALUE[.ID=VALUE].csv  each run's results, K from 1, padded
+//   NAME.sweep.csv                      one row per run:
+//     run,ID...,status,t_reached,error,results,<figure> [unit],<figure> time [s],...
+// A run that fails (solver failure, a value its model refuses, an error in a
+// script) is a row with status "failed" and its error; the sweep goes on.
+// Before anything runs, the diagram is loaded once with the common options and
+// every --vary is checked (a known identifier defined by a number, not varied
+// twice, not also given by --set): bad input exits 2 without a run.
+
+#include <ostream>
+
+#include "cli/arguments.h"
+
+namespace mechflow::cli {
+
+// Exit code: 0 every run finished, 1 some failed (summary written), 2 bad input.
+int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err);
+
+}  // namespace mechflow::cli

@@ -1,0 +1,317 @@
+// `mechflow sweep`, run as a user would: the damping ratio of DampingRatio
+// (diagrams/examples/damping_ratio.xml, ../shared/ELEMENTS.md 9.1) swept and
+// each run's decay checked against the closed form of the damped oscillator
+//   z(t) = 0.5 e^(-beta w t) (cos wd t + beta/sqrt(1-beta^2) sin wd t),
+//   w = 2 pi f (f = 1 Hz), wd = w sqrt(1 - beta^2)
+// (equilibrium at z = 0, released from rest 0.5 m above it); failed rows, bad
+// --vary input, threads against one thread, MPI ranks against threads.
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace mechflow::cli {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string ReadFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `PREFIX mechflow ARGS` through the shell with stdout and stderr captured.
+Outcome Command(const std::string& prefix, const std::string& args) {
+  // one folder per test process: CTest runs tests in parallel
+  const fs::path dir = fs::path(::testing::TempDir()) / ("mechflow_sweep_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string command = prefix + std::string(MECHFLOW_BINARY) + " " + args + " >" + (dir / "out").string() +
+                              " 2>" + (dir / "err").string() + " </dev/null";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadFile(dir / "out"), ReadFile(dir / "err")};
+}
+
+Outcome Mechflow(const std::string& args) { return Command("", args); }
+
+const std::string kDampingRatio = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/damping_ratio.xml";
+
+fs::path FreshDir(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("sweep_" + std::to_string(getpid()) + "_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+// damping_ratio.xml with max_steps given by an identifier `steps` (so a
+// sweep can starve a run honestly) and a <report> of the lowest z.
+fs::path DampingRatioWithReport() {
+  std::string xml = ReadFile(kDampingRatio);
+  auto replace = [&](const std::string& what, const std::string& with) {
+    const auto at = xml.find(what);
+    if (at == std::string::npos) throw std::runtime_error("damping_ratio.xml has no '" + what + "'");
+    xml.replace(at, what.size(), with);
+  };
+  replace("<identifier name=\"beta\"", "<identifier name=\"steps\" value=\"500000\"/>\n    <identifier name=\"beta\"");
+  replace("<solver t_end=\"10\"", "<solver t_end=\"10\" max_steps=\"steps\"");
+  replace("</output>", "  <report min=\"m.z\" label=\"lowest z\" unit=\"m\"/>\n  </output>");
+  const fs::path path = fs::path(::testing::TempDir()) / ("damping_report_" + std::to_string(getpid()) + ".xml");
+  std::ofstream(path) << xml;
+  return path;
+}
+
+// One CSV line split into fields ("..." fields unquoted).
+std::vector<std::string> SplitCsv(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') fields.back() += '"', ++i;
+      else if (c == '"') quoted = false;
+      else fields.back() += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+std::vector<std::vector<std::string>> ReadCsv(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) rows.push_back(SplitCsv(line));
+  return rows;
+}
+
+// Local maxima of z on the output grid, each refined by the parabola through
+// it and its neighbours: (time, value).
+std::vector<std::pair<double, double>> Peaks(const fs::path& results) {
+  const auto rows = ReadCsv(results);
+  std::vector<double> t, z;
+  for (std::size_t r = 1; r < rows.size(); ++r) t.push_back(std::stod(rows[r][0])), z.push_back(std::stod(rows[r][1]));
+  std::vector<std::pair<double, double>> peaks;
+  for (std::size_t i = 1; i + 1 < z.size(); ++i) {
+    if (!(z[i] > z[i - 1] && z[i] >= z[i + 1])) continue;
+    const double h = t[i + 1] - t[i];
+    const double a = (z[i + 1] - 2 * z[i] + z[i - 1]) / 2, b = (z[i + 1] - z[i - 1]) / 2;
+    peaks.push_back({t[i] - h * b / (2 * a), z[i] - b * b / (4 * a)});
+  }
+  return peaks;
+}
+
+TEST(SweepTest, HelpNamesTheCommand) {
+  EXPECT_THAT(Mechflow("--help").out, HasSubstr("sweep"));
+  const Outcome help = Mechflow("help sweep");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_THAT(help.out, StartsWith("usage: mechflow sweep FILE --vary NAME=V1,V2,..."));
+  EXPECT_EQ(Mechflow("sweep --help").out, help.out);
+}
+
+// Every row's decay rate and damped period, measured on its own results,
+// against sigma = beta w and Td = 1/(f sqrt(1 - beta^2)).
+TEST(SweepTest, DampingRatioDecayPerRow) {
+  const fs::path dir = FreshDir("decay");
+  const Outcome o = Mechflow("sweep " + kDampingRatio + " --vary beta=0.05,0.1,0.2 --jobs 2 --out " + dir.string());
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_THAT(o.out, HasSubstr("3 runs, 2 at a time"));
+  EXPECT_THAT(o.out, HasSubstr("run 2/3 (beta=0.1): ok, t = 10 s"));
+
+  const auto summary = ReadCsv(dir / "damping_ratio.sweep.csv");
+  ASSERT_EQ(summary.size(), 4u);
+  EXPECT_EQ(summary[0], (std::vector<std::string>{"run", "beta", "status", "t_reached", "error", "results"}));
+  const double betas[] = {0.05, 0.1, 0.2};
+  const double w = 2 * std::numbers::pi;
+  for (int r = 0; r < 3; ++r) {
+    const auto& row = summary[r + 1];
+    SCOPED_TRACE("row " + std::to_string(r + 1));
+    ASSERT_EQ(row.size(), 6u);
+    EXPECT_EQ(row[0], std::to_string(r + 1));
+    EXPECT_EQ(std::stod(row[1]), betas[r]);
+    EXPECT_EQ(row[2], "ok");
+    EXPECT_EQ(std::stod(row[3]), 10.0);
+    EXPECT_EQ(row[4], "");
+    ASSERT_TRUE(fs::exists(dir / row[5])) << row[5];
+    EXPECT_THAT(row[5], HasSubstr(".run" + std::to_string(r + 1) + ".beta="));
+
+    // successive maxima above 1 mm (the amplitude has fallen by 500 at most)
+    std::vector<std::pair<double, double>> peaks = Peaks(dir / row[5]);
+    while (!peaks.empty() && peaks.back().second < 1e-3) peaks.pop_back();
+    ASSERT_GE(peaks.size(), 3u);
+    const double beta = betas[r];
+    const double sigma = beta * w, period = 1 / std::sqrt(1 - beta * beta);
+    for (std::size_t k = 0; k + 1 < peaks.size(); ++k) {
+      const double dt = peaks[k + 1].first - peaks[k].first;
+      const double rate = std::log(peaks[k].second / peaks[k + 1].second) / dt;
+      EXPECT_NEAR(dt, period, 1e-5 * period) << "peak " << k;
+      EXPECT_NEAR(rate, sigma, 1e-4 * sigma) << "peak " << k;
+    }
+  }
+}
+
+// Figures per row against the closed form of the first trough,
+//   z_min = -0.5 exp(-pi beta / sqrt(1 - beta^2)) at t = Td / 2,
+// and runs starved of steps (max_steps = 1 or 10 per output interval) as
+// failed rows with their error; the sweep goes on and exits 1.
+TEST(SweepTest, FiguresAndFailedRows) {
+  const fs::path diagram = DampingRatioWithReport();
+  const fs::path dir = FreshDir("figures");
+  const Outcome o =
+      Mechflow("sweep " + diagram.string() + " --vary beta=0.1,0.3 --vary steps=500000,10 --out " + dir.string());
+  EXPECT_EQ(o.exit_code, 1) << o.err;
+  EXPECT_THAT(o.err, HasSubstr("run 2/4 (beta=0.1, steps=10): failed at t = "));
+  EXPECT_THAT(o.out, HasSubstr("2 ok, 2 failed"));
+
+  const auto summary = ReadCsv(dir / "damping_ratio.sweep.csv");
+  ASSERT_EQ(summary.size(), 5u);
+  EXPECT_EQ(summary[0], (std::vector<std::string>{"run", "beta", "steps", "status", "t_reached", "error", "results",
+                                                  "lowest z [m]", "lowest z time [s]"}));
+  for (int r = 1; r <= 4; ++r) {
+    const auto& row = summary[r];
+    SCOPED_TRACE("row " + std::to_string(r));
+    ASSERT_EQ(row.size(), 9u);
+    const double beta = std::stod(row[1]);
+    EXPECT_EQ(beta, r <= 2 ? 0.1 : 0.3);  // cartesian order, the last --vary fastest
+    EXPECT_EQ(row[2], r % 2 ? "500000" : "10");
+    ASSERT_TRUE(fs::exists(dir / row[6])) << row[6];  // written also after a failure
+    if (r % 2) {
+      EXPECT_EQ(row[3], "ok");
+      EXPECT_EQ(std::stod(row[4]), 10.0);
+      const double root = std::sqrt(1 - beta * beta);
+      const double z_min = -0.5 * std::exp(-std::numbers::pi * beta / root), t_min = 0.5 / root;
+      EXPECT_NEAR(std::stod(row[7]), z_min, 1e-6 * std::abs(z_min));
+      EXPECT_NEAR(std::stod(row[8]), t_min, 1e-6);
+    } else {
+      EXPECT_EQ(row[3], "failed");
+      EXPECT_LT(std::stod(row[4]), 0.005);  // within the first output interval
+      EXPECT_THAT(row[5], HasSubstr("CV_TOO_MUCH_WORK"));
+      // the figure up to the failure: still near the release point
+      EXPECT_GT(std::stod(row[7]), 0.49);
+    }
+  }
+}
+
+// A value the model refuses is a failed row (nothing ran, no results), not
+// bad input: the other runs go on.
+TEST(SweepTest, RefusedValueIsAFailedRow) {
+  const fs::path dir = FreshDir("refused");
+  const Outcome o = Mechflow("sweep " + kDampingRatio + " --vary mass=-1,1000 --t-end 1 --out " + dir.string());
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_THAT(o.err, HasSubstr("run 1/2 (mass=-1): failed: "));
+  EXPECT_THAT(o.err, HasSubstr("damping_ratio.xml:14: body 'Box': mass must be a positive number"));
+  const auto summary = ReadCsv(dir / "damping_ratio.sweep.csv");
+  ASSERT_EQ(summary.size(), 3u);
+  EXPECT_EQ(summary[1][2], "failed");
+  EXPECT_EQ(summary[1][3], "");  // no t reached: it never started
+  EXPECT_THAT(summary[1][4], HasSubstr("mass must be a positive number"));
+  EXPECT_EQ(summary[1][5], "");
+  EXPECT_EQ(summary[2][2], "ok");
+  EXPECT_EQ(std::stod(summary[2][3]), 1.0);
+}
+
+// Bad --vary input stops the sweep before any run: exit 2, one clear message,
+// no files.
+TEST(SweepTest, BadVaryIsBadInput) {
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {"--vary betta=0.1,0.2", "--vary betta: " + kDampingRatio + " has no identifier 'betta' (did you mean 'beta'?)"},
+      {"--vary cdiss=1,2", "--vary cdiss: identifier 'cdiss' (" + kDampingRatio +
+                               ":11) is derived (= 2*beta*sqrt(mass*cstiff))"},
+      {"--vary beta=0.1,abc", "--vary beta: 'abc' is not a number"},
+      {"--vary beta=0.1,inf", "--vary beta: 'inf' is not a finite number"},
+      {"--vary beta=", "--vary expects NAME=V1,V2,..., got 'beta='"},
+      {"--vary beta=0.1 --vary BETA=0.2", "--vary BETA: identifier 'beta' is varied twice"},
+      {"--vary beta=0.1 --set beta=0.2", "--vary beta: identifier 'beta' is also given by --set"},
+      {"--jobs 0 --vary beta=0.1", "--jobs: '0' is not a whole number from 1 to 4096"},
+      {"", "mechflow sweep needs at least one --vary NAME=V1,V2,..."},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.args);
+    const fs::path dir = FreshDir("bad");
+    const Outcome o = Mechflow("sweep " + kDampingRatio + " " + c.args + " --out " + dir.string());
+    EXPECT_EQ(o.exit_code, 2);
+    EXPECT_THAT(o.err, HasSubstr(c.message));
+    EXPECT_FALSE(fs::exists(dir));
+  }
+}
+
+// Every file of a sweep, by name.
+std::map<std::string, std::string> Files(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(dir)) files[e.path().filename().string()] = ReadFile(e.path());
+  return files;
+}
+
+// Runs on two threads give the same bytes as one after another: the workers
+// share nothing that a run changes.
+TEST(SweepTest, TwoJobsEqualOneJob) {
+  const fs::path diagram = DampingRatioWithReport();
+  const std::string args = "sweep " + diagram.string() + " --vary beta=0.05,0.1,0.2,0.4 --vary steps=500000,10 ";
+  const fs::path one = FreshDir("jobs1"), two = FreshDir("jobs2");
+  EXPECT_EQ(Mechflow(args + "--jobs 1 --out " + one.string()).exit_code, 1);
+  EXPECT_EQ(Mechflow(args + "--jobs 2 --out " + two.string()).exit_code, 1);
+  const auto a = Files(one), b = Files(two);
+  EXPECT_EQ(a.size(), 9u);  // 8 runs and the summary
+  EXPECT_TRUE(a == b);
+}
+
+// mpirun -n 2: rank 0 writes the summary of both ranks' runs, byte for byte
+// the threaded one's; each rank writes its own runs' results.
+TEST(SweepTest, TwoMpiRanksEqualThreads) {
+#ifndef MECHFLOW_MPIEXEC
+  GTEST_SKIP() << "built without MECHFLOW_MPI";
+#else
+  // root in CI; two ranks may exceed the cores; shared memory between the
+  // ranks only (containers often have no usable network)
+  std::string prefix = "env OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none " +
+                       std::string(MECHFLOW_MPIEXEC) + " -n 2 --oversubscribe " +
+                       (getuid() == 0 ? "--allow-run-as-root " : "");
+  const Outcome probe = Command(prefix, "--version");
+  if (probe.exit_code != 0 || probe.out != "mechflow 0.1.0\nmechflow 0.1.0\n")
+    GTEST_SKIP() << "mpirun cannot start two processes here (exit " << probe.exit_code << "): " << probe.err;
+
+  const fs::path diagram = DampingRatioWithReport();
+  const std::string args = "sweep " + diagram.string() + " --vary beta=0.05,0.1,0.2 --vary steps=500000,10 ";
+  const fs::path threads = FreshDir("threads"), ranks = FreshDir("ranks");
+  const Outcome threaded = Mechflow(args + "--jobs 2 --out " + threads.string());
+  const Outcome mpi = Command(prefix, args + "--out " + ranks.string());
+  EXPECT_EQ(threaded.exit_code, 1);
+  EXPECT_EQ(mpi.exit_code, 1) << mpi.err;
+  EXPECT_THAT(mpi.out, HasSubstr(" at a time in each of 2 processes"));
+  // the rows are printed once, by rank 0
+  EXPECT_EQ(mpi.out.find("run 1/6"), mpi.out.rfind("run 1/6"));
+  const auto a = Files(threads), b = Files(ranks);
+  EXPECT_EQ(a.size(), 7u);
+  EXPECT_EQ(a.at("damping_ratio.sweep.csv"), b.at("damping_ratio.sweep.csv"));
+  EXPECT_TRUE(a == b);
+#endif
+}
+
+}  // namespace
+}  // namespace mechflow::cli
