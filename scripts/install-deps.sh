@@ -8,6 +8,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libsundials-dev libsuitesparse-dev libtinyxml2-dev liblua5.4-dev libgtest-dev
   gnuplot-nox
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()
