@@ -116,7 +116,7 @@ RunRow RunOne(const Plan& plan, int index) {
   diagrams::LoadOptions options = plan.common;
   for (std::size_t k = 0; k < values.size(); ++k) options.overrides.push_back({plan.names[k], values[k]});
 
-  bool ran = false, ok = false;
+  bool ran = false, ok = false, stopped = false;
   double t_reached = 0.0;
   std::string error, results_file;
   std::vector<blocks::ReportFigure> figures;
@@ -124,11 +124,14 @@ RunRow RunOne(const Plan& plan, int index) {
     const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(plan.file, options);
     blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
     sim.SetReports(loaded.reports);
+    sim.SetControl(loaded.control.get());
     const blocks::RunOutcome outcome = sim.Run();
     ran = true;
     ok = outcome.ok;
+    stopped = outcome.stopped;
     t_reached = outcome.t_reached;
     if (!ok) error = outcome.failure;
+    if (stopped) error = outcome.stop_reason;
     figures = sim.results().figures();
     // results are written whether or not the run finished, as `run` does
     const std::string name = RunFileName(plan, loaded.csv_file, index, values);
@@ -147,7 +150,7 @@ RunRow RunOne(const Plan& plan, int index) {
   row.ok = ok;
   row.csv = std::to_string(index + 1);
   for (const double v : values) row.csv += "," + Shortest(v);
-  row.csv += ok ? ",ok," : ",failed,";
+  row.csv += !ok ? ",failed," : stopped ? ",stopped," : ",ok,";
   row.csv += (ran ? Full(t_reached) : "") + "," + CsvField(error) + "," + CsvField(results_file);
   for (std::size_t i = 0; i < plan.figure_labels.size(); ++i) {
     const bool found = i < figures.size() && figures[i].found;
@@ -156,7 +159,8 @@ RunRow RunOne(const Plan& plan, int index) {
 
   row.message = "run " + std::to_string(index + 1) + "/" + std::to_string(plan.runs) + " (" +
                 Assignments(plan, values, ", ") + "): ";
-  if (ok) row.message += "ok, t = " + Shortest(t_reached) + " s";
+  if (ok && stopped) row.message += "stopped by the control script at t = " + Shortest(t_reached) + " s: " + error;
+  else if (ok) row.message += "ok, t = " + Shortest(t_reached) + " s";
   else if (ran) row.message += "failed at t = " + Shortest(t_reached) + " s: " + error;
   else row.message += "failed: " + error;
   return row;

@@ -17,8 +17,10 @@
 //   NAME.runK.ID=VALUE[.ID=VALUE].csv  each run's results, K from 1, padded
 //   NAME.sweep.csv                      one row per run:
 //     run,ID...,status,t_reached,error,results,<figure> [unit],<figure> time [s],...
-// A run that fails (solver failure, a value its model refuses, an error in a
-// script) is a row with status "failed" and its error; the sweep goes on.
+// status is ok, stopped (ended early by its control script's sim:stop, which
+// is not a failure; the reason in the error column) or failed. A run that
+// fails (solver failure, a value its model refuses, an error in a script) is
+// a row with its error; the sweep goes on.
 // Before anything runs, the diagram is loaded once with the common options and
 // every --vary is checked (a known identifier defined by a number, not varied
 // twice, not also given by --set): bad input exits 2 without a run.

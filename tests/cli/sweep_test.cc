@@ -281,6 +281,46 @@ TEST(SweepTest, TwoJobsEqualOneJob) {
   EXPECT_TRUE(a == b);
 }
 
+// A sweep of a diagram with a Lua control script (the sampled PD controller):
+// each run's Lua state is its own, so two threads give the bytes of one, and
+// a run's results are those of `mechflow run --set` with the same values.
+TEST(SweepTest, ControlScriptsOnThreadsEqualSingleRuns) {
+  const std::string diagram = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/pendulum_pd_control.xml";
+  const std::string args = "sweep " + diagram + " --vary dist=2,8 --vary period=0.01,0.02 ";
+  const fs::path one = FreshDir("pd1"), two = FreshDir("pd2"), single = FreshDir("pd_run");
+  ASSERT_EQ(Mechflow(args + "--jobs 1 --out " + one.string()).exit_code, 0);
+  ASSERT_EQ(Mechflow(args + "--jobs 2 --out " + two.string()).exit_code, 0);
+  const auto a = Files(one), b = Files(two);
+  EXPECT_EQ(a.size(), 5u);
+  EXPECT_TRUE(a == b);
+  ASSERT_EQ(Mechflow("run " + diagram + " --set dist=8 --set period=0.02 --out " + single.string()).exit_code, 0);
+  EXPECT_EQ(a.at("pendulum_pd_control.run4.dist=8.period=0.02.csv"),
+            ReadFile(single / "pendulum_pd_control.csv"));
+}
+
+// A run its control script stops (sim:stop) is not a failure: status
+// "stopped", the reason in the error column, exit 0.
+TEST(SweepTest, StoppedRunIsNotAFailure) {
+  std::string xml = ReadFile(kDampingRatio);
+  xml.replace(xml.find("<identifier name=\"beta\""), 0, "<identifier name=\"t_stop\" value=\"100\"/>\n    ");
+  xml.replace(xml.find("<solver"), 0,
+              "<script>\n    function step(sim)\n      if sim.t >= sim:get(\"t_stop\") then sim:stop(\"enough\") end\n"
+              "    end\n  </script>\n  ");
+  const fs::path diagram = fs::path(::testing::TempDir()) / ("damping_stop_" + std::to_string(getpid()) + ".xml");
+  std::ofstream(diagram) << xml;
+  const fs::path dir = FreshDir("stop");
+  const Outcome o = Mechflow("sweep " + diagram.string() + " --vary t_stop=2,100 --out " + dir.string());
+  EXPECT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_THAT(o.out, HasSubstr("run 1/2 (t_stop=2): stopped by the control script at t = 2 s: enough"));
+  const auto summary = ReadCsv(dir / "damping_ratio.sweep.csv");
+  ASSERT_EQ(summary.size(), 3u);
+  EXPECT_EQ(summary[1][2], "stopped");
+  EXPECT_EQ(std::stod(summary[1][3]), 2.0);  // the first output time at or after t_stop
+  EXPECT_EQ(summary[1][4], "enough");
+  EXPECT_EQ(summary[2][2], "ok");
+  EXPECT_EQ(std::stod(summary[2][3]), 10.0);
+}
+
 // mpirun -n 2: rank 0 writes the summary of both ranks' runs, byte for byte
 // the threaded one's; each rank writes its own runs' results.
 TEST(SweepTest, TwoMpiRanksEqualThreads) {
