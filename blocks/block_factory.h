@@ -58,6 +58,9 @@ struct BlockType {
   std::string doc;  // one line: what it computes
   std::vector<ParamSpec> params;
   std::function<std::unique_ptr<Block>(const std::string& block_name, const BlockParams&)> create;
+  // accepts the element's text content (code), passed as BlockParams texts
+  // "#text", "#text_file" and number "#text_line" (the text's first line)
+  bool takes_text = false;
 
   const ParamSpec* FindParam(const std::string& param) const;
 };

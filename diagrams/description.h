@@ -33,6 +33,8 @@ struct BlockDesc {
   std::string type, name;
   std::vector<Attribute> params;  // every attribute except type and name
   SourceLoc loc;
+  std::string text;    // the element's text content (CDATA included), as written
+  SourceLoc text_loc;  // where that text starts
 };
 
 struct ConnectionDesc {

@@ -258,7 +258,14 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
       throw InputError(b.loc.str() + ": block '" + b.name + "' has unknown type '" + b.type + "'" +
                        blocks::DidYouMean(b.type, registry.Names()) + "; known types: " +
                        blocks::JoinNames(registry.Names()));
-    const blocks::BlockParams params = EvaluateParams(b, *type, eval, folder);
+    blocks::BlockParams params = EvaluateParams(b, *type, eval, folder);
+    if (b.text.find_first_not_of(" \t\r\n") != std::string::npos) {
+      if (!type->takes_text)
+        throw InputError(b.text_loc.str() + ": block '" + b.name + "' (" + b.type + ") takes no text content");
+      params.SetText("#text", b.text);
+      params.SetText("#text_file", b.text_loc.file);
+      params.SetNumbers("#text_line", {static_cast<double>(b.text_loc.line)});
+    }
     std::unique_ptr<blocks::Block> block;
     try {
       block = type->create(b.name, params);

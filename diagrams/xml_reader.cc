@@ -145,6 +145,29 @@ class Reader {
     return out;
   }
 
+  static int LeadingNewlines(const char* text) {
+    int n = 0;
+    for (; *text == ' ' || *text == '\t' || *text == '\r' || *text == '\n'; ++text) n += *text == '\n';
+    return n;
+  }
+
+  // <block type=... name=...>: attributes, and text content (Lua code) with its line
+  BlockDesc ReadBlock(const XMLElement* e) const {
+    BlockDesc b{Text(e, "type"), Text(e, "name"), Attributes(e, {"type", "name"}), Loc(e), "", Loc(e)};
+    for (const tinyxml2::XMLNode* n = e->FirstChild(); n; n = n->NextSibling()) {
+      const tinyxml2::XMLText* text = n->ToText();
+      if (!text) continue;
+      // tinyxml2 numbers a text node by its first non-blank character
+      if (b.text.empty())
+        b.text_loc = {file_, text->GetLineNum() - (text->CData() ? 0 : LeadingNewlines(text->Value()))};
+      b.text += text->Value();
+    }
+    return b;
+  }
+
+  // <mechanism name=... src="file"/>: the file's <mechanism> element (its own
+  // file:line in messages); attributes given here override the file's.
+  ElementDesc ReadMechanism(const XMLElement* e) const;
   ScriptDesc ReadScript(const XMLElement* e) const;
 
   DiagramDescription Read(const tinyxml2::XMLDocument& doc) const {
@@ -180,7 +203,7 @@ class Reader {
       }
     for (const XMLElement* g = root->FirstChildElement("blocks"); g; g = g->NextSiblingElement("blocks"))
       for (const XMLElement* e = g->FirstChildElement("block"); e; e = e->NextSiblingElement("block"))
-        d.blocks.push_back({Text(e, "type"), Text(e, "name"), Attributes(e, {"type", "name"}), Loc(e)});
+        d.blocks.push_back(ReadBlock(e));
     for (const XMLElement* g = root->FirstChildElement("connections"); g; g = g->NextSiblingElement("connections"))
       for (const XMLElement* e = g->FirstChildElement("connect"); e; e = e->NextSiblingElement("connect"))
         d.connections.push_back({Text(e, "from"), Text(e, "to"), Loc(e)});

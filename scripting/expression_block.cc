@@ -7,6 +7,7 @@
 #include "mech/errors.h"
 #include "scripting/compiled_expression.h"
 #include "scripting/identifiers.h"
+#include "scripting/lua_block.h"
 #include "scripting/lua_state.h"
 
 namespace mechflow::scripting {
@@ -76,6 +77,7 @@ void RegisterScriptingBlocks(blocks::BlockRegistry* registry, LuaState* lua, con
     return std::make_unique<ExpressionBlock>(name, p.Text("expr"), inputs, *lua, *identifiers);
   };
   registry->Add(std::move(type));
+  RegisterLuaBlock(registry, lua, identifiers);
 }
 
 }  // namespace mechflow::scripting

@@ -6,6 +6,7 @@ set(MECHFLOW_SCRIPTING_SOURCES
   scripting/identifier_block.cc
   scripting/control_script.cc
   scripting/identifiers.cc
+  scripting/lua_block.cc
   scripting/lua_state.cc
   scripting/time_function.cc
 )

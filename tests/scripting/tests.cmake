@@ -6,3 +6,4 @@ mechflow_test(expression_block_test unit tests/scripting/expression_block_test.c
 mechflow_test(time_function_test unit tests/scripting/time_function_test.cc)
 mechflow_test(sandbox_test unit tests/scripting/sandbox_test.cc)
 mechflow_test(control_script_test unit tests/scripting/control_script_test.cc)
+mechflow_test(lua_block_test unit tests/scripting/lua_block_test.cc)
