@@ -97,5 +97,36 @@ TEST(ControlExamplesTest, PdControlInLuaMatchesTheSampledClosedLoopAndHoldsThePe
   EXPECT_LT(std::abs(phi.back()), 1e-4);
 }
 
+TEST(ControlExamplesTest, ScriptChangeReachesAMechanismForceLawAsALoadTimeValueWould) {
+  // DampingRatio's spring law is a Lua expression of cstiff and cdiss, both
+  // defined from f: a script that sets f = 2 in init must give the run that
+  // --set f=2 gives; the box's mass (a fixed use of `mass`) stays as loaded
+  diagrams::DiagramDescription scripted = diagrams::ReadDiagramFile(kExamples + "damping_ratio.xml");
+  scripted.script = {"function init(sim) sim:set('f', 2) end", "=test", {}};
+  const auto by_script = RunExample(std::move(scripted));
+  ASSERT_TRUE(by_script.outcome.ok) << by_script.outcome.failure;
+
+  diagrams::DiagramDescription set = diagrams::ReadDiagramFile(kExamples + "damping_ratio.xml");
+  diagrams::LoadOptions options;
+  options.overrides = {{"f", 2.0}};
+  testing::XmlRun by_set{diagrams::LoadDiagramDescription(std::move(set), options), nullptr, {}};
+  by_set.sim = std::make_unique<blocks::Simulator>(*by_set.loaded.diagram, by_set.loaded.solver, by_set.loaded.logged);
+  by_set.outcome = by_set.sim->Run();
+  ASSERT_TRUE(by_set.outcome.ok);
+
+  const auto a = by_script.Column("m.z"), b = by_set.Column("m.z");
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+  EXPECT_LT(worst, 1e-12);
+
+  diagrams::DiagramDescription heavier = diagrams::ReadDiagramFile(kExamples + "damping_ratio.xml");
+  heavier.script = {"function init(sim) sim:set('mass', 2000) end", "=test", {}};
+  const auto refused = RunExample(std::move(heavier));
+  ASSERT_FALSE(refused.outcome.ok);
+  EXPECT_NE(refused.outcome.failure.find("identifier 'mass' cannot change during a run"), std::string::npos)
+      << refused.outcome.failure;
+}
+
 }  // namespace
 }  // namespace mechflow
