@@ -8,6 +8,7 @@
 
 #include "blocks/suggest.h"
 #include "mech/errors.h"
+#include "scripting/compiled_expression.h"
 #include "scripting/identifier_bindings.h"
 #include "scripting/identifier_block.h"
 #include "scripting/identifiers.h"
@@ -61,6 +62,12 @@ ControlScript::ControlScript(LuaState& lua, IdentifierTable& identifiers, const 
       identifier_blocks_.emplace_back(block->identifier(), diagram_.layout(b).first_discrete);
   loaded_values_ = identifiers_.Values();
   before_.reserve(loaded_values_.size());
+  // derived identifiers compiled once: sim:set parses nothing
+  for (int i = 0; i < identifiers_.size(); ++i)
+    if (identifiers_.is_expression(i))
+      derived_.emplace_back(i, std::make_unique<CompiledExpression>(
+                                   lua_, identifiers_.definition(i), std::vector<std::string>{}, identifiers_,
+                                   "=identifier '" + identifiers_.name(i) + "' (" + identifiers_.origin(i) + ")"));
 }
 
 ControlScript::~ControlScript() {
@@ -274,32 +281,48 @@ bool ControlScript::DoSet(const char* name, double value) {
     return false;
   }
   const int id = identifiers_.Find(name);
+  lua_State* L = lua_.get();
   before_ = identifiers_.Values();
-  try {
-    identifiers_.Override(name, value);
-    identifiers_.Evaluate(lua_);
-  } catch (const InputError& e) {
-    identifiers_.SetValues(before_);
-    error_ = std::string("sim:set: ") + e.what();
-    return false;
-  }
-  // what changed, and whether every change can reach the model
   changed_.clear();
-  for (int i = 0; i < identifiers_.size(); ++i) {
-    if (identifiers_.value(i) == before_[i]) continue;
-    changed_.push_back(identifiers_.name(i));
+  // restores the values before this set, and every function bound to them
+  auto refuse = [&](std::string message) {
+    identifiers_.SetValues(before_);
+    RebindIdentifiers(L, identifiers_, changed_);
+    error_ = "sim:set: " + std::move(message);
+    return false;
+  };
+  try {
+    identifiers_.Override(name, value);  // checks: known, defined by a number, finite
+  } catch (const InputError& e) {
+    return refuse(e.what());
+  }
+  if (identifiers_.value(id) != before_[id]) changed_.push_back(identifiers_.name(id));
+  RebindIdentifiers(L, identifiers_, changed_);
+  // derived identifiers, top to bottom, from their compiled definitions: each
+  // sees the new values of those above it
+  for (const auto& [index, definition] : derived_) {
+    double v = 0.0;
+    try {
+      v = definition->Evaluate(nullptr);
+    } catch (const SimulationError& e) {
+      return refuse(e.what());
+    }
+    if (v == identifiers_.value(index)) continue;
+    identifiers_.SetValue(index, v);
+    changed_.push_back(identifiers_.name(index));
+    RebindIdentifiers(L, identifiers_, {identifiers_.name(index)});
+  }
+  // every change must be able to reach the model
+  for (const std::string& changed : changed_) {
+    const int i = identifiers_.Find(changed);
     const auto& uses = identifiers_.fixed_uses(i);
     if (uses.empty()) continue;
-    identifiers_.SetValues(before_);
-    error_ = "sim:set: identifier '" + identifiers_.name(i) + "'" +
-             (i == id ? "" : " (defined from '" + identifiers_.name(id) + "')") +
-             " cannot change during a run: its value was built into " + uses.front() +
-             (uses.size() > 1 ? " and " + std::to_string(uses.size() - 1) + " more place(s)" : "") +
-             " when the diagram was loaded. Identifiers read by expressions, Lua blocks and identifier blocks "
-             "can change; a fixed parameter is changed with --set or a variant";
-    return false;
+    return refuse("identifier '" + changed + "'" + (i == id ? "" : " (defined from '" + identifiers_.name(id) + "')") +
+                  " cannot change during a run: its value was built into " + uses.front() +
+                  (uses.size() > 1 ? " and " + std::to_string(uses.size() - 1) + " more place(s)" : "") +
+                  " when the diagram was loaded. Identifiers read by expressions, Lua blocks and identifier blocks "
+                  "can change; a fixed parameter is changed with --set or a variant");
   }
-  RebindIdentifiers(lua_.get(), identifiers_, changed_);
   const std::span<double> discrete = point_->discrete();
   for (const auto& [identifier, offset] : identifier_blocks_) discrete[offset] = identifiers_.value(identifier);
   changes_.push_back({point_->time(), id, value});

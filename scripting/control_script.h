@@ -33,8 +33,10 @@
 // Every change made by sim:set is kept (changes()), so a run can show what the
 // script did to the model.
 
+#include <memory>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "blocks/diagram.h"
@@ -44,6 +46,7 @@ struct lua_State;
 
 namespace mechflow::scripting {
 
+class CompiledExpression;
 class IdentifierTable;
 class LuaState;
 
@@ -114,6 +117,8 @@ class ControlScript final : public blocks::RunControl {
   int init_ref_ = -1, step_ref_ = -1, finish_ref_ = -1;
   int sim_ref_ = -1;
   std::vector<double> loaded_values_;     // identifier values at load
+  // (index, compiled definition) of every identifier defined by an expression
+  std::vector<std::pair<int, std::unique_ptr<CompiledExpression>>> derived_;
   std::vector<double> before_;            // scratch: values before a set
   std::vector<std::string> changed_;      // scratch: names a set changed
   std::vector<std::pair<int, int>> identifier_blocks_;  // (identifier, discrete offset)

@@ -65,6 +65,9 @@ class IdentifierTable {
   // undone before the next run).
   std::vector<double> Values() const;
   void SetValues(const std::vector<double>& values);
+  // One value, unchecked, for a control script that re-evaluated a derived
+  // identifier from its compiled definition.
+  void SetValue(int i, double value) { items_.at(i).value = value; }
 
   int size() const { return static_cast<int>(items_.size()); }
   int Find(const std::string& name) const;  // index or -1, case-insensitive
