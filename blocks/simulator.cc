@@ -148,6 +148,8 @@ int Simulator::Advance(double t_out, N_Vector yout, double* t_ret) {
   double* out = N_VGetArrayPointer(yout);
   if (root_pending_) {
     if (pending_root_time_ <= t_out) {
+      if (pending_root_time_ > watched_to_) WatchStep(watched_to_, pending_root_time_);
+      watched_to_ = pending_root_time_;
       root_pending_ = false;
       std::copy(pending_root_y_.begin(), pending_root_y_.end(), out);
       *t_ret = pending_root_time_;
@@ -159,6 +161,12 @@ int Simulator::Advance(double t_out, N_Vector yout, double* t_ret) {
   }
   double tn = 0.0;
   Check(CVodeGetCurrentTime(mem, &tn), "CVodeGetCurrentTime");
+  // the part of the last step beyond the previous output time: watched only
+  // now, since a control may have re-initialised the solver at that time
+  if (const double end = std::min(tn, t_out); end > watched_to_) {
+    WatchStep(watched_to_, end);
+    watched_to_ = end;
+  }
   // as in CV_NORMAL: max_steps counts the steps towards one output time
   for (long steps = 0; tn < t_out; ++steps) {
     if (steps >= options_.max_steps) {
@@ -170,9 +178,11 @@ int Simulator::Advance(double t_out, N_Vector yout, double* t_ret) {
     const int flag = CVode(mem, t_out, yout, t_ret, CV_ONE_STEP);
     if (flag < 0) return flag;
     Check(CVodeGetCurrentTime(mem, &tn), "CVodeGetCurrentTime");
-    // a root ends the watched part of the step: beyond it the modes change
-    const double tb = flag == CV_ROOT_RETURN ? *t_ret : tn;
-    if (tb > ta) WatchStep(ta, tb);
+    // a root ends the watched part of the step: beyond it the modes change;
+    // so does the output time, until the solver goes on from there
+    const double tb = std::min(flag == CV_ROOT_RETURN ? *t_ret : tn, t_out);
+    if (tb > std::max(ta, watched_to_)) WatchStep(std::max(ta, watched_to_), tb);
+    watched_to_ = std::max(watched_to_, tb);
     if (flag == CV_ROOT_RETURN && *t_ret > t_out) {
       root_pending_ = true;
       pending_root_time_ = *t_ret;
@@ -422,6 +432,9 @@ void Simulator::AccumulateStats() {
 
 void Simulator::Reinitialize(double t) {
   evaluated_valid_ = false;
+  // what the solver found beyond t (a root, a watched stretch) is void now
+  root_pending_ = false;
+  watched_to_ = t;
   if (!SettleModes(diagram_, &ctx_))
     throw SimulationError("modes did not settle at t = " + std::to_string(t) +
                           " (blocks keep switching each other's modes)");
@@ -492,6 +505,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   projection_attached_ = false;
   for (auto& tracker : trackers_) tracker.Reset();
   root_pending_ = false;
+  watched_to_ = t0;
   pending_root_y_.assign(n, 0.0);
   watch_y_.assign(n, 0.0);
   evaluated_valid_ = false;

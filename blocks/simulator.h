@@ -203,6 +203,7 @@ class Simulator {
   // a root that a step found beyond the output time it was asked for: the
   // output row comes first, the root on the next Advance
   bool root_pending_ = false;
+  double watched_to_ = 0.0;  // reports have watched the solution up to here
   double pending_root_time_ = 0.0;
   std::vector<double> pending_root_y_;
   // The signals (and root functions) of the last evaluation at (t, x): CVODE

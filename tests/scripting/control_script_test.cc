@@ -222,5 +222,31 @@ TEST(ControlScriptTest, EveryChecksItsArguments) {
   EXPECT_THAT(no_function.outcome.failure, HasSubstr("function expected"));
 }
 
+TEST(ControlScriptTest, ReportsSeeOnlyTheSolutionTheRunKept) {
+  // x' = u from 0: u = 1 until the script sets -1 at t = 0.5, so the peak of x
+  // is 0.5 at 0.5. The solver's large steps on x' = 1 take it past 0.5 before
+  // the row there; what it computed beyond, with u = 1, must not count.
+  auto run = RunXml(R"(<diagram name="d">
+  <identifiers><identifier name="u" value="1"/></identifiers>
+  <blocks>
+    <block type="identifier" name="input" identifier="u"/>
+    <block type="integrator" name="x"/>
+  </blocks>
+  <connections><connect from="input.y" to="x.u"/></connections>
+  <script>function step(sim) if sim.t == 0.5 then sim:set("u", -1) end end</script>
+  <solver t_end="1"/>
+  <output interval="0.1">
+    <log signal="x.y" label="x"/>
+    <report peak="x.y" label="highest"/>
+  </output>
+</diagram>)");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto& figures = run.sim->results().figures();
+  ASSERT_EQ(figures.size(), 1u);
+  EXPECT_NEAR(figures[0].value, 0.5, 1e-9);
+  EXPECT_NEAR(figures[0].time, 0.5, 1e-9);
+  EXPECT_NEAR(run.Column("x").back(), 0.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace mechflow::scripting
