@@ -29,13 +29,18 @@ inline diagrams::LoadedDiagram LoadXml(const std::string& xml, const diagrams::L
   return diagrams::LoadDiagramDescription(diagrams::ReadDiagramText(xml, "test.xml"), options);
 }
 
-inline XmlRun RunXml(const std::string& xml, const diagrams::LoadOptions& options = {}) {
-  XmlRun run{LoadXml(xml, options), nullptr, {}};
+// Loads and runs a description with its reports and control script.
+inline XmlRun RunDescription(diagrams::DiagramDescription description, const diagrams::LoadOptions& options = {}) {
+  XmlRun run{diagrams::LoadDiagramDescription(std::move(description), options), nullptr, {}};
   run.sim = std::make_unique<blocks::Simulator>(*run.loaded.diagram, run.loaded.solver, run.loaded.logged);
   run.sim->SetReports(run.loaded.reports);
   run.sim->SetControl(run.loaded.control.get());
   run.outcome = run.sim->Run();
   return run;
+}
+
+inline XmlRun RunXml(const std::string& xml, const diagrams::LoadOptions& options = {}) {
+  return RunDescription(diagrams::ReadDiagramText(xml, "test.xml"), options);
 }
 
 // The message of the InputError `f` throws, or "" if it throws none.

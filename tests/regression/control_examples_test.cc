@@ -16,21 +16,14 @@ namespace {
 
 const std::string kExamples = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/";
 
-testing::XmlRun RunExample(diagrams::DiagramDescription d) {
-  testing::XmlRun run{diagrams::LoadDiagramDescription(std::move(d)), nullptr, {}};
-  run.sim = std::make_unique<blocks::Simulator>(*run.loaded.diagram, run.loaded.solver, run.loaded.logged);
-  run.sim->SetReports(run.loaded.reports);
-  run.sim->SetControl(run.loaded.control.get());
-  run.outcome = run.sim->Run();
-  return run;
-}
+using testing::RunDescription;
 
 TEST(ControlExamplesTest, MoleculeDegreeFollowsTheFormulaAtEveryOutputTime) {
   diagrams::DiagramDescription d = diagrams::ReadDiagramFile(kExamples + "molecule.xml");
   // rows at k pi/100, so that t = pi/10 (MO-1) is one of them
   for (auto& a : d.output)
     if (a.name == "interval") a.value = "pi/100";
-  const auto run = RunExample(std::move(d));
+  const auto run = RunDescription(std::move(d));
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
   const auto t = run.Column("time"), mdeg = run.Column("mdeg"), diagonal = run.Column("diagonal distance");
   const double nmin = 1.2, nmax = 5, om = 5;
@@ -61,7 +54,7 @@ struct SampledPendulum {
 };
 
 TEST(ControlExamplesTest, PdControlInLuaMatchesTheSampledClosedLoopAndHoldsThePendulumUp) {
-  const auto run = RunExample(diagrams::ReadDiagramFile(kExamples + "pendulum_pd_control.xml"));
+  const auto run = RunDescription(diagrams::ReadDiagramFile(kExamples + "pendulum_pd_control.xml"));
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
   const auto t = run.Column("time"), phi = run.Column("tilt"), torque = run.Column("controller torque");
 
@@ -103,15 +96,12 @@ TEST(ControlExamplesTest, ScriptChangeReachesAMechanismForceLawAsALoadTimeValueW
   // --set f=2 gives; the box's mass (a fixed use of `mass`) stays as loaded
   diagrams::DiagramDescription scripted = diagrams::ReadDiagramFile(kExamples + "damping_ratio.xml");
   scripted.script = {"function init(sim) sim:set('f', 2) end", "=test", {}};
-  const auto by_script = RunExample(std::move(scripted));
+  const auto by_script = RunDescription(std::move(scripted));
   ASSERT_TRUE(by_script.outcome.ok) << by_script.outcome.failure;
 
-  diagrams::DiagramDescription set = diagrams::ReadDiagramFile(kExamples + "damping_ratio.xml");
   diagrams::LoadOptions options;
   options.overrides = {{"f", 2.0}};
-  testing::XmlRun by_set{diagrams::LoadDiagramDescription(std::move(set), options), nullptr, {}};
-  by_set.sim = std::make_unique<blocks::Simulator>(*by_set.loaded.diagram, by_set.loaded.solver, by_set.loaded.logged);
-  by_set.outcome = by_set.sim->Run();
+  const auto by_set = RunDescription(diagrams::ReadDiagramFile(kExamples + "damping_ratio.xml"), options);
   ASSERT_TRUE(by_set.outcome.ok);
 
   const auto a = by_script.Column("m.z"), b = by_set.Column("m.z");
@@ -122,7 +112,7 @@ TEST(ControlExamplesTest, ScriptChangeReachesAMechanismForceLawAsALoadTimeValueW
 
   diagrams::DiagramDescription heavier = diagrams::ReadDiagramFile(kExamples + "damping_ratio.xml");
   heavier.script = {"function init(sim) sim:set('mass', 2000) end", "=test", {}};
-  const auto refused = RunExample(std::move(heavier));
+  const auto refused = RunDescription(std::move(heavier));
   ASSERT_FALSE(refused.outcome.ok);
   EXPECT_NE(refused.outcome.failure.find("identifier 'mass' cannot change during a run"), std::string::npos)
       << refused.outcome.failure;
