@@ -23,7 +23,10 @@
 //
 // The code runs once, at load, in an environment of its own (globals it
 // defines stay in the block; reads fall through to the sandbox's globals). It
-// must define `outputs`, and `derivatives` exactly when the block has states.
+// must define `derivatives` exactly when the block has states, and `outputs`
+// unless the outputs are the states: a block with states and no `outputs`
+// copies its states to its outputs (their values must number the states; no
+// feedthrough), which saves one Lua call per evaluation.
 // Both are called with the time t [s], every state, then every input value
 // (a port of width w gives w consecutive arguments), and return every output
 // value in port order (`derivatives`: one value per state), finite numbers.
@@ -40,9 +43,11 @@
 //
 // At run time a call pushes numbers and reads numbers: no parsing, no name
 // look-up, no allocation in C++. Every call is bounded by the LuaState's
-// instruction limit. Errors (a Lua error, a wrong number of values, a value
-// that is not a finite number) throw SimulationError naming the block, the
-// function, the time, the Lua line and a traceback.
+// instruction limit, except straight-line code that cannot loop (see
+// CodeScan in lua_block.cc), as CompiledExpression does. Errors (a Lua
+// error, a wrong number of values, a value that is not a finite number)
+// throw SimulationError naming the block, the function, the time, the Lua
+// line and a traceback.
 //
 // A block with several output ports computes them in one call: `outputs` is
 // called again for a port only when time, states or inputs differ from the

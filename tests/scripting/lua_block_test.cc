@@ -371,6 +371,40 @@ TEST(LuaBlockTest, NonFiniteOrNonNumberValues) {
               HasSubstr("value 1 is a string, not a finite number"));
 }
 
+// Code that may loop only through a call (recursion in tail position runs
+// forever without growing the stack) is bounded too: the straight-line
+// shortcut must not take it.
+TEST(LuaBlockTest, RecursionThroughCallsIsBounded) {
+  for (const std::string code : {
+           "function outputs(t) return outputs(t) end",
+           "local function f(t) return f(t) end function outputs(t) return f(t) end",
+           "local a, sin, b\nfunction outputs(t) a, sin, b = 0, outputs, 0; return sin(t) end",
+       }) {
+    EXPECT_THAT(RunFailure("<block type=\"lua\" name=\"f\">" + code + "</block>\n"),
+                HasSubstr("instruction limit exceeded"))
+        << code;
+  }
+}
+
+// Without `outputs`, a block with states outputs its states (no Lua call).
+TEST(LuaBlockTest, OutputsDefaultToStates) {
+  const auto run = RunXml(Diagram(R"(    <block type="lua" name="f" outputs="p:2" states="x v" initial="1 0">
+      function derivatives(t, x, v) return v, -4*x end
+    </block>
+)",
+                                  "", R"(<log signal="f.p" label="p"/>)"));
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time"), x = run.Column("p[0]"), v = run.Column("p[1]");
+  for (std::size_t i = 0; i < t.size(); ++i) {  // x'' = -4x: x = cos 2t
+    EXPECT_NEAR(x[i], std::cos(2 * t[i]), 1e-8);
+    EXPECT_NEAR(v[i], -2 * std::sin(2 * t[i]), 1e-8);
+  }
+  EXPECT_THAT(LoadError("<block type=\"lua\" name=\"f\" states=\"x v\">"
+                        "function derivatives(t, x, v) return v, -x end</block>\n"),
+              HasSubstr("the code defines no function 'outputs', so the outputs are the states, but the outputs "
+                        "have 1 value(s) for 2 state(s)"));
+}
+
 // An endless loop ends the run through the instruction limit.
 TEST(LuaBlockTest, EndlessLoopIsStopped) {
   EXPECT_THAT(RunFailure("<block type=\"lua\" name=\"f\">function outputs(t)\nwhile true do end\nend</block>\n"),
