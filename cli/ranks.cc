@@ -4,6 +4,10 @@
 #include <stdexcept>
 
 #ifdef MECHFLOW_MPI
+// the C interface only: mpi.h would otherwise pull in the deprecated C++
+// bindings, which need a library of their own
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 #endif
 
