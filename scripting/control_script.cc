@@ -326,7 +326,12 @@ bool ControlScript::DoSet(const char* name, double value) {
   const std::span<double> discrete = point_->discrete();
   for (const auto& [identifier, offset] : identifier_blocks_) discrete[offset] = identifiers_.value(identifier);
   changes_.push_back({point_->time(), id, value});
-  point_->Changed();
+  try {
+    point_->Changed();  // evaluates the outputs: no C++ exception may cross Lua's frames
+  } catch (const std::exception& e) {
+    error_ = "sim:set: the model fails with " + identifiers_.name(id) + " = " + Number(value) + ": " + e.what();
+    return false;
+  }
   return true;
 }
 

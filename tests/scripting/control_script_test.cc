@@ -248,5 +248,17 @@ TEST(ControlScriptTest, ReportsSeeOnlyTheSolutionTheRunKept) {
   EXPECT_NEAR(run.Column("x").back(), 0.0, 1e-9);
 }
 
+TEST(ControlScriptTest, ASetThatBreaksTheModelFailsTheCallback) {
+  // y = b t with b = 2 a: an expression block that fails for a > 5
+  std::string xml = Diagram(R"(function step(sim) if sim.t >= 0.5 then sim:set("a", 6) end end)");
+  const std::string expr = "expr=\"b*t\"";
+  xml.replace(xml.find(expr), expr.size(), "expr=\"a &gt; 5 and error('too big') or b*t\"");
+  auto run = RunXml(xml);
+  ASSERT_FALSE(run.outcome.ok);
+  EXPECT_THAT(run.outcome.failure, HasSubstr("sim:set: the model fails with a = 6"));
+  EXPECT_THAT(run.outcome.failure, HasSubstr("too big"));
+  EXPECT_EQ(run.sim->results().num_rows(), 5);
+}
+
 }  // namespace
 }  // namespace mechflow::scripting
