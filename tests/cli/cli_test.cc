@@ -1,8 +1,5 @@
 // The mechflow command, run as a user would: exit codes, messages, files.
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +8,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/cli/mechflow_command.h"
+
 namespace mechflow::cli {
 namespace {
 
@@ -18,28 +17,10 @@ using ::testing::HasSubstr;
 using ::testing::StartsWith;
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
+using Outcome = mechflow::testing::CommandOutcome;
+using mechflow::testing::ReadFile;
 
-std::string ReadFile(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs `mechflow ARGS` through the shell with stdout and stderr captured.
-Outcome Mechflow(const std::string& args) {
-  // one folder per test process: CTest runs tests in parallel
-  const fs::path dir = fs::path(::testing::TempDir()) / ("mechflow_cli_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  const std::string command = std::string(MECHFLOW_BINARY) + " " + args + " >" + (dir / "out").string() + " 2>" +
-                              (dir / "err").string() + " </dev/null";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadFile(dir / "out"), ReadFile(dir / "err")};
-}
+Outcome Mechflow(const std::string& args) { return mechflow::testing::RunMechflow(args); }
 
 std::string Example(const std::string& name) {
   return std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + name;

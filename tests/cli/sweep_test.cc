@@ -6,7 +6,6 @@
 // (equilibrium at z = 0, released from rest 0.5 m above it); failed rows, bad
 // --vary input, threads against one thread, MPI ranks against threads.
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -23,6 +22,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/cli/mechflow_command.h"
+
 namespace mechflow::cli {
 namespace {
 
@@ -30,30 +31,10 @@ using ::testing::HasSubstr;
 using ::testing::StartsWith;
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
+using Outcome = mechflow::testing::CommandOutcome;
+using mechflow::testing::ReadFile;
 
-std::string ReadFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs `PREFIX mechflow ARGS` through the shell with stdout and stderr captured.
-Outcome Command(const std::string& prefix, const std::string& args) {
-  // one folder per test process: CTest runs tests in parallel
-  const fs::path dir = fs::path(::testing::TempDir()) / ("mechflow_sweep_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  const std::string command = prefix + std::string(MECHFLOW_BINARY) + " " + args + " >" + (dir / "out").string() +
-                              " 2>" + (dir / "err").string() + " </dev/null";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadFile(dir / "out"), ReadFile(dir / "err")};
-}
-
-Outcome Mechflow(const std::string& args) { return Command("", args); }
+Outcome Mechflow(const std::string& args) { return mechflow::testing::RunMechflow(args); }
 
 const std::string kDampingRatio = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/damping_ratio.xml";
 
@@ -332,7 +313,7 @@ TEST(SweepTest, TwoMpiRanksEqualThreads) {
   std::string prefix = "env OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none " +
                        std::string(MECHFLOW_MPIEXEC) + " -n 2 --oversubscribe " +
                        (getuid() == 0 ? "--allow-run-as-root " : "");
-  const Outcome probe = Command(prefix, "--version");
+  const Outcome probe = mechflow::testing::RunMechflow("--version", prefix);
   if (probe.exit_code != 0 || probe.out != "mechflow 0.1.0\nmechflow 0.1.0\n")
     GTEST_SKIP() << "mpirun cannot start two processes here (exit " << probe.exit_code << "): " << probe.err;
 
@@ -340,7 +321,7 @@ TEST(SweepTest, TwoMpiRanksEqualThreads) {
   const std::string args = "sweep " + diagram.string() + " --vary beta=0.05,0.1,0.2 --vary steps=500000,10 ";
   const fs::path threads = FreshDir("threads"), ranks = FreshDir("ranks");
   const Outcome threaded = Mechflow(args + "--jobs 2 --out " + threads.string());
-  const Outcome mpi = Command(prefix, args + "--out " + ranks.string());
+  const Outcome mpi = mechflow::testing::RunMechflow(args + "--out " + ranks.string(), prefix);
   EXPECT_EQ(threaded.exit_code, 1);
   EXPECT_EQ(mpi.exit_code, 1) << mpi.err;
   EXPECT_THAT(mpi.out, HasSubstr(" at a time in each of 2 processes"));
