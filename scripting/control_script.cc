@@ -112,7 +112,7 @@ double ControlScript::NextTimer() const {
 
 void ControlScript::Timer(blocks::ControlPoint& point) {
   const double t = point.time();
-  // by index: a callback may register more timers (they start after this instant)
+  // by index: a callback may register more timers; one due at once runs now
   for (std::size_t i = 0; i < timers_.size(); ++i) {
     if (timers_[i].when() != t) continue;
     ++timers_[i].next;
