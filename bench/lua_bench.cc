@@ -197,39 +197,33 @@ void CallingConvention(int calls) {
   if (!lua.Run(code, "=bench", &error)) throw std::runtime_error(error);
   double sink = 0;
 
-  lua_getglobal(L, "args");
-  const double by_args = TimeCalls(lua, calls, [&](lua_State* L, int fn) {
-    const int top = lua_gettop(L);
-    lua_pushcfunction(L, &scripting::LuaState::TracebackHandler);
-    lua_pushvalue(L, fn);
-    lua_pushnumber(L, 0.1);
-    lua_pushnumber(L, 0.5);
-    lua_pushnumber(L, -0.2);
-    int status;
-    {
-      scripting::BoundedCall bounded(lua);
-      status = lua_pcall(L, 3, LUA_MULTRET, top + 1);
-    }
-    if (status != LUA_OK || lua_gettop(L) - top - 1 != 2) throw std::runtime_error("args call failed");
-    sink += lua_tonumber(L, top + 2) + lua_tonumber(L, top + 3);
-    lua_settop(L, top);
-  });
-  lua_settop(L, 0);
-
-  // the same without the instruction-count hook: what the bound costs
-  lua_getglobal(L, "args");
-  const double unbounded = TimeCalls(lua, calls, [&](lua_State* L, int fn) {
-    const int top = lua_gettop(L);
-    lua_pushcfunction(L, &scripting::LuaState::TracebackHandler);
-    lua_pushvalue(L, fn);
-    lua_pushnumber(L, 0.1);
-    lua_pushnumber(L, 0.5);
-    lua_pushnumber(L, -0.2);
-    if (lua_pcall(L, 3, LUA_MULTRET, top + 1) != LUA_OK) throw std::runtime_error("args call failed");
-    sink += lua_tonumber(L, top + 2) + lua_tonumber(L, top + 3);
-    lua_settop(L, top);
-  });
-  lua_settop(L, 0);
+  // numbers as arguments, results as multiple values; `bounded`: under the
+  // instruction-count hook, as code that may loop runs
+  auto by_arguments = [&](bool bounded) {
+    lua_getglobal(L, "args");
+    const double seconds = TimeCalls(lua, calls, [&](lua_State* L, int fn) {
+      const int top = lua_gettop(L);
+      lua_pushcfunction(L, &scripting::LuaState::TracebackHandler);
+      lua_pushvalue(L, fn);
+      lua_pushnumber(L, 0.1);
+      lua_pushnumber(L, 0.5);
+      lua_pushnumber(L, -0.2);
+      int status;
+      if (bounded) {
+        scripting::BoundedCall bound(lua);
+        status = lua_pcall(L, 3, LUA_MULTRET, top + 1);
+      } else {
+        status = lua_pcall(L, 3, LUA_MULTRET, top + 1);
+      }
+      if (status != LUA_OK || lua_gettop(L) - top - 1 != 2) throw std::runtime_error("args call failed");
+      sink += lua_tonumber(L, top + 2) + lua_tonumber(L, top + 3);
+      lua_settop(L, top);
+    });
+    lua_settop(L, 0);
+    return seconds;
+  };
+  const double by_args = by_arguments(true);
+  const double unbounded = by_arguments(false);  // what the bound costs
 
   lua_getglobal(L, "tables");
   lua_createtable(L, 3, 0);  // input, reused

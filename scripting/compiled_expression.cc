@@ -12,48 +12,11 @@
 #include "mech/errors.h"
 #include "scripting/identifier_bindings.h"
 #include "scripting/identifiers.h"
+#include "scripting/lua_lexer.h"
 #include "scripting/lua_state.h"
 
 namespace mechflow::scripting {
 namespace {
-
-bool IsNameStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
-bool IsNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-bool IsDigit(char c) { return std::isdigit(static_cast<unsigned char>(c)); }
-
-// Length of the long bracket opening at `i` ("[[" -> 2, "[==[" -> 4), or 0.
-std::size_t LongBracketOpen(const std::string& s, std::size_t i) {
-  if (i >= s.size() || s[i] != '[') return 0;
-  std::size_t j = i + 1;
-  while (j < s.size() && s[j] == '=') ++j;
-  return j < s.size() && s[j] == '[' ? j + 1 - i : 0;
-}
-
-// End (one past) of the long string or comment whose opening bracket of
-// `open_length` characters starts at `i`; the text's end if unclosed.
-std::size_t LongBracketEnd(const std::string& s, std::size_t i, std::size_t open_length) {
-  const std::string close = "]" + std::string(open_length - 2, '=') + "]";
-  const std::size_t end = s.find(close, i + open_length);
-  return end == std::string::npos ? s.size() : end + close.size();
-}
-
-// End (one past) of the number starting at `i`.
-std::size_t NumberEnd(const std::string& s, std::size_t i) {
-  const bool hex = s[i] == '0' && i + 1 < s.size() && (s[i + 1] == 'x' || s[i + 1] == 'X');
-  const char exponent_lower = hex ? 'p' : 'e';
-  std::size_t j = hex ? i + 2 : i;
-  while (j < s.size()) {
-    const char c = s[j];
-    if ((c == '+' || c == '-') && std::tolower(static_cast<unsigned char>(s[j - 1])) == exponent_lower) {
-      ++j;
-    } else if (IsNameChar(c) || c == '.') {
-      ++j;
-    } else {
-      break;
-    }
-  }
-  return j;
-}
 
 // The free names of an expression, and the expression with identifier names
 // in their canonical lower case.
@@ -66,34 +29,9 @@ struct Scan {
 Scan ScanExpression(const std::string& expr, const IdentifierTable& identifiers) {
   Scan scan;
   std::string previous;  // previous token if it was punctuation, else ""
-  std::size_t i = 0;
-  while (i < expr.size()) {
-    const char c = expr[i];
-    std::size_t end = i + 1;
-    if (std::isspace(static_cast<unsigned char>(c))) {
-      scan.rewritten += c;
-      i = end;
-      continue;
-    }
-    if (c == '-' && i + 1 < expr.size() && expr[i + 1] == '-') {  // comment
-      const std::size_t open = LongBracketOpen(expr, i + 2);
-      end = open ? LongBracketEnd(expr, i + 2, open) : std::min(expr.find('\n', i), expr.size());
-      scan.rewritten.append(expr, i, end - i);
-      i = end;
-      continue;
-    }
-    if (c == '"' || c == '\'') {  // short string
-      while (end < expr.size() && expr[end] != c) end += expr[end] == '\\' ? 2 : 1;
-      end = std::min(end + 1, expr.size());
-      previous.clear();
-    } else if (const std::size_t open = LongBracketOpen(expr, i)) {  // long string
-      end = LongBracketEnd(expr, i, open);
-      previous.clear();
-    } else if (IsDigit(c) || (c == '.' && i + 1 < expr.size() && IsDigit(expr[i + 1]))) {
-      end = NumberEnd(expr, i);
-      previous.clear();
-    } else if (IsNameStart(c)) {
-      while (end < expr.size() && IsNameChar(expr[end])) ++end;
+  for (std::size_t i = 0, end = 0; i < expr.size(); i = end) {
+    const LuaToken kind = NextLuaToken(expr, i, &end);
+    if (kind == LuaToken::kName) {
       std::string name = expr.substr(i, end - i);
       std::size_t next = end;
       while (next < expr.size() && std::isspace(static_cast<unsigned char>(expr[next]))) ++next;
@@ -107,15 +45,12 @@ Scan ScanExpression(const std::string& expr, const IdentifierTable& identifiers)
           scan.free_names.push_back(name);
       }
       scan.rewritten += name;
-      i = end;
       previous.clear();
       continue;
-    } else {  // punctuation: "..." and ".." are one token each
-      while (end < expr.size() && end - i < 3 && (c == '.' || c == ':') && expr[end] == c) ++end;
-      previous = expr.substr(i, end - i);
     }
+    if (kind == LuaToken::kPunctuation) previous = expr.substr(i, end - i);
+    if (kind == LuaToken::kString || kind == LuaToken::kNumber) previous.clear();
     scan.rewritten.append(expr, i, end - i);
-    i = end;
   }
   return scan;
 }

@@ -15,28 +15,11 @@
 #include "mech/errors.h"
 #include "scripting/identifier_bindings.h"
 #include "scripting/identifiers.h"
+#include "scripting/lua_lexer.h"
 #include "scripting/lua_state.h"
 
 namespace mechflow::scripting {
 namespace {
-
-bool IsNameStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
-bool IsNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-
-// Length of the long bracket opening at `i` ("[[" -> 2, "[==[" -> 4), or 0.
-std::size_t LongBracketOpen(const std::string& s, std::size_t i) {
-  if (i >= s.size() || s[i] != '[') return 0;
-  std::size_t j = i + 1;
-  while (j < s.size() && s[j] == '=') ++j;
-  return j < s.size() && s[j] == '[' ? j + 1 - i : 0;
-}
-
-// One past the end of the long bracket of `open` characters opening at `i`.
-std::size_t LongBracketEnd(const std::string& s, std::size_t i, std::size_t open) {
-  const std::string close = "]" + std::string(open - 2, '=') + "]";
-  const std::size_t end = s.find(close, i + open);
-  return end == std::string::npos ? s.size() : end + close.size();
-}
 
 // The code with identifier names in their canonical lower case, and the
 // identifiers and sandbox functions it names (each once, in order of use).
@@ -70,41 +53,13 @@ CodeScan ScanCode(const std::string& code, const IdentifierTable& ids) {
   CodeScan scan;
   std::string previous;       // the previous token if punctuation
   std::string previous_word;  // the previous token if a name or keyword
-  std::size_t i = 0;
-  while (i < code.size()) {
-    const char c = code[i];
-    std::size_t end = i + 1;
-    if (std::isspace(static_cast<unsigned char>(c))) {
-      scan.rewritten += c;
-      ++i;
-      continue;
-    }
-    if (c == '-' && i + 1 < code.size() && code[i + 1] == '-') {  // comment
-      const std::size_t open = LongBracketOpen(code, i + 2);
-      end = open ? LongBracketEnd(code, i + 2, open) : std::min(code.find('\n', i), code.size());
+  for (std::size_t i = 0, end = 0; i < code.size(); i = end) {
+    const LuaToken kind = NextLuaToken(code, i, &end);
+    if (kind == LuaToken::kSpace || kind == LuaToken::kComment) {
       scan.rewritten.append(code, i, end - i);
-      i = end;
       continue;
     }
-    if (c == '"' || c == '\'') {  // short string
-      while (end < code.size() && code[end] != c && code[end] != '\n') end += code[end] == '\\' ? 2 : 1;
-      end = std::min(end + 1, code.size());
-      previous.clear();
-    } else if (const std::size_t open = LongBracketOpen(code, i)) {  // long string
-      end = LongBracketEnd(code, i, open);
-      previous.clear();
-    } else if (std::isdigit(static_cast<unsigned char>(c)) ||
-               (c == '.' && i + 1 < code.size() && std::isdigit(static_cast<unsigned char>(code[i + 1])))) {
-      // a number; a sign belongs to it after a decimal exponent e or a hex exponent p
-      const bool hex = c == '0' && i + 1 < code.size() && (code[i + 1] == 'x' || code[i + 1] == 'X');
-      const char* exponent = hex ? "pP" : "eE";
-      while (end < code.size() &&
-             (IsNameChar(code[end]) || code[end] == '.' ||
-              ((code[end] == '+' || code[end] == '-') && std::strchr(exponent, code[end - 1]))))
-        ++end;
-      previous.clear();
-    } else if (IsNameStart(c)) {
-      while (end < code.size() && IsNameChar(code[end])) ++end;
+    if (kind == LuaToken::kName) {
       std::string name = code.substr(i, end - i);
       const bool field = previous == "." || previous == ":" || previous == "::";
       const bool defined = previous_word == "function";
@@ -131,17 +86,17 @@ CodeScan ScanCode(const std::string& code, const IdentifierTable& ids) {
       scan.rewritten += name;
       previous.clear();
       previous_word = name;
-      i = end;
       continue;
-    } else {  // punctuation; "..", "..." and "::" are one token each
-      while (end < code.size() && end - i < 3 && (c == '.' || c == ':') && code[end] == c) ++end;
+    }
+    previous.clear();
+    if (kind == LuaToken::kPunctuation) {
       previous = code.substr(i, end - i);
       // an anonymous function, or a call of what an expression gave
+      const char c = code[i];
       if (previous_word == "function" || ((c == ')' || c == ']') && CallFollows(code, end))) scan.may_loop = true;
     }
     previous_word.clear();
     scan.rewritten.append(code, i, end - i);
-    i = end;
   }
   return scan;
 }
