@@ -12,9 +12,10 @@ namespace mechflow::blocks {
 
 AlgebraicLoop::AlgebraicLoop(std::vector<OutputNode> inner, std::vector<OutputNode> tears,
                              const std::vector<int>& tear_offsets, const std::vector<int>& tear_widths,
-                             std::string port, std::string hops)
+                             std::vector<std::pair<int, int>> copies, std::string port, std::string hops)
     : inner_(std::move(inner)),
       tears_(std::move(tears)),
+      copies_(std::move(copies)),
       port_(std::move(port)),
       description_(" through " + port_ + ":" + hops) {
   for (std::size_t i = 0; i < tear_offsets.size(); ++i)
@@ -32,6 +33,7 @@ AlgebraicLoop::AlgebraicLoop(std::vector<OutputNode> inner, std::vector<OutputNo
 
 void AlgebraicLoop::Evaluate(const Diagram& d, Context* ctx, const Eigen::VectorXd& z, Eigen::VectorXd* g) const {
   for (int k = 0; k < num_unknowns(); ++k) ctx->signals[slot_[k]] = z[k];
+  for (const auto& [k, slot] : copies_) ctx->signals[slot] = z[k];
   // Blocks cache work per evaluation (a mechanism's solve): new tear values
   // are a new evaluation.
   ++ctx->evaluation;
@@ -107,7 +109,7 @@ void AlgebraicLoop::Solve(const Diagram& d, Context* ctx) const {
     if (!(pivot_ratio > 1e-13)) {
       std::ostringstream why;
       why << "it has no unique solution: the loop passes its signals back with gain 1 "
-          << "(I - dG/dz is singular: smallest/largest pivot " << pivot_ratio << ")";
+          << "(I - dG/dz is singular: smallest/largest pivot " << pivot_ratio << "); largest residual " << worst;
       Fail(*ctx, why.str());
     }
     step_ = lu_.solve(r_);  // (J - I) step = r  gives  z - step

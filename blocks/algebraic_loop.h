@@ -23,6 +23,7 @@
 // The workspace is sized when the loop is built; Solve allocates nothing.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -60,10 +61,14 @@ class AlgebraicLoop {
   static constexpr int kMaxIterations = 30;
 
   // `tear_offsets`/`tear_widths`: where each tear's values sit in the signals.
+  // `copies`: (unknown, signal) pairs of further slots that get the tear
+  // values z -- the input copy of a block that feeds itself, which cannot
+  // read the slot it is writing (see DiagramBuilder::LayOut).
   // `port` names one port of the loop ("s.y"), `hops` one line per hop of a
   // cycle through it ("\n  a.y -> s.u1 (feeds s.y directly) at file:line").
   AlgebraicLoop(std::vector<OutputNode> inner, std::vector<OutputNode> tears, const std::vector<int>& tear_offsets,
-                const std::vector<int>& tear_widths, std::string port, std::string hops);
+                const std::vector<int>& tear_widths, std::vector<std::pair<int, int>> copies, std::string port,
+                std::string hops);
 
   const std::vector<OutputNode>& inner() const { return inner_; }
   const std::vector<OutputNode>& tears() const { return tears_; }
@@ -89,6 +94,7 @@ class AlgebraicLoop {
 
   std::vector<OutputNode> inner_, tears_;
   std::vector<int> slot_;  // unknown k lives at signals[slot_[k]]
+  std::vector<std::pair<int, int>> copies_;  // (unknown, signal) also set to z
   std::string port_, description_;
 
   mutable Eigen::VectorXd z_, g_, r_, r_old_, step_, column_;

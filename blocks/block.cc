@@ -1,6 +1,8 @@
 #include "blocks/block.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace mechflow::blocks {
@@ -54,6 +56,22 @@ void Block::DeclareContinuousStates(int n, const std::string& prefix) {
 int Block::DeclareZeroCrossing(CrossingDirection direction) {
   crossings_.push_back(direction);
   return num_zero_crossings() - 1;
+}
+
+std::string SamplePeriodProblem(double period, double t_start, double t_end) {
+  if (!(period > 0.0) || !std::isfinite(period)) return "the period must be a finite number > 0 (s)";
+  const double span = t_end - t_start;
+  const double resolution = 1e-12 * std::max(std::abs(t_start), std::abs(t_end));
+  const double least = std::max(span / kMaxSampleHits, resolution);
+  if (period >= least) return "";
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "the period %.6g s is too small for the run from t = %.6g to %.6g s (%s); use at least %.6g s", period,
+                t_start, t_end,
+                period < resolution ? "times that close cannot be told apart in double precision"
+                                    : "more than 1e8 instants in the run",
+                least);
+  return text;
 }
 
 void Block::DeclarePeriodicSampleTime(double period, double offset) {

@@ -59,6 +59,16 @@ struct SampleTime {
   bool is_periodic() const { return period > 0.0; }
 };
 
+// At most this many hits of one period over a run: a period so small that a
+// run could not get through its hits is refused rather than left to hang.
+inline constexpr double kMaxSampleHits = 1e8;
+
+// "" when `period` (a block's or a script timer's) can be run from t_start to
+// t_end: finite, > 0, at most kMaxSampleHits hits, and larger than the
+// spacing of doubles near the run's times allows to tell apart (1e-12 of the
+// largest |t|). Otherwise what is wrong and what period would do.
+std::string SamplePeriodProblem(double period, double t_start, double t_end);
+
 class Block {
  public:
   Block(std::string type, std::string name);

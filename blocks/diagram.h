@@ -74,6 +74,9 @@ class Diagram {
   std::vector<Connection> connections_;
   std::vector<OutputNode> schedule_;
   std::vector<AlgebraicLoop> loops_;
+  // (output slot, input copy slot) of each value a block feeds to itself
+  // directly; the copies are extra signals after the outputs'
+  std::vector<std::pair<int, int>> input_copies_;
   std::vector<int> stateful_, crossing_, periodic_;
   int num_signals_ = 0, num_states_ = 0, num_discrete_ = 0, num_crossings_ = 0;
 };

@@ -195,8 +195,18 @@ void DiagramBuilder::LayOut(Diagram* d, const std::vector<Connection>& resolved)
   }
   for (const Connection& c : resolved) {
     BlockLayout& l = d->layouts_[c.to_block];
-    l.input_offset[c.to_port] = d->layouts_[c.from_block].output_offset[c.from_port];
-    l.input_width[c.to_port] = d->layouts_[c.from_block].output_width[c.from_port];
+    const int from = d->layouts_[c.from_block].output_offset[c.from_port];
+    const int width = d->layouts_[c.from_block].output_width[c.from_port];
+    l.input_offset[c.to_port] = from;
+    l.input_width[c.to_port] = width;
+    // A port that feeds itself through its own input (y = 1 - y) would read
+    // the slot it is writing: the input reads a copy instead, which the
+    // loop solver sets to the tear values.
+    if (c.from_block == c.to_block && d->blocks_[c.to_block]->HasFeedthrough(c.to_port, c.from_port)) {
+      l.input_offset[c.to_port] = d->num_signals_;
+      for (int k = 0; k < width; ++k) d->input_copies_.push_back({from + k, d->num_signals_ + k});
+      d->num_signals_ += width;
+    }
   }
   d->connections_ = resolved;
 }
@@ -362,16 +372,23 @@ void DiagramBuilder::Schedule(Diagram* d) const {
     const auto order = Components(edges, inner_active);  // all single ports now, sinks first
     for (auto o = order.rbegin(); o != order.rend(); ++o) inner.push_back(nodes[o->front()]);
     std::vector<int> offsets, widths;
+    std::vector<std::pair<int, int>> copies;
+    int unknowns = 0;
     for (const int u : tear_ids) {
+      const int offset = d->layouts_[nodes[u].block].output_offset[nodes[u].port];
       tears.push_back(nodes[u]);
-      offsets.push_back(d->layouts_[nodes[u].block].output_offset[nodes[u].port]);
+      offsets.push_back(offset);
       widths.push_back(width[u]);
+      for (const auto& [from, copy] : d->input_copies_)
+        if (from >= offset && from < offset + width[u]) copies.push_back({unknowns + from - offset, copy});
+      unknowns += width[u];
     }
     OutputNode entry = tears.front();
     entry.loop = static_cast<int>(d->loops_.size());
     std::string port;
     std::string hops = describe(*it, &port);
-    d->loops_.emplace_back(std::move(inner), std::move(tears), offsets, widths, std::move(port), std::move(hops));
+    d->loops_.emplace_back(std::move(inner), std::move(tears), offsets, widths, std::move(copies), std::move(port),
+                           std::move(hops));
     d->schedule_.push_back(entry);
   }
 }

@@ -26,6 +26,8 @@ class ControlPoint {
  public:
   virtual ~ControlPoint() = default;
   virtual double time() const = 0;
+  // The time the run ends at (its t_end).
+  virtual double end_time() const = 0;
   // Every output port's current value, packed (Diagram::ResolveSignal gives offsets).
   virtual std::span<const double> signals() const = 0;
   // Discrete states, for changes; call Changed() after writing them.

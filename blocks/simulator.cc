@@ -22,13 +22,15 @@ using sundials::Check;
 
 std::string SolverOptions::Problem() const {
   if (!std::isfinite(t_start)) return "t_start must be a finite number";
-  if (!(t_end > t_start)) return "t_end must be greater than t_start (" + std::to_string(t_start) + ")";
-  if (!(rtol > 0.0)) return "rtol must be > 0";
-  if (!(atol > 0.0)) return "atol must be > 0";
-  if (!(max_step >= 0.0)) return "max_step must be >= 0 (0 means no limit)";
-  if (!(initial_step >= 0.0)) return "initial_step must be >= 0 (0 means automatic)";
+  if (!(t_end > t_start) || !std::isfinite(t_end))
+    return "t_end must be a finite number greater than t_start (" + std::to_string(t_start) + ")";
+  if (!(rtol > 0.0) || !(rtol < 1.0)) return "rtol must be > 0 and < 1";
+  if (!(atol > 0.0) || !std::isfinite(atol)) return "atol must be a finite number > 0";
+  if (!(max_step >= 0.0) || !std::isfinite(max_step)) return "max_step must be >= 0 (0 means no limit)";
+  if (!(initial_step >= 0.0) || !std::isfinite(initial_step))
+    return "initial_step must be >= 0 (0 means automatic)";
   if (max_steps < 1) return "max_steps must be >= 1";
-  if (!(output_interval >= 0.0)) return "output interval must be >= 0";
+  if (!(output_interval >= 0.0) || !std::isfinite(output_interval)) return "output interval must be >= 0";
   return "";
 }
 
@@ -76,6 +78,12 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   const std::string problem = options_.Problem();
   if (!problem.empty()) throw InputError("solver settings: " + problem);
   if (options_.output_interval == 0.0) options_.output_interval = (options_.t_end - options_.t_start) / 1000.0;
+  for (const int b : diagram_.periodic_blocks()) {
+    const std::string period = SamplePeriodProblem(diagram_.block(b).sample_time().period, options_.t_start,
+                                                   options_.t_end);
+    if (!period.empty())
+      throw InputError(diagram_.origin(b) + ": block '" + diagram_.block(b).name() + "': sample " + period);
+  }
   ctx_.signals.assign(diagram_.num_signals(), 0.0);
   ctx_.discrete.assign(diagram_.num_discrete_states(), 0.0);
   row_.resize(results_.num_columns());
@@ -447,6 +455,7 @@ class Simulator::Point final : public ControlPoint {
  public:
   explicit Point(Simulator& sim) : sim_(sim) {}
   double time() const override { return sim_.ctx_.time; }
+  double end_time() const override { return sim_.options_.t_end; }
   std::span<const double> signals() const override { return sim_.ctx_.signals; }
   std::span<double> discrete() override { return sim_.ctx_.discrete; }
   void Changed() override {

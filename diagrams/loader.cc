@@ -84,16 +84,28 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
     else if (a.name == "atol") solver->atol = v;
     else if (a.name == "max_step") solver->max_step = v;
     else if (a.name == "initial_step") solver->initial_step = v;
-    else if (a.name == "max_steps") solver->max_steps = static_cast<long>(v);
+    else if (a.name == "max_steps") {
+      // checked before the cast: a double out of long's range has no defined conversion
+      if (!(v >= 1 && v <= 1e12 && v == std::floor(v)))
+        throw InputError(what + " is " + a.value + "; expected a whole number from 1 to 1e12");
+      solver->max_steps = static_cast<long>(v);
+    }
   }
   if (options.t_end) solver->t_end = *options.t_end;
-  if (const Attribute* a = FindAttribute(d.output, "interval"))
+  if (const Attribute* a = FindAttribute(d.output, "interval")) {
     solver->output_interval = eval.Number(a->value, a->loc.str() + ": output setting 'interval'");
+    // 0 is the default's internal meaning, not a value a user writes
+    if (!(solver->output_interval > 0.0) || !std::isfinite(solver->output_interval))
+      throw InputError(a->loc.str() + ": output setting 'interval' is " + a->value +
+                       "; expected a time > 0 s (leave it out for 1000 rows)");
+  }
   const std::string problem = solver->Problem();
   if (!problem.empty())
     throw InputError(d.solver_loc.str() + ": " + problem + (options.t_end ? " (t_end given by --t-end)" : ""));
-  if (solver->output_interval > 0.0 && (solver->t_end - solver->t_start) / solver->output_interval > 1e8)
-    throw InputError(d.output_loc.str() + ": output interval gives more than 1e8 rows; choose a larger one");
+  if (solver->output_interval > 0.0) {
+    const std::string rows = blocks::SamplePeriodProblem(solver->output_interval, solver->t_start, solver->t_end);
+    if (!rows.empty()) throw InputError(d.output_loc.str() + ": output interval: " + rows);
+  }
 }
 
 // Logged signals: <log> elements first, then the inputs of every recorder.

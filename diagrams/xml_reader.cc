@@ -2,17 +2,19 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <vector>
 
 #include <tinyxml2.h>
 
+#include "blocks/input_file.h"
 #include "blocks/suggest.h"
+#include "diagrams/xml_text_check.h"
 #include "mech/errors.h"
 
 namespace mechflow::diagrams {
 namespace {
+
+using blocks::ReadInputFile;
 
 using tinyxml2::XMLAttribute;
 using tinyxml2::XMLElement;
@@ -232,20 +234,18 @@ class Reader {
 };
 
 tinyxml2::XMLError ParseText(tinyxml2::XMLDocument* doc, const std::string& text, const std::string& file) {
+  CheckXmlText(text, file);
   if (doc->Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
     throw InputError(file + ":" + std::to_string(doc->ErrorLineNum()) + ": malformed XML: " +
                      (doc->ErrorStr() ? doc->ErrorStr() : doc->ErrorName()));
   }
+  if (const XMLElement* root = doc->RootElement(); root && root->NextSiblingElement())
+    throw InputError(file + ":" + std::to_string(root->NextSiblingElement()->GetLineNum()) +
+                     ": a second top-level element <" + root->NextSiblingElement()->Name() + ">; a file holds one <" +
+                     root->Name() + "> element");
   return tinyxml2::XML_SUCCESS;
 }
 
-std::string ReadFileText(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(what + "cannot open '" + path + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 ElementDesc Reader::ReadMechanism(const XMLElement* e) const {
   const char* src = e->Attribute("src");
@@ -255,7 +255,7 @@ ElementDesc Reader::ReadMechanism(const XMLElement* e) const {
   const std::string path =
       (std::filesystem::path(file_).parent_path() / src).lexically_normal().string();
   tinyxml2::XMLDocument doc;
-  ParseText(&doc, ReadFileText(path, Loc(e).str() + ": mechanism file: "), path);
+  ParseText(&doc, ReadInputFile(path, Loc(e).str() + ": mechanism file"), path);
   const XMLElement* root = doc.RootElement();
   if (!root || std::string(root->Name()) != "mechanism")
     throw InputError(path + ":1: a mechanism file holds one <mechanism> element");
@@ -279,7 +279,7 @@ ScriptDesc Reader::ReadScript(const XMLElement* e) const {
   if (src && has_text) Fail(e, "<script> has both src= and code; give one of them");
   if (src) {
     const std::string path = (std::filesystem::path(file_).parent_path() / src).lexically_normal().string();
-    script.code = ReadFileText(path, Loc(e).str() + ": script file: ");
+    script.code = ReadInputFile(path, Loc(e).str() + ": script file");
     script.chunk_name = "@" + path;
   } else if (has_text) {
     // Lua counts lines from the chunk's start: pad it so they are the file's.
@@ -304,11 +304,7 @@ DiagramDescription ReadDiagramText(const std::string& text, const std::string& f
 }
 
 DiagramDescription ReadDiagramFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open diagram file '" + path + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ReadDiagramText(text.str(), path);
+  return ReadDiagramText(ReadInputFile(path, "diagram file"), path);
 }
 
 }  // namespace mechflow::diagrams

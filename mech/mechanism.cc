@@ -93,11 +93,12 @@ void CheckLoopsLeaveMotion(const Mechanism& mechanism, MechanismWorkspace* ws) {
   constraints.Jacobian(model, ws->kin, &ws->constraint.J);
   const Eigen::MatrixXd& J = ws->constraint.J;
   for (int k = 0; k < static_cast<int>(constraints.cut_joints().size()); ++k) {
-    const auto rows = J.middleRows(6 * k, 6);
+    // a weld cut has six rows, a CV joint four
+    const auto rows = J.middleRows(constraints.row(k), constraints.rows(k));
     std::vector<int> columns;
     for (int c = 0; c < model.nv(); ++c)
       if (rows.col(c).lpNorm<Eigen::Infinity>() > 1e-12) columns.push_back(c);
-    Eigen::MatrixXd sub(6, columns.size());
+    Eigen::MatrixXd sub(rows.rows(), columns.size());
     for (std::size_t i = 0; i < columns.size(); ++i) sub.col(i) = rows.col(columns[i]);
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(sub);
     cod.setThreshold(1e-10);

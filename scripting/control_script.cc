@@ -6,6 +6,7 @@
 
 #include <lua.hpp>
 
+#include "blocks/block.h"
 #include "blocks/suggest.h"
 #include "mech/errors.h"
 #include "scripting/compiled_expression.h"
@@ -16,6 +17,11 @@
 
 namespace mechflow::scripting {
 namespace {
+
+// sim:every may keep this many timers: each is looked at whenever the
+// integrator stops, and a script registering them in a loop must not grow
+// the list without end.
+constexpr std::size_t kMaxTimers = 10000;
 
 // "%.10g" of a number, for messages
 std::string Number(double v) {
@@ -158,6 +164,14 @@ int ControlScript::Every(lua_State* L) {
   if (!(period > 0.0) || !std::isfinite(period)) return luaL_error(L, "sim:every: the period must be > 0 (s)");
   if (!(offset >= 0.0) || !std::isfinite(offset)) return luaL_error(L, "sim:every: the offset must be >= 0 (s)");
   if (!self.point_) return luaL_error(L, "sim:every: only inside init, step, finish or a sampled callback");
+  char problem[256];
+  {  // the string is gone before Lua may long-jump
+    const std::string text = blocks::SamplePeriodProblem(period, self.point_->time(), self.point_->end_time());
+    std::snprintf(problem, sizeof problem, "%s", text.c_str());
+  }
+  if (problem[0]) return luaL_error(L, "sim:every: %s", problem);
+  if (self.timers_.size() >= kMaxTimers)
+    return luaL_error(L, "sim:every: a script may have at most %d timers", static_cast<int>(kMaxTimers));
   lua_pushvalue(L, 3);
   const int ref = luaL_ref(L, LUA_REGISTRYINDEX);
   Sampled timer;

@@ -6,12 +6,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <memory>
 #include <sstream>
 
 #include <lua.hpp>
 
+#include "blocks/input_file.h"
 #include "mech/errors.h"
 #include "scripting/identifier_bindings.h"
 #include "scripting/identifiers.h"
@@ -135,13 +135,7 @@ int TotalWidth(const std::vector<Port>& ports) {
   return n;
 }
 
-std::string ReadCodeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open the Lua file '" + path + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string ReadCodeFile(const std::string& path) { return blocks::ReadInputFile(path, "Lua file"); }
 
 // Where the code comes from, for the chunk name and line shift.
 struct Code {

@@ -1,6 +1,7 @@
 #include "scripting/lua_state.h"
 
 #include <algorithm>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -10,15 +11,17 @@
 
 #include <lua.hpp>
 
+#include "scripting/lua_guards.h"
+
 namespace mechflow::scripting {
 namespace {
 
 // Every function below is called by Lua and may raise a Lua error (a
 // long jump): none may own a C++ object with a destructor.
 
-// Once the instruction limit is exceeded, the error is raised again this often,
-// so a script that catches it with pcall is stopped soon after.
-constexpr int kRepeatInstructions = 1000;
+double Now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 // load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t":
 // precompiled bytecode is not checked by Lua and can crash the interpreter.
@@ -94,6 +97,7 @@ int SetUp(lua_State* L) {
   lua_getglobal(L, "load");
   lua_pushcclosure(L, &TextOnlyLoad, 1);
   lua_setglobal(L, "load");
+  InstallLuaGuards(L, (*static_cast<LuaState**>(lua_getextraspace(L)))->memory_limit());
 
   lua_getglobal(L, LUA_MATHLIBNAME);
   for (const Alias& alias : kMathAliases) {
@@ -118,11 +122,28 @@ int Panic(lua_State* L) {
 
 // Called by Lua (may long-jump): owns no C++ object with a destructor.
 void LuaState::InstructionHook(lua_State* L, lua_Debug*) {
-  const LuaState* lua = *static_cast<LuaState**>(lua_getextraspace(L));
-  lua_sethook(L, &InstructionHook, LUA_MASKCOUNT, kRepeatInstructions);
+  LuaState* lua = *static_cast<LuaState**>(lua_getextraspace(L));
+  CallBudget& call = lua->call_;
+  if (call.exceeded == Exceeded::kNone) {
+    call.instructions += call.interval;
+    if (lua->instruction_limit_ > 0 && call.instructions >= lua->instruction_limit_) {
+      call.exceeded = Exceeded::kInstructions;
+    } else if (lua->time_limit_ > 0.0 && Now() - call.start > lua->time_limit_) {
+      call.exceeded = Exceeded::kTime;
+    } else {
+      return;
+    }
+    // from now on every instruction raises the error again: whatever a
+    // script catches, no Lua code runs on until the call returns
+    lua_sethook(L, &InstructionHook, LUA_MASKCOUNT, 1);
+  }
   luaL_where(L, 0);  // in a hook, level 0 is the Lua function that was running
-  lua_pushfstring(L, "instruction limit exceeded (%I instructions in one call; endless loop?)",
-                  static_cast<lua_Integer>(lua->instruction_limit_));
+  if (call.exceeded == Exceeded::kInstructions) {
+    lua_pushfstring(L, "instruction limit exceeded (%I instructions in one call; endless loop?)",
+                    static_cast<lua_Integer>(lua->instruction_limit_));
+  } else {
+    lua_pushfstring(L, "time limit exceeded (one call may run for %f s)", lua->time_limit_);
+  }
   lua_concat(L, 2);
   lua_error(L);
 }
@@ -144,6 +165,7 @@ void* LuaState::Allocate(void* ud, void* ptr, std::size_t old_size, std::size_t 
 LuaState::LuaState(Options options) : unsafe_(options.unsafe) {
   memory_.limit = options.memory_limit;
   set_instruction_limit(options.instruction_limit);
+  set_time_limit(options.time_limit);
   L_ = lua_newstate(&LuaState::Allocate, &memory_);
   if (!L_) throw std::runtime_error("cannot create a Lua state (out of memory)");
   *static_cast<LuaState**>(lua_getextraspace(L_)) = this;  // for the hook
@@ -164,9 +186,13 @@ LuaState::~LuaState() {
 BoundedCall::BoundedCall(LuaState& lua) : L_(lua.get()) {
   // a hook already set means an enclosing call is bounded (ours is removed
   // when that call returns)
-  if (lua.instruction_limit_ > 0 && !lua_gethook(L_)) {
-    lua_sethook(L_, &LuaState::InstructionHook, LUA_MASKCOUNT,
-                static_cast<int>(std::min<long>(lua.instruction_limit_, INT_MAX)));
+  if ((lua.instruction_limit_ > 0 || lua.time_limit_ > 0.0) && !lua_gethook(L_)) {
+    LuaState::CallBudget& call = lua.call_;
+    call = {};
+    call.start = Now();
+    if (lua.instruction_limit_ > 0)
+      call.interval = static_cast<int>(std::min<long>(lua.instruction_limit_, LuaState::kCheckInterval));
+    lua_sethook(L_, &LuaState::InstructionHook, LUA_MASKCOUNT, call.interval);
     armed_ = true;
   }
 }

@@ -19,10 +19,16 @@
 //   - instructions: each protected call from C++ (Call, Run, or a lua_pcall
 //     inside a BoundedCall) may run at most instruction_limit VM instructions
 //     (default 10 million, about 0.1 s); then Lua raises "chunk:line:
-//     instruction limit exceeded (...)". A script cannot swallow it with
-//     pcall: once exceeded, the error is raised again every 1000 instructions
-//     until the call returns. The count is a count hook, armed at the start of
-//     the call and removed at its end, so there is no cost between calls.
+//     instruction limit exceeded (...)".
+//   - time: the same call may take at most time_limit seconds of wall-clock
+//     time (default 5 s), a backstop for Lua code that spends its time in C
+//     functions (each one VM instruction); then "time limit exceeded".
+//   A script cannot swallow either error with pcall: once a limit is passed,
+//   the error is raised again at every instruction until the call returns,
+//   so no Lua code can run on. Both are checked by a count hook (every
+//   kCheckInterval instructions), armed at the start of the call and removed
+//   at its end, so there is no cost between calls. C functions whose work
+//   the count cannot see are guarded separately (scripting/lua_guards.h).
 //
 // Lua errors long-jump: no C++ frame owning resources may sit between a
 // lua_pcall and the code that raises. Every call into Lua from C++ goes
@@ -46,7 +52,11 @@ class LuaState {
     bool unsafe = false;                                // every standard library
     std::size_t memory_limit = std::size_t(256) << 20;  // bytes of Lua heap
     long instruction_limit = 10'000'000;                // per call from C++; 0: none
+    double time_limit = 5.0;                            // s of wall-clock time per call; 0: none
   };
+
+  // Instructions between two looks at the limits.
+  static constexpr int kCheckInterval = 100'000;
 
   explicit LuaState(Options options);
   LuaState() : LuaState(Options{}) {}
@@ -65,6 +75,10 @@ class LuaState {
   // VM instructions one protected call from C++ may run; 0 (or less): any.
   void set_instruction_limit(long count) { instruction_limit_ = count > 0 ? std::min<long>(count, INT_MAX) : 0; }
   long instruction_limit() const { return instruction_limit_; }
+
+  // Seconds of wall-clock time one protected call from C++ may take; 0: any.
+  void set_time_limit(double seconds) { time_limit_ = seconds > 0.0 ? seconds : 0.0; }
+  double time_limit() const { return time_limit_; }
 
   // Calls the function lying below `num_args` arguments on the stack in
   // protected mode (bounded by the instruction limit), with TracebackHandler
@@ -103,8 +117,19 @@ class LuaState {
   friend class BoundedCall;
   static void InstructionHook(lua_State* L, lua_Debug* ar);
 
+  // What the hook of the current bounded call has seen.
+  enum class Exceeded { kNone, kInstructions, kTime };
+  struct CallBudget {
+    long instructions = 0;  // counted so far, in steps of the hook's interval
+    double start = 0.0;     // steady clock, s
+    int interval = kCheckInterval;
+    Exceeded exceeded = Exceeded::kNone;
+  };
+
   Memory memory_;
+  CallBudget call_;
   long instruction_limit_ = 0;
+  double time_limit_ = 0.0;
   bool unsafe_ = false;
   lua_State* L_ = nullptr;
 };

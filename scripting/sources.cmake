@@ -7,6 +7,7 @@ set(MECHFLOW_SCRIPTING_SOURCES
   scripting/control_script.cc
   scripting/identifiers.cc
   scripting/lua_block.cc
+  scripting/lua_guards.cc
   scripting/lua_state.cc
   scripting/time_function.cc
 )

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 
+#include "blocks/input_file.h"
 #include "mech/errors.h"
 
 namespace mechflow::blocks {
@@ -69,8 +70,7 @@ void TablePointsFromRows(const std::vector<std::vector<double>>& rows, std::vect
 }
 
 void ReadTableCsv(const std::string& path, std::vector<double>* times, std::vector<double>* values) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot open table file '" + path + "'");
+  std::istringstream in(ReadInputFile(path, "table file"));
   std::string line;
   int line_number = 0, previous_line = 0;
   bool header_allowed = true;

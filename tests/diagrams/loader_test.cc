@@ -47,6 +47,26 @@ TEST(XmlReaderTest, MalformedXmlGivesItsLine) {
   EXPECT_THAT(ErrorOf("<diagram>\n\n<blocks name='a' name='b'/></diagram>"), StartsWith("test.xml:3: malformed XML"));
 }
 
+// tinyxml2 accepts these; mechflow refuses each at its line.
+TEST(XmlReaderTest, RefusesWhatTheXmlParserWouldLetThrough) {
+  EXPECT_THAT(ErrorOf("<diagram/>\n<diagram/>"),
+              StartsWith("test.xml:2: a second top-level element <diagram>; a file holds one <diagram> element"));
+  EXPECT_THAT(ErrorOf("<diagram>\n<identifiers><identifier name='a' value='&foo;'/></identifiers></diagram>"),
+              StartsWith("test.xml:2: the undefined entity '&foo;'; expected &amp; &lt; &gt; &quot; &apos;"));
+  EXPECT_THAT(ErrorOf("<diagram name='a & b'/>"), StartsWith("test.xml:1: an '&' that starts no reference"));
+  EXPECT_THAT(ErrorOf("<?xml version='1.0'?>\n<!DOCTYPE d [<!ENTITY e 'x'>]>\n<diagram name='&e;'/>"),
+              StartsWith("test.xml:2: a DOCTYPE declaration; diagrams take none"));
+  EXPECT_THAT(ErrorOf("<diagram>\n\n<blocks><block type='gain' name='g\xe9' k='1'/></blocks></diagram>"),
+              StartsWith("test.xml:3: the byte 0xE9 is not UTF-8; save the file as UTF-8"));
+  EXPECT_THAT(ErrorOf("<diagram name='\xc0\xaf'/>"), HasSubstr("the byte 0xC0 is not UTF-8"));  // overlong '/'
+  EXPECT_THAT(ErrorOf("<diagram name='a\x01'/>"), HasSubstr("the control character U+0001 is not allowed"));
+  EXPECT_THAT(ErrorOf("<diagram name='a&#0;'/>"), HasSubstr("'&#0;' names a character XML does not allow"));
+  EXPECT_THAT(ErrorOf("<diagram name='a&#xZZ;'/>"), HasSubstr("'&#xZZ;' is not a number"));
+  EXPECT_THAT(ErrorOf("<diagram>\n<!-- never closed\n</diagram>"), StartsWith("test.xml:2: a comment that is never closed"));
+  // what XML allows still reads
+  EXPECT_EQ(LoadXml("<diagram name='&#955;&amp;&#x3bb;'><!-- & --></diagram>").description.name, "\u03bb&\u03bb");
+}
+
 TEST(XmlReaderTest, UnknownElementsAndAttributesSuggestTheNearestName) {
   EXPECT_THAT(ErrorOf("<diagram>\n<blokcs/>\n</diagram>"),
               AllOf(StartsWith("test.xml:2: unknown element <blokcs> inside <diagram> (did you mean 'blocks'?)"),
@@ -146,13 +166,32 @@ TEST(LoaderTest, SchedulerErrorsNameBothEnds) {
 }
 
 TEST(LoaderTest, SolverSettingsAreChecked) {
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='0'/>")), HasSubstr("t_end must be greater than t_start"));
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='-1'/>")), HasSubstr("t_end must be greater than t_start"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='0'/>")), HasSubstr("t_end must be a finite number greater than t_start"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='-1'/>")), HasSubstr("t_end must be a finite number greater than t_start"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='math.huge'/>")), HasSubstr("'math.huge' gives inf"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='2'/>")), HasSubstr("rtol must be > 0 and < 1"));
   EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='-1e-6'/>")), HasSubstr("rtol must be > 0"));
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' atol='-1'/>")), HasSubstr("atol must be > 0"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' atol='-1'/>")), HasSubstr("atol must be a finite number > 0"));
   LoadOptions options;
   options.t_end = -3;
   EXPECT_THAT(ErrorOf(Valid(), options), HasSubstr("(t_end given by --t-end)"));
+}
+
+// Values that once passed and failed late (or were undefined behaviour):
+// each is refused at its line.
+TEST(LoaderTest, CountsAndIntervalsAreChecked) {
+  const char* whole = "; expected a whole number from 1 to 1e12";
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' max_steps='1.5'/>")), HasSubstr("max_steps' is 1.5" + std::string(whole)));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' max_steps='1e30'/>")), HasSubstr("is 1e30" + std::string(whole)));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' max_steps='0'/>")), HasSubstr(whole));
+  EXPECT_EQ(LoadXml(Valid("<solver t_end='1' max_steps='1e6'/>")).solver.max_steps, 1000000);
+  EXPECT_THAT(ErrorOf(Valid("<output interval='0'/>")),
+              HasSubstr("output setting 'interval' is 0; expected a time > 0 s (leave it out for 1000 rows)"));
+  EXPECT_THAT(ErrorOf(Valid("<output interval='-1'/>")), HasSubstr("expected a time > 0 s"));
+  EXPECT_THAT(ErrorOf(Valid("<output interval='1e-300'/>")),
+              HasSubstr("output interval: the period 1e-300 s is too small for the run from t = 0 to 1 s"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_start='1e10' t_end='1e10+1'/><output interval='1e-5'/>")),
+              HasSubstr("cannot be told apart in double precision"));
 }
 
 TEST(LoaderTest, SetOverridesOnlyNumbers) {
