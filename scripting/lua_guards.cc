@@ -1,10 +1,13 @@
 #include "scripting/lua_guards.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <initializer_list>
 
 #include <lua.hpp>
+
+#include "scripting/lua_state.h"
 
 namespace mechflow::scripting {
 namespace {
@@ -38,9 +41,12 @@ int GuardedMove(lua_State* L) {
   const lua_Integer e = luaL_checkinteger(L, 3);
   const double count = static_cast<double>(e) - static_cast<double>(f) + 1.0;
   const double most = static_cast<double>(lua_tointeger(L, lua_upvalueindex(2)));
-  if (count > most)
-    return luaL_error(L, "table.move: %f elements are more than a table can hold under the memory limit (%f)", count,
-                      most);
+  if (count > most) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%.6g elements are more than a table can hold under the memory limit (%.6g)",
+                  count, most);
+    return luaL_error(L, "table.move: %s", text);
+  }
   return CallOriginal(L);
 }
 
@@ -77,13 +83,35 @@ int GuardedPattern(lua_State* L) {
   if (repetitions > 0) {
     const bool anchored = m > 0 && pattern[0] == '^';
     const double steps = std::pow(static_cast<double>(n) + 1.0, repetitions + (anchored ? 0 : 1));
-    if (steps > kPatternStepBudget)
+    if (steps > kPatternStepBudget) {
+      char text[160];
+      std::snprintf(text, sizeof text, "may backtrack about %.3g steps on a subject of %zu bytes (at most %.3g allowed)",
+                    steps, n, kPatternStepBudget);
       return luaL_error(L,
-                        "%s: the pattern '%s' may backtrack about %g steps on a subject of %d bytes (at most %g "
-                        "allowed); use fewer repetitions (*, +, -), anchor it with ^, or search a shorter string",
-                        lua_tostring(L, lua_upvalueindex(2)), pattern, steps, static_cast<int>(n),
-                        kPatternStepBudget);
+                        "%s: the pattern '%s' %s; use fewer repetitions (*, +, -), anchor it with ^, or search a "
+                        "shorter string",
+                        lua_tostring(L, lua_upvalueindex(2)), pattern, text);
+    }
   }
+  return CallOriginal(L);
+}
+
+// The message handler a script gives xpcall, called through this guard. An
+// error raised by a limit comes from inside a hook, where Lua runs no hooks:
+// a handler run then would be unbounded, so it is skipped.
+int GuardedHandler(lua_State* L) {
+  if (LuaState::LimitPassed(L)) return 1;  // the message as it is
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, 1);
+  return 1;
+}
+
+int GuardedXpcall(lua_State* L) {
+  luaL_checktype(L, 2, LUA_TFUNCTION);
+  lua_pushvalue(L, 2);
+  lua_pushcclosure(L, &GuardedHandler, 1);
+  lua_replace(L, 2);
   return CallOriginal(L);
 }
 
@@ -142,6 +170,7 @@ void InstallLuaGuards(lua_State* L, std::size_t memory_limit) {
 
   lua_pushglobaltable(L);
   Wrap(L, lua_gettop(L), "setmetatable", &GuardedSetMetatable, 0);
+  Wrap(L, lua_gettop(L), "xpcall", &GuardedXpcall, 0);
   Protect(L);
   lua_pushliteral(L, "");
   Protect(L);

@@ -14,6 +14,8 @@
 //     k repetition items (*, +, -) on n bytes may take about n^(k+1) steps
 //     (n^k when anchored with ^). Plain finds and patterns without
 //     repetitions are linear and always allowed;
+//   - xpcall skips the script's message handler for a limit's error (raised
+//     inside a hook, where the handler would run with hooks off);
 //   - setmetatable refuses a metatable with __gc: finalizers run outside any
 //     call mechflow can bound (Lua turns hooks off for them);
 //   - the string metatable and _G's metatable are protected (__metatable),

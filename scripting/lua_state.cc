@@ -198,7 +198,13 @@ BoundedCall::BoundedCall(LuaState& lua) : L_(lua.get()) {
 }
 
 BoundedCall::~BoundedCall() {
-  if (armed_) lua_sethook(L_, nullptr, 0, 0);
+  if (!armed_) return;
+  lua_sethook(L_, nullptr, 0, 0);
+  (*static_cast<LuaState**>(lua_getextraspace(L_)))->call_.exceeded = LuaState::Exceeded::kNone;
+}
+
+bool LuaState::LimitPassed(lua_State* L) {
+  return (*static_cast<LuaState**>(lua_getextraspace(L)))->call_.exceeded != Exceeded::kNone;
 }
 
 std::string LuaState::ErrorText(int status) const {
