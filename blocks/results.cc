@@ -6,6 +6,19 @@
 
 namespace mechflow::blocks {
 
+namespace {
+
+// A CSV field: quoted when it holds a separator, a quote or a line break.
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+
 Results::Results(std::vector<std::string> signal_columns) {
   columns_.push_back("time");
   columns_.insert(columns_.end(), signal_columns.begin(), signal_columns.end());
@@ -26,7 +39,7 @@ std::vector<double> Results::Column(int column) const {
 void Results::AddRow(const double* values) { values_.insert(values_.end(), values, values + columns_.size()); }
 
 void Results::WriteCsv(std::ostream& out) const {
-  for (int c = 0; c < num_columns(); ++c) out << (c ? "," : "") << columns_[c];
+  for (int c = 0; c < num_columns(); ++c) out << (c ? "," : "") << CsvField(columns_[c]);
   out << '\n';
   char buffer[32];
   for (int r = 0; r < num_rows(); ++r) {
@@ -45,21 +58,14 @@ void Results::WriteCsv(const std::string& path) const {
   if (!file) throw std::runtime_error("error while writing '" + path + "'");
 }
 
-namespace {
-
-// A CSV field: quoted when it holds a separator, a quote or a line break.
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-}  // namespace
-
 void Results::WriteFiguresCsv(const std::string& path) const {
   std::ofstream file(path);
   if (!file) throw std::runtime_error("cannot write '" + path + "'");
+  WriteFiguresCsv(file);
+  if (!file) throw std::runtime_error("error while writing '" + path + "'");
+}
+
+void Results::WriteFiguresCsv(std::ostream& file) const {
   file << "label,kind,signal,value,unit,time\n";
   char value[32] = "", time[32] = "";
   for (const ReportFigure& f : figures_) {
@@ -71,7 +77,6 @@ void Results::WriteFiguresCsv(const std::string& path) const {
     file << CsvField(f.label) << ',' << ReportKindName(f.kind) << ',' << CsvField(f.signal) << ',' << value << ','
          << CsvField(f.unit) << ',' << time << '\n';
   }
-  if (!file) throw std::runtime_error("error while writing '" + path + "'");
 }
 
 }  // namespace mechflow::blocks

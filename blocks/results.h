@@ -34,8 +34,10 @@ class Results {
   // time when not found); full double precision. Throws std::runtime_error
   // when the file cannot be written.
   void WriteFiguresCsv(const std::string& path) const;
+  void WriteFiguresCsv(std::ostream& out) const;
 
-  // CSV with a header line; full double precision.
+  // CSV with a header line (a label holding a comma or quote is quoted);
+  // full double precision.
   void WriteCsv(std::ostream& out) const;
   // Writes to `path`; throws std::runtime_error when the file cannot be written.
   void WriteCsv(const std::string& path) const;

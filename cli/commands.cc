@@ -6,14 +6,17 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "cli/modes_report.h"
+#include "cli/output_folder.h"
 #include "cli/plot.h"
 #include "cli/report.h"
 #include "cli/sweep.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/linearization.h"
+#include "blocks/suggest.h"
 #include "diagrams/loader.h"
 #include "mech/errors.h"
 
@@ -61,6 +64,8 @@ class Progress {
 
 int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
+  namespace fs = std::filesystem;
+  const OutputFolder folder(args.out_dir);  // before the run: a bad --out is bad input
   blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
   sim.SetReports(loaded.reports);
   sim.SetControl(loaded.control.get());
@@ -97,62 +102,58 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
         << " difference Jacobians, largest accepted residual " << s.worst_residual << "\n";
   }
 
-  // results are written whether or not the run finished
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(args.out_dir, ec);
-  if (ec) {
-    err << "cannot create output folder '" << args.out_dir << "': " << ec.message() << "\n";
-    return 2;
-  }
-  const fs::path csv = fs::absolute(fs::path(args.out_dir) / loaded.csv_file);
-  fs::create_directories(csv.parent_path(), ec);
-  try {
-    sim.results().WriteCsv(csv.string());
-  } catch (const std::exception& e) {
-    err << e.what() << "\n";
-    return 2;
-  }
-  out << "wrote " << csv.string() << " (" << sim.results().num_rows() << " rows)\n";
-  if (!sim.results().figures().empty()) {
-    // beside the results: tension_mechanism.csv -> tension_mechanism.report.csv
-    fs::path figures = csv;
-    figures.replace_extension(".report.csv");
+  // results are written whether or not the run finished; a file that could
+  // not be written is a failure (exit 1), and what was written is said
+  std::vector<std::string> written, failed;
+  const auto write = [&](const std::string& name, const std::string& bytes, const std::string& note) {
     try {
-      sim.results().WriteFiguresCsv(figures.string());
-    } catch (const std::exception& e) {
+      folder.Write(name, bytes);
+      written.push_back(name);
+      out << "wrote " << folder.PathOf(name) << note << "\n";
+    } catch (const WriteError& e) {
       err << e.what() << "\n";
-      return 2;
+      failed.push_back(name);
     }
-    out << "wrote " << figures.string() << "\n";
-  }
-  if (loaded.control && !loaded.control->changes().empty()) {
-    fs::path changes = csv;
-    changes.replace_extension(".changes.csv");
-    try {
-      WriteScriptChanges(*loaded.control, *loaded.identifiers, changes.string());
-    } catch (const std::exception& e) {
-      err << e.what() << "\n";
-      return 2;
-    }
-    out << "wrote " << changes.string() << "\n";
-  }
-
+  };
+  const auto text = [](const auto& write_to) {
+    std::ostringstream s;
+    write_to(s);
+    return s.str();
+  };
+  const std::string& csv = loaded.csv_file;
+  write(csv, text([&](std::ostream& s) { sim.results().WriteCsv(s); }),
+        " (" + std::to_string(sim.results().num_rows()) + " rows)");
+  // beside the results: tension_mechanism.csv -> tension_mechanism.report.csv
+  const std::string stem = fs::path(csv).replace_extension().string();
+  if (!sim.results().figures().empty())
+    write(stem + ".report.csv", text([&](std::ostream& s) { sim.results().WriteFiguresCsv(s); }), "");
+  if (loaded.control && !loaded.control->changes().empty())
+    write(stem + ".changes.csv",
+          text([&](std::ostream& s) { WriteScriptChanges(*loaded.control, *loaded.identifiers, s); }), "");
   if (!loaded.plot_file.empty()) {
-    const fs::path plot = fs::absolute(fs::path(args.out_dir) / loaded.plot_file);
-    fs::create_directories(plot.parent_path(), ec);
-    const std::string script = GnuplotScript(sim.results(), loaded.groups, loaded.description.name,
-                                             csv.string(), plot.string());
-    const std::string problem = DrawPlot(script, plot.string());
-    if (problem.empty()) {
-      out << "wrote " << plot.string() << "\n";
-    } else {
-      err << "warning: no plot: " << problem << "\n";
+    const std::string script =
+        GnuplotScript(sim.results(), loaded.groups, loaded.description.name, csv, loaded.plot_file);
+    try {
+      const std::string problem = DrawPlot(script, folder, loaded.plot_file);
+      if (problem.empty()) {
+        written.push_back(loaded.plot_file);
+        out << "wrote " << folder.PathOf(loaded.plot_file) << "\n";
+      } else {
+        err << "warning: no plot: " << problem << "\n";
+      }
+    } catch (const WriteError& e) {
+      err << e.what() << "\n";
+      failed.push_back(loaded.plot_file);
     }
   }
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);
   PrintEventWarnings(*loaded.diagram, sim.events(), err);
+  if (!failed.empty()) {
+    err << "not written: " << blocks::JoinNames(failed) << " in " << folder.path() << "; written: "
+        << (written.empty() ? "nothing" : blocks::JoinNames(written)) << "\n";
+    return 1;
+  }
   return outcome.ok ? 0 : 1;
 }
 

@@ -8,7 +8,6 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 extern char** environ;
@@ -16,25 +15,33 @@ extern char** environ;
 namespace mechflow::cli {
 namespace {
 
-// A gnuplot single-quoted string: only the quote itself needs doubling.
+// A gnuplot single-quoted string, which gnuplot reads without backquote
+// substitution or escapes: the quote itself is doubled, and a control
+// character (a line break would end the string's line, and the next line
+// would be a gnuplot command) becomes '?'. Diagram texts hold none (the
+// loader refuses them); this keeps the script safe whatever it is given.
 std::string Quote(const std::string& s) {
   std::string out = "'";
-  for (const char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  for (const char c : s) {
+    if (c == '\'') out += "''";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) out += '?';
+    else out += c;
+  }
   return out + "'";
 }
 
 }  // namespace
 
 std::string GnuplotScript(const blocks::Results& results, const std::vector<diagrams::PlotGroup>& groups,
-                          const std::string& title, const std::string& csv_path, const std::string& plot_path) {
-  const bool svg = std::filesystem::path(plot_path).extension() == ".svg";
+                          const std::string& title, const std::string& csv_name, const std::string& plot_name) {
+  const bool svg = std::filesystem::path(plot_name).extension() == ".svg";
   const int panels = std::max<int>(1, static_cast<int>(groups.size()));
   const int height = std::min(4000, 120 + 260 * panels);
   std::ostringstream s;
-  s << "# drawn by mechflow; edit and run again with: gnuplot " << Quote(plot_path + ".gp") << "\n";
+  s << "# drawn by mechflow; edit and run again in this folder with: gnuplot " << Quote(plot_name + ".gp") << "\n";
   s << "set terminal " << (svg ? "svg" : "pngcairo") << " size 1000," << height
     << " noenhanced font 'sans,10'" << (svg ? " background rgb 'white'" : "") << "\n";
-  s << "set output " << Quote(plot_path) << "\n";
+  s << "set output " << Quote(plot_name) << "\n";
   s << "set datafile separator ','\n";
   // fixed margins keep the time axes of all panels aligned
   s << "set grid\nset key outside right top\nset lmargin 12\nset rmargin 22\nset xlabel 'time [s]'\n";
@@ -44,7 +51,7 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
     s << "plot ";
     for (size_t i = 0; i < g.columns.size(); ++i) {
       const int c = g.columns[i];
-      s << (i ? ", \\\n     " : "") << (i ? "''" : Quote(csv_path)) << " using 1:" << (c + 1)
+      s << (i ? ", \\\n     " : "") << (i ? "''" : Quote(csv_name)) << " using 1:" << (c + 1)
         << " every ::1 with lines lw 1.5 title " << Quote(results.columns()[c]);
     }
     s << "\n";
@@ -54,18 +61,17 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
   return s.str();
 }
 
-std::string DrawPlot(const std::string& script, const std::string& plot_path) {
-  const std::string script_path = plot_path + ".gp";
-  {
-    std::ofstream out(script_path);
-    if (!out) return "cannot write '" + script_path + "'";
-    out << script;
-  }
-  // no shell: file names from a diagram never reach one
+std::string DrawPlot(const std::string& script, const OutputFolder& folder, const std::string& plot_name) {
+  std::string script_name = plot_name + ".gp";
+  folder.Write(script_name, script);
+  folder.Clear(plot_name);  // so that a plot there afterwards is gnuplot's
+  // no shell, and gnuplot runs in the output folder, so that the script
+  // names only the plain file names of the diagram
   std::string program = "gnuplot";
-  std::vector<char*> argv = {program.data(), const_cast<char*>(script_path.c_str()), nullptr};
+  std::vector<char*> argv = {program.data(), script_name.data(), nullptr};
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, folder.path().c_str());
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
   pid_t pid = 0;
   const int error = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv.data(), environ);
@@ -76,7 +82,9 @@ std::string DrawPlot(const std::string& script, const std::string& plot_path) {
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    return "gnuplot failed on '" + script_path + "' (its messages are above)";
+    throw WriteError("gnuplot failed on '" + folder.PathOf(script_name) + "' (its messages are above)");
+  if (!folder.HasFile(plot_name))
+    throw WriteError("gnuplot made no '" + folder.PathOf(plot_name) + "' (is the disk full?)");
   return "";
 }
 

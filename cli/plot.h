@@ -9,17 +9,21 @@
 #include <vector>
 
 #include "blocks/results.h"
+#include "cli/output_folder.h"
 #include "diagrams/loader.h"
 
 namespace mechflow::cli {
 
-// The gnuplot script that draws `groups` of the CSV file `csv_path` into
-// `plot_path` (absolute paths are best: gnuplot runs in another folder).
+// The gnuplot script that draws `groups` of the CSV file `csv_name` into
+// `plot_name`, both plain names in the folder gnuplot runs in. Every text
+// is a single-quoted gnuplot string that cannot end its line.
 std::string GnuplotScript(const blocks::Results& results, const std::vector<diagrams::PlotGroup>& groups,
-                          const std::string& title, const std::string& csv_path, const std::string& plot_path);
+                          const std::string& title, const std::string& csv_name, const std::string& plot_name);
 
-// Writes `plot_path + ".gp"` and runs gnuplot on it. Returns "" on success,
-// otherwise why no plot was made (gnuplot missing, gnuplot failed).
-std::string DrawPlot(const std::string& script, const std::string& plot_path);
+// Writes `plot_name + ".gp"` into the folder and runs gnuplot on it there.
+// Returns "" when the plot was drawn, or why gnuplot could not be run (not
+// installed), a warning. Throws WriteError when gnuplot failed or made no
+// plot file.
+std::string DrawPlot(const std::string& script, const OutputFolder& folder, const std::string& plot_name);
 
 }  // namespace mechflow::cli

@@ -68,13 +68,10 @@ void PrintScriptChanges(const scripting::ControlScript& script, const scripting:
 }
 
 void WriteScriptChanges(const scripting::ControlScript& script, const scripting::IdentifierTable& identifiers,
-                        const std::string& path) {
-  std::ofstream file(path);
-  if (!file) throw std::runtime_error("cannot write '" + path + "'");
+                        std::ostream& file) {
   file << "time,identifier,value\n";
   file.precision(17);
   for (const auto& c : script.changes()) file << c.time << "," << identifiers.name(c.identifier) << "," << c.value << "\n";
-  if (!file) throw std::runtime_error("error writing '" + path + "'");
 }
 
 void PrintStats(const blocks::SolverStats& s, std::ostream& out) {

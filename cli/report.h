@@ -33,9 +33,8 @@ void PrintScriptChanges(const scripting::ControlScript& script, const scripting:
                         std::ostream& out);
 
 // Every change of the script, one CSV line each: time,identifier,value.
-// Throws std::runtime_error when the file cannot be written.
 void WriteScriptChanges(const scripting::ControlScript& script, const scripting::IdentifierTable& identifiers,
-                        const std::string& path);
+                        std::ostream& out);
 
 // `mechflow check`: identifiers, schedule, state layout, crossings, sampled blocks.
 void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out);

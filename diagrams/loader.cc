@@ -66,6 +66,19 @@ blocks::BlockParams EvaluateParams(const BlockDesc& b, const blocks::BlockType& 
   return params;
 }
 
+// "" when `name` is a plain file name that stays inside the output folder;
+// else why not. A diagram may come from someone else: it names files, the
+// command line (--out) says where they go.
+std::string OutputNameProblem(const std::string& name) {
+  if (name.empty() || name == "." || name == "..") return "is not a file name";
+  if (name.find_first_of("/\\") != std::string::npos)
+    return "must be a plain file name (no folders: results go into the folder given by --out)";
+  if (name.size() > 200) return "is longer than 200 characters";
+  for (const char c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return "holds a control character";
+  return "";
+}
+
 void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, const LoadOptions& options,
                         blocks::SolverOptions* solver) {
   for (const auto& a : d.solver) {
@@ -298,11 +311,17 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   CollectReports(d, eval, &out);
   const Attribute* csv = FindAttribute(d.output, "csv");
   out.csv_file = csv && !Trim(csv->value).empty() ? Trim(csv->value) : d.name + ".csv";
+  if (const std::string problem = OutputNameProblem(out.csv_file); !problem.empty())
+    throw InputError(csv ? csv->loc.str() + ": csv file '" + out.csv_file + "' " + problem
+                         : d.output_loc.str() + ": the results file '" + out.csv_file + "' named after the diagram " +
+                               problem + "; name it with <output csv=\"...\">");
   if (const Attribute* plot = FindAttribute(d.output, "plot")) {
     out.plot_file = Trim(plot->value);
     const std::string ext = std::filesystem::path(out.plot_file).extension().string();
     if (!out.plot_file.empty() && ext != ".png" && ext != ".svg")
       throw InputError(plot->loc.str() + ": plot file '" + out.plot_file + "' must end in .png or .svg");
+    if (const std::string problem = OutputNameProblem(out.plot_file); !out.plot_file.empty() && !problem.empty())
+      throw InputError(plot->loc.str() + ": plot file '" + out.plot_file + "' " + problem);
   }
   out.description = std::move(d);
   return out;

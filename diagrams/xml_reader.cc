@@ -99,6 +99,7 @@ class Reader {
     allowed.insert(allowed.end(), s.optional.begin(), s.optional.end());
     for (const XMLAttribute* a = e->FirstAttribute(); a; a = a->Next()) {
       const std::string name = a->Name();
+      CheckNameText(e, name, a->Value());
       if (s.open_attributes || std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
       Fail(e, "<" + std::string(e->Name()) + "> has no attribute '" + name + "'" +
                   blocks::DidYouMean(name, allowed) +
@@ -114,6 +115,21 @@ class Reader {
                   (s.children.empty() ? "; <" + std::string(e->Name()) + "> has no child elements"
                                       : "; expected one of: " + blocks::JoinNames(s.children)));
     }
+  }
+
+  // Names, labels and file names end up in CSV headers, plot scripts and
+  // file names: none may hold a line break or other control character
+  // (written as a character reference, the XML check lets them through).
+  void CheckNameText(const XMLElement* e, const std::string& attribute, const char* value) const {
+    static const char* kNameAttributes[] = {"name",   "label", "group", "unit", "csv",  "plot",
+                                            "signal", "from",  "to",    "type", "identifier"};
+    if (std::find_if(std::begin(kNameAttributes), std::end(kNameAttributes),
+                     [&](const char* n) { return attribute == n; }) == std::end(kNameAttributes))
+      return;
+    for (const char* c = value; *c; ++c)
+      if (static_cast<unsigned char>(*c) < 0x20 || *c == 0x7f)
+        Fail(e, "<" + std::string(e->Name()) + "> " + attribute +
+                    "= holds a line break or another control character; names, labels and file names may not");
   }
 
   std::string Text(const XMLElement* e, const char* attribute) const {

@@ -1,0 +1,191 @@
+// A diagram from someone else, run as a user would run it: it cannot run a
+// command through the plot script, cannot write outside the output folder,
+// cannot make a file format say what it likes, cannot hang the run on a
+// file that never ends, and a file that could not be written is a failure
+// that says what was and was not written.
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "blocks/results.h"
+#include "cli/output_folder.h"
+#include "cli/plot.h"
+#include "tests/cli/mechflow_command.h"
+
+namespace mechflow::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using mechflow::testing::ReadFile;
+using mechflow::testing::RunMechflow;
+using ::testing::HasSubstr;
+
+class HostileDiagramTest : public ::testing::Test {
+ protected:
+  HostileDiagramTest() {
+    dir_ = fs::path(::testing::TempDir()) / ("mechflow_hostile_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "out");
+  }
+  ~HostileDiagramTest() override { fs::remove_all(dir_); }
+
+  // Writes a diagram with `name`, `output` attributes and a log label; returns its path.
+  std::string Diagram(const std::string& name, const std::string& output, const std::string& label = "x",
+                      const std::string& group = "g") {
+    const fs::path path = dir_ / "d.xml";
+    std::ofstream(path) << "<diagram name=\"" << name << "\">\n"
+                        << "<blocks><block type=\"constant\" name=\"c\" value=\"1\"/></blocks>\n"
+                        << "<solver t_end=\"1\"/>\n"
+                        << "<output interval=\"0.5\" " << output << ">\n"
+                        << "  <log signal=\"c.y\" label=\"" << label << "\" group=\"" << group << "\"/>\n"
+                        << "</output>\n</diagram>\n";
+    return path.string();
+  }
+  std::string Out() const { return (dir_ / "out").string(); }
+  fs::path dir_;
+};
+
+// What a hostile text tries in the gnuplot script: end the string, end the
+// line, and call system().
+const std::string kMarker = "mechflow_hostile_marker";
+std::string Attack(const std::string& marker) {
+  return "a' \\\" \\\\ `touch " + marker + "` system('touch " + marker + "') '";
+}
+
+TEST_F(HostileDiagramTest, NoTextReachesGnuplotAsACommand) {
+  const std::string marker = (dir_ / kMarker).string();
+  // quotes, backslashes, backquotes and system(...) in every text field: drawn, not run
+  const std::string text = "q&apos;&quot;\\ `touch " + marker + "` system(&apos;touch " + marker + "&apos;)";
+  const auto run = RunMechflow("run " + Diagram(text, "csv=\"r.csv\" plot=\"r.png\"", text, text) + " --out " + Out());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "r.png"));
+  EXPECT_FALSE(fs::exists(marker));
+  // a line break in any of them is refused at its line, before anything is written
+  for (const std::string& attributes : {std::string("name=\"a&#10;system('touch ") + marker + "')\""}) {
+    const fs::path path = dir_ / "nl.xml";
+    std::ofstream(path) << "<diagram " << attributes << "/>\n";
+    const auto refused = RunMechflow("run " + path.string() + " --out " + Out());
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_THAT(refused.err, HasSubstr("nl.xml:1: <diagram> name= holds a line break or another control character"));
+  }
+  for (const char* field : {"label", "group"}) {
+    const std::string nl = "a&#10;system(&apos;touch " + marker + "&apos;)";
+    const auto refused = RunMechflow("run " + Diagram("d", "plot=\"p.png\"", field == std::string("label") ? nl : "x",
+                                                      field == std::string("group") ? nl : "g") +
+                                     " --out " + Out());
+    EXPECT_EQ(refused.exit_code, 2) << field;
+    EXPECT_THAT(refused.err, HasSubstr(std::string("d.xml:5: <log> ") + field + "= holds a line break")) << field;
+  }
+  EXPECT_FALSE(fs::exists(marker));
+}
+
+// The script itself, given line breaks directly (as no diagram can give
+// them): every text stays inside its string.
+TEST_F(HostileDiagramTest, TheGnuplotScriptKeepsEveryTextOnItsLine) {
+  const std::string marker = (dir_ / kMarker).string();
+  const std::string attack = "x'\n!touch " + marker + "\nsystem('touch " + marker + "')\r\n'";
+  blocks::Results results({attack});
+  const double row[] = {0.0, 1.0};
+  results.AddRow(row);
+  const OutputFolder folder(Out());
+  std::ostringstream csv;
+  results.WriteCsv(csv);
+  folder.Write("r.csv", csv.str());
+  const std::string script = GnuplotScript(results, {{attack, {1}}}, attack, "r.csv", "r.svg");
+  for (std::size_t at = script.find("touch"); at != std::string::npos; at = script.find("touch", at + 1)) {
+    const std::size_t line = script.rfind('\n', at) + 1;
+    EXPECT_EQ(script[script.find_first_not_of(' ', line)] == '!', false) << script;
+  }
+  EXPECT_EQ(DrawPlot(script, folder, "r.svg"), "");
+  EXPECT_FALSE(fs::exists(marker));
+  // the CSV header stays one line: the label is quoted
+  EXPECT_THAT(csv.str(), ::testing::StartsWith("time,\"x'\n!touch "));
+}
+
+TEST_F(HostileDiagramTest, OutputNamesStayInsideTheOutputFolder) {
+  for (const std::string& output : {"csv=\"../escaped.csv\"", "csv=\"/tmp/escaped.csv\"", "plot=\"/tmp/escaped.png\"",
+                                    "plot=\"sub/../../escaped.png\"", "csv=\"..\""}) {
+    const auto run = RunMechflow("run " + Diagram("d", output) + " --out " + Out());
+    EXPECT_EQ(run.exit_code, 2) << output;
+    EXPECT_THAT(run.err, HasSubstr("d.xml:4:")) << output;
+    EXPECT_THAT(run.err, ::testing::AnyOf(HasSubstr("must be a plain file name"), HasSubstr("is not a file name")))
+        << output;
+  }
+  const auto named = RunMechflow("run " + Diagram("../../escaped", "") + " --out " + Out());
+  EXPECT_EQ(named.exit_code, 2);
+  EXPECT_THAT(named.err, HasSubstr("the results file '../../escaped.csv' named after the diagram must be a plain"));
+  EXPECT_FALSE(fs::exists(dir_ / "escaped.csv"));
+  EXPECT_FALSE(fs::exists(dir_.parent_path() / "escaped.csv"));
+}
+
+TEST_F(HostileDiagramTest, ASymbolicLinkInTheOutputFolderIsNotFollowed) {
+  const fs::path victim = dir_ / "victim.txt";
+  std::ofstream(victim) << "precious\n";
+  fs::create_symlink(victim, dir_ / "out" / "r.csv");
+  fs::create_symlink(victim, dir_ / "out" / "r.png");
+  const auto run = RunMechflow("run " + Diagram("d", "csv=\"r.csv\" plot=\"r.png\"") + " --out " + Out());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.err, HasSubstr("r.csv': it is a symbolic link, which is not followed"));
+  EXPECT_THAT(run.err, HasSubstr("not written: r.csv, r.png in "));
+  EXPECT_THAT(run.err, HasSubstr("; written: nothing"));
+  EXPECT_EQ(ReadFile(victim), "precious\n");
+}
+
+TEST_F(HostileDiagramTest, ABadOutputFolderIsBadInputBeforeTheRun) {
+  std::ofstream(dir_ / "file") << "x";
+  const auto run = RunMechflow("run " + Diagram("d", "") + " --out " + (dir_ / "file" / "sub").string());
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("cannot create the output folder"));
+  EXPECT_THAT(run.out, ::testing::Not(HasSubstr("finished")));
+}
+
+TEST_F(HostileDiagramTest, AFullDiskIsAWriteErrorNamingTheFile) {
+  if (::access("/dev/full", W_OK) != 0 || ::access("/dev", W_OK) != 0) GTEST_SKIP() << "needs /dev/full";
+  const OutputFolder dev("/dev");
+  try {
+    dev.Write("full", std::string(1 << 16, 'x'));
+    FAIL() << "no error";
+  } catch (const WriteError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("error writing '/dev/full' after 0 of 65536 bytes: No space left on device"));
+  }
+}
+
+TEST_F(HostileDiagramTest, FilesThatNeverEndAreRefusedAtOnce) {
+  const fs::path fifo = dir_ / "fifo.lua";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const fs::path big = dir_ / "big.xml";
+  { std::ofstream(big).seekp((64 << 20) + 10) << 'x'; }  // sparse: 64 MiB + 11 bytes
+  struct Case {
+    std::string args, expected;
+  };
+  const fs::path script_user = dir_ / "s.xml";
+  std::ofstream(script_user) << "<diagram><script src=\"fifo.lua\"/></diagram>\n";
+  const fs::path mechanism_user = dir_ / "m.xml";
+  std::ofstream(mechanism_user) << "<diagram>\n<mechanism name=\"m\" src=\"/dev/zero\"/></diagram>\n";
+  for (const Case& c : {Case{"check /dev/zero", "diagram file '/dev/zero' is not a regular file (a device)"},
+                        Case{"check " + dir_.string(), "is not a regular file (a folder)"},
+                        Case{"check " + fifo.string(), "is not a regular file (a pipe)"},
+                        Case{"check " + big.string(), "has 67108875 bytes; input files may have at most 64 MiB"},
+                        Case{"check " + script_user.string(), "s.xml:1: script file '" + fifo.string() +
+                                                                  "' is not a regular file (a pipe)"},
+                        Case{"check " + mechanism_user.string(), "m.xml:2: mechanism file '/dev/zero' is not a "
+                                                                 "regular file (a device)"}}) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto run = RunMechflow(c.args);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(run.exit_code, 2) << c.args;
+    EXPECT_THAT(run.err, HasSubstr(c.expected)) << c.args;
+    EXPECT_LT(seconds, 2.0) << c.args;
+  }
+}
+
+}  // namespace
+}  // namespace mechflow::cli
