@@ -12,6 +12,7 @@
 // are found at build time; each becomes one schedule entry, solved by Newton
 // on a few of its signals at every evaluation (see AlgebraicLoop).
 
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -70,6 +71,7 @@ class Diagram {
 
   std::vector<std::unique_ptr<Block>> blocks_;
   std::vector<std::string> origins_;
+  std::map<std::string, int, std::less<>> block_index_;  // name -> block, for FindBlock
   std::vector<BlockLayout> layouts_;
   std::vector<Connection> connections_;
   std::vector<OutputNode> schedule_;

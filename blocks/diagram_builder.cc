@@ -1,7 +1,6 @@
 #include "blocks/diagram_builder.h"
 
 #include <algorithm>
-#include <functional>
 #include <map>
 
 #include "blocks/suggest.h"
@@ -31,9 +30,8 @@ std::pair<std::string_view, std::string_view> SplitReference(std::string_view re
 }  // namespace
 
 int Diagram::FindBlock(std::string_view name) const {
-  for (int i = 0; i < num_blocks(); ++i)
-    if (blocks_[i]->name() == name) return i;
-  return -1;
+  const auto it = block_index_.find(name);
+  return it == block_index_.end() ? -1 : it->second;
 }
 
 SignalRef Diagram::ResolveSignal(std::string_view reference) const {
@@ -83,6 +81,7 @@ Block& DiagramBuilder::AddBlock(std::unique_ptr<Block> block, std::string origin
   if (block->name().empty() || block->name().find('.') != std::string::npos)
     throw InputError(Where(origin) + "block name '" + block->name() +
                      "' must be non-empty and contain no '.'");
+  diagram_->block_index_.emplace(block->name(), diagram_->num_blocks());
   diagram_->blocks_.push_back(std::move(block));
   diagram_->origins_.push_back(std::move(origin));
   return *diagram_->blocks_.back();
@@ -97,8 +96,13 @@ Connection DiagramBuilder::Resolve(const PendingConnection& c) const {
   const Diagram& d = *diagram_;
   const std::string what =
       Where(c.origin) + "connection from '" + c.from + "' to '" + c.to + "': ";
-  std::vector<std::string> block_names;
-  for (const auto& b : d.blocks_) block_names.push_back(b->name());
+  // only for a message: a list of every name per connection would make
+  // resolving quadratic in the number of blocks
+  const auto block_names = [&] {
+    std::vector<std::string> names;
+    for (const auto& b : d.blocks_) names.push_back(b->name());
+    return names;
+  };
 
   auto find_port = [&](const std::string& ref, bool output, int* block, int* port) {
     const auto [block_name, port_name] = SplitReference(ref);
@@ -106,7 +110,7 @@ Connection DiagramBuilder::Resolve(const PendingConnection& c) const {
     *block = d.FindBlock(block_name);
     if (*block < 0)
       throw InputError(what + "there is no block named '" + std::string(block_name) + "'" +
-                       DidYouMean(block_name, block_names));
+                       DidYouMean(block_name, block_names()));
     const Block& b = *d.blocks_[*block];
     const auto names = PortNames(b, output);
     const int count = output ? b.num_outputs() : b.num_inputs();
@@ -217,44 +221,66 @@ namespace {
 // port v depends directly on port u through that connection.
 using Edges = std::vector<std::vector<std::pair<int, int>>>;
 
-// Strongly connected components (Tarjan) of the subgraph of `active` nodes,
-// sinks first.
-std::vector<std::vector<int>> Components(const Edges& edges, const std::vector<bool>& active) {
-  const int n = static_cast<int>(edges.size());
-  std::vector<int> index(n, -1), low(n, 0), stack;
-  std::vector<bool> on_stack(n, false);
-  std::vector<std::vector<int>> components;
-  int counter = 0;
-  std::function<void(int)> visit = [&](int u) {
-    index[u] = low[u] = counter++;
-    stack.push_back(u);
-    on_stack[u] = true;
-    for (const auto& [v, ci] : edges[u]) {
-      if (!active[v]) continue;
-      if (index[v] < 0) {
-        visit(v);
-        low[u] = std::min(low[u], low[v]);
-      } else if (on_stack[v]) {
-        low[u] = std::min(low[u], index[v]);
+// Strongly connected components (Tarjan's algorithm, iterative: a chain of
+// 100000 blocks must not recurse 100000 deep). One finder serves every call
+// of a schedule: its marks are sized once and reset only where a call
+// touched them, so a call costs what its subgraph holds, not the diagram.
+class ComponentFinder {
+ public:
+  explicit ComponentFinder(const Edges& edges)
+      : edges_(edges), index_(edges.size(), -1), low_(edges.size(), 0), on_stack_(edges.size(), 0) {}
+
+  // The components of the subgraph of `nodes` that are `active` (a mask over
+  // every node; active nodes outside `nodes` must not be reachable), sinks
+  // first.
+  std::vector<std::vector<int>> operator()(const std::vector<int>& nodes, const std::vector<char>& active) {
+    std::vector<std::vector<int>> components;
+    int counter = 0;
+    const auto enter = [&](int u) {
+      index_[u] = low_[u] = counter++;
+      stack_.push_back(u);
+      on_stack_[u] = 1;
+      calls_.push_back({u, 0});
+    };
+    for (const int root : nodes) {
+      if (!active[root] || index_[root] >= 0) continue;
+      enter(root);
+      while (!calls_.empty()) {
+        const int u = calls_.back().first;
+        std::size_t& next = calls_.back().second;
+        if (next < edges_[u].size()) {
+          const int v = edges_[u][next++].first;
+          if (!active[v]) continue;
+          if (index_[v] < 0) enter(v);
+          else if (on_stack_[v]) low_[u] = std::min(low_[u], index_[v]);
+          continue;
+        }
+        calls_.pop_back();
+        if (!calls_.empty()) low_[calls_.back().first] = std::min(low_[calls_.back().first], low_[u]);
+        if (low_[u] != index_[u]) continue;
+        std::vector<int> comp;
+        int v;
+        do {
+          v = stack_.back();
+          stack_.pop_back();
+          on_stack_[v] = 0;
+          comp.push_back(v);
+        } while (v != u);
+        components.push_back(std::move(comp));
       }
     }
-    if (low[u] == index[u]) {
-      std::vector<int> comp;
-      int v;
-      do {
-        v = stack.back();
-        stack.pop_back();
-        on_stack[v] = false;
-        comp.push_back(v);
-      } while (v != u);
-      components.push_back(comp);
-    }
-  };
-  for (int u = 0; u < n; ++u)
-    if (active[u] && index[u] < 0) visit(u);
-  return components;
-}
+    for (const int u : nodes) index_[u] = -1;
+    return components;
+  }
 
+ private:
+  const Edges& edges_;
+  std::vector<int> index_, low_, stack_;
+  std::vector<char> on_stack_;
+  std::vector<std::pair<int, std::size_t>> calls_;  // (node, next edge) of the depth-first walk
+};
+
+// A component is a cycle when it has more than one node or a node feeding itself.
 bool IsCycle(const std::vector<int>& comp, const Edges& edges) {
   if (comp.size() > 1) return true;
   for (const auto& e : edges[comp.front()])
@@ -265,19 +291,24 @@ bool IsCycle(const std::vector<int>& comp, const Edges& edges) {
 // Output ports that cut every cycle of a loop: repeatedly, in each cycle that
 // remains, the port with the most paths through it (in-degree x out-degree
 // inside the cycle; ties to the narrower, then the earlier port). Few tears
-// make a small Newton system.
-std::vector<int> ChooseTears(const std::vector<int>& loop, const Edges& edges, const std::vector<int>& width) {
-  std::vector<bool> active(edges.size(), false);
-  for (const int u : loop) active[u] = true;
+// make a small Newton system. `mask` is a zeroed scratch mask over every
+// node, left zeroed.
+std::vector<int> ChooseTears(const std::vector<int>& loop, const Edges& edges, const std::vector<int>& width,
+                             ComponentFinder& find_components, std::vector<char>& mask) {
+  for (const int u : loop) mask[u] = 1;
+  std::map<int, int> in, out;
   std::vector<int> tears;
   for (bool cut = true; cut;) {
     cut = false;
-    for (const auto& comp : Components(edges, active)) {
+    for (const auto& comp : find_components(loop, mask)) {
       if (!IsCycle(comp, edges)) continue;
-      std::map<int, int> in, out;
+      in.clear();
+      out.clear();
+      for (const int u : comp) mask[u] = 2;  // in this component
       for (const int u : comp)
         for (const auto& [v, ci] : edges[u])
-          if (std::find(comp.begin(), comp.end(), v) != comp.end()) ++out[u], ++in[v];
+          if (mask[v] == 2) ++out[u], ++in[v];
+      for (const int u : comp) mask[u] = 1;
       int best = comp.front();
       for (const int u : comp) {
         const long score = long(in[u]) * out[u], best_score = long(in[best]) * out[best];
@@ -286,10 +317,11 @@ std::vector<int> ChooseTears(const std::vector<int>& loop, const Edges& edges, c
           best = u;
       }
       tears.push_back(best);
-      active[best] = false;
+      mask[best] = 0;
       cut = true;
     }
   }
+  for (const int u : loop) mask[u] = 0;
   return tears;
 }
 
@@ -324,22 +356,24 @@ void DiagramBuilder::Schedule(Diagram* d) const {
 
   // One cycle of the loop as block.port hops, for messages; `port` gets the
   // port the cycle starts from.
+  std::vector<char> mask(n, 0), seen(n, 0);  // scratch, zero between uses
   auto describe = [&](const std::vector<int>& comp, std::string* port) {
-    std::vector<bool> in_comp(n, false), seen(n, false);
-    for (const int u : comp) in_comp[u] = true;
+    for (const int u : comp) mask[u] = 1;
     std::vector<std::pair<int, int>> path;  // (connection, node it reaches)
     std::vector<int> visited;
     int cur = comp.front();
     while (!seen[cur]) {
-      seen[cur] = true;
+      seen[cur] = 1;
       visited.push_back(cur);
       for (const auto& [v, ci] : edges[cur])
-        if (in_comp[v]) {
+        if (mask[v]) {
           path.push_back({ci, v});
           cur = v;
           break;
         }
     }
+    for (const int u : comp) mask[u] = 0;
+    for (const int u : visited) seen[u] = 0;
     // cur is the first node met twice: drop the lead-in before it
     const auto lead_in = std::find(visited.begin(), visited.end(), cur) - visited.begin();
     path.erase(path.begin(), path.begin() + lead_in);
@@ -357,19 +391,24 @@ void DiagramBuilder::Schedule(Diagram* d) const {
     return text;
   };
 
-  const std::vector<std::vector<int>> components = Components(edges, std::vector<bool>(n, true));
+  ComponentFinder find_components(edges);
+  std::vector<int> all(n);
+  for (int u = 0; u < n; ++u) all[u] = u;
+  const std::vector<std::vector<int>> components = find_components(all, std::vector<char>(n, 1));
+  std::multimap<int, int> copies_of;  // output slot -> input copy slots
+  for (const auto& [from, copy] : d->input_copies_) copies_of.emplace(from, copy);
   // Tarjan emits sinks first: reverse for evaluation order
   for (auto it = components.rbegin(); it != components.rend(); ++it) {
     if (!IsCycle(*it, edges)) {
       d->schedule_.push_back(nodes[it->front()]);
       continue;
     }
-    const std::vector<int> tear_ids = ChooseTears(*it, edges, width);
-    std::vector<bool> inner_active(n, false);
-    for (const int u : *it) inner_active[u] = true;
-    for (const int u : tear_ids) inner_active[u] = false;
+    const std::vector<int> tear_ids = ChooseTears(*it, edges, width, find_components, mask);
+    for (const int u : *it) mask[u] = 1;
+    for (const int u : tear_ids) mask[u] = 0;
     std::vector<OutputNode> inner, tears;
-    const auto order = Components(edges, inner_active);  // all single ports now, sinks first
+    const auto order = find_components(*it, mask);  // all single ports now, sinks first
+    for (const int u : *it) mask[u] = 0;
     for (auto o = order.rbegin(); o != order.rend(); ++o) inner.push_back(nodes[o->front()]);
     std::vector<int> offsets, widths;
     std::vector<std::pair<int, int>> copies;
@@ -379,8 +418,8 @@ void DiagramBuilder::Schedule(Diagram* d) const {
       tears.push_back(nodes[u]);
       offsets.push_back(offset);
       widths.push_back(width[u]);
-      for (const auto& [from, copy] : d->input_copies_)
-        if (from >= offset && from < offset + width[u]) copies.push_back({unknowns + from - offset, copy});
+      for (auto c = copies_of.lower_bound(offset); c != copies_of.end() && c->first < offset + width[u]; ++c)
+        copies.push_back({unknowns + c->first - offset, c->second});
       unknowns += width[u];
     }
     OutputNode entry = tears.front();

@@ -10,6 +10,9 @@ packages=(
   gnuplot-nox
   libopenmpi-dev openmpi-bin
 )
+# more for one script (scripts/fuzz.sh: clang and its libFuzzer runtime)
+read -r -a extra <<< "${MECHFLOW_EXTRA_PACKAGES:-}"
+packages+=("${extra[@]}")
 
 missing=()
 for p in "${packages[@]}"; do

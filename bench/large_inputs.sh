@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Loading, checking and scheduling large diagrams: `mechflow check` of a
+# chain of N gain blocks (N = 5000 ... 100000) and of a line of N bodies
+# joined by translational joints and springs (N = 1000 ... 10000), with the
+# wall time and peak memory of each and the growth exponent between sizes.
+#   bench/large_inputs.sh [build folder]     (default: build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mechflow=${1:-build}/mechflow
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+blocks() {  # N gains in a chain after a sine, into an integrator
+  awk -v n="$1" 'BEGIN {
+    print "<diagram name=\"chain\"><blocks><block type=\"sine\" name=\"s\"/>"
+    for (i = 1; i <= n; ++i) printf "<block type=\"gain\" name=\"g%d\" k=\"1\"/>\n", i
+    print "<block type=\"integrator\" name=\"x\"/></blocks><connections>"
+    print "<connect from=\"s.y\" to=\"g1.u\"/>"
+    for (i = 2; i <= n; ++i) printf "<connect from=\"g%d.y\" to=\"g%d.u\"/>\n", i - 1, i
+    printf "<connect from=\"g%d.y\" to=\"x.u\"/></connections></diagram>\n", n }'
+}
+bodies() {  # N bodies in a line, each on a translational joint and a spring
+  awk -v n="$1" 'BEGIN {
+    print "<diagram name=\"line\"><mechanism name=\"m\">"
+    for (i = 1; i <= n; ++i) {
+      printf "<body name=\"b%d\" mass=\"1\" inertia=\"1 1 1\"/>\n", i
+      printf "<joint name=\"j%d\" type=\"translational\" body1=\"%s\" body2=\"b%d\" axis=\"1 0 0\"/>\n", i, (i == 1 ? "Base0" : "b" (i - 1)), i
+      printf "<joint_force name=\"f%d\" type=\"linear\" dof=\"j%d\" c=\"100\"/>\n", i, i
+    }
+    print "</mechanism></diagram>" }'
+}
+
+measure() {  # kind n -> "seconds kib"
+  "$1" "$2" > "$work/d.xml"
+  /usr/bin/time -f "%e %M" -o "$work/time" "$mechflow" check "$work/d.xml" > /dev/null
+  cat "$work/time"
+}
+
+report() {  # kind sizes...
+  local kind=$1; shift
+  local previous_n="" previous_t=""
+  printf "%-8s %8s %10s %10s %9s\n" "$kind" N "time [s]" "peak MiB" "exponent"
+  for n in "$@"; do
+    read -r seconds kib < <(measure "$kind" "$n")
+    exponent="-"
+    if [ -n "$previous_n" ]; then
+      exponent=$(awk -v t1="$previous_t" -v t2="$seconds" -v n1="$previous_n" -v n2="$n" \
+        'BEGIN { if (t1 > 0 && t2 > 0) printf "%.2f", log(t2 / t1) / log(n2 / n1); else print "-" }')
+    fi
+    printf "%-8s %8d %10.2f %10.1f %9s\n" "" "$n" "$seconds" "$(awk -v k="$kib" 'BEGIN { print k / 1024 }')" "$exponent"
+    previous_n=$n previous_t=$seconds
+  done
+}
+
+report blocks 5000 10000 20000 50000 100000
+report bodies 1000 2000 4000 10000

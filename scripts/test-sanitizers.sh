@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# The whole test suite built with AddressSanitizer and UndefinedBehaviorSanitizer
+# and with assertions on (a Debug build at -O1), in build-asan/. Any finding
+# (a memory error, a leak, undefined behaviour, a failed assertion) fails
+# the test it happens in.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" -DMECHFLOW_SANITIZE=ON \
+  -DMECHFLOW_BUILD_BENCH=OFF >/dev/null
+cmake --build build-asan -j "$(nproc)"
+cd build-asan
+export ASAN_OPTIONS=abort_on_error=1:detect_leaks=1:strict_string_checks=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+ctest --output-on-failure -j "$(nproc)"
