@@ -54,3 +54,19 @@ report() {  # kind sizes...
 
 report blocks 5000 10000 20000 50000 100000
 report bodies 1000 2000 4000 10000
+
+# Instruction counts (callgrind: exact and repeatable on a busy machine),
+# for the growth exponent without timing noise; skipped without valgrind.
+if command -v valgrind >/dev/null && [ "${MECHFLOW_COUNT_INSTRUCTIONS:-1}" = 1 ]; then
+  count() {  # kind n -> instructions
+    "$1" "$2" > "$work/d.xml"
+    valgrind --tool=callgrind --callgrind-out-file="$work/cg" "$mechflow" check "$work/d.xml" >/dev/null 2>&1
+    awk '/^summary:/ { print $2 }' "$work/cg"
+  }
+  for pair in "blocks 25000 100000" "bodies 2500 10000"; do
+    read -r kind n1 n2 <<< "$pair"
+    i1=$(count "$kind" "$n1") i2=$(count "$kind" "$n2")
+    awk -v k="$kind" -v n1="$n1" -v n2="$n2" -v i1="$i1" -v i2="$i2" \
+      'BEGIN { printf "%-8s instructions %d: %.3g, %d: %.3g, exponent %.2f\n", k, n1, i1, n2, i2, log(i2 / i1) / log(n2 / n1) }'
+  done
+fi

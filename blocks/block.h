@@ -98,8 +98,12 @@ class Block {
   const SampleTime& sample_time() const { return sample_time_; }
   bool has_projection() const { return has_projection_; }
   // The declared sparsity, or nullptr: every derivative then reads every
-  // state and input, and every output every state (the safe default).
-  const BlockSparsity* sparsity() const { return sparsity_.derivative_states.empty() ? nullptr : &sparsity_; }
+  // state and input, and every output every state (the safe default). A
+  // block whose sparsity is costly to find may find it here, on first use
+  // (a run asks; loading and checking do not).
+  virtual const BlockSparsity* sparsity() const {
+    return sparsity_.derivative_states.empty() ? nullptr : &sparsity_;
+  }
 
   // --- run time ------------------------------------------------------------
   // Sets initial continuous and discrete states (inputs are not yet valid).

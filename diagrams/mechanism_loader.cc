@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <set>
 
 #include "blocks/library/mechanism_block.h"
 #include "blocks/suggest.h"
@@ -200,16 +202,15 @@ const std::vector<std::string> kJointTypes = {"rotational", "translational", "fi
 const std::vector<std::string> kEtTypes = {"tc", "tt", "tv", "rc", "rt", "rv"};
 
 mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
-                          const std::vector<mech::BodySpec>& bodies, const Evaluator& eval) {
+                          const std::map<std::string, mech::BodySpec>& bodies, const Evaluator& eval) {
   mech::JointSpec j;
   j.name = e.Text("name");
   j.body1 = e.Text("body1");
   j.body2 = e.Text("body2");
   j.origin = e.loc.str();
   auto body = [&](const std::string& name) -> const mech::BodySpec* {
-    for (const auto& b : bodies)
-      if (b.name == name) return &b;
-    return nullptr;
+    const auto it = bodies.find(name);
+    return it == bodies.end() ? nullptr : &it->second;
   };
   j.frame1 = Frame(r, e, "point1", "rotation1", body(j.body1));
   j.frame2 = Frame(r, e, "point2", "rotation2", body(j.body2));
@@ -566,11 +567,12 @@ std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const E
   const MechanismReader r(m, eval);
   mech::ModelBuilder builder;
   builder.SetGravity(r.Vector(m, "gravity", Vec3(0, 0, -9.81)));
-  std::vector<mech::BodySpec> bodies;
+  std::map<std::string, mech::BodySpec> bodies;  // by name, for the joints' frames
   for (const ElementDesc& e : m.children)
     if (e.tag == "body") {
-      bodies.push_back(ReadBody(r, e));
-      builder.AddBody(bodies.back());
+      mech::BodySpec body = ReadBody(r, e);
+      builder.AddBody(body);
+      bodies.emplace(body.name, std::move(body));
     }
   for (const ElementDesc& e : m.children)
     if (e.tag == "joint") builder.AddJoint(ReadJoint(r, e, bodies, eval));
@@ -579,14 +581,12 @@ std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const E
   const std::vector<double> v0(model->nv(), 0.0);
   mech::UpdateKinematics(*model, 0.0, model->initial_q(), v0, &kin0);
   std::vector<std::unique_ptr<mech::ForceElement>> elements;
-  std::vector<std::string> element_names;
+  std::set<std::string> element_names;
   for (const ElementDesc& e : m.children) {
     if (e.tag != "force" && e.tag != "joint_force" && e.tag != "bushing" && e.tag != "applied_force" &&
         e.tag != "contact" && e.tag != "gearing")
       continue;
-    if (std::find(element_names.begin(), element_names.end(), e.Text("name")) != element_names.end())
-      r.Fail(e, "a second element with this name");
-    element_names.push_back(e.Text("name"));
+    if (!element_names.insert(e.Text("name")).second) r.Fail(e, "a second element with this name");
     elements.push_back(ReadElement(r, e, *model, kin0));
   }
   std::vector<std::string> input_names;

@@ -280,7 +280,7 @@ Constraints::Load Constraints::LoadOf(const Model& model, const Kinematics& kin,
 
 ConstraintWorkspace::ConstraintWorkspace(const Model& model, const Constraints& constraints) {
   const int m = constraints.size(), n = model.nv();
-  M.setZero(n, n);
+  if (m > 0) M.setZero(n, n);  // dense, and needed only to solve with constraints
   J.setZero(m, n);
   phi.setZero(m);
   psi.setZero(m);

@@ -23,6 +23,7 @@
 // Coordinates: q (positions, nq) and v (velocities, nv); nq = nv except for
 // quaternion joints (7 positions, 6 velocities: [omega; v] in body 2 axes).
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -125,6 +126,9 @@ class Model {
   std::vector<Joint> joints_;
   std::vector<Segment> segments_;
   std::vector<Dof> dofs_;
+  // name -> index, for the Find functions (a linear search per name made
+  // building a long chain quadratic)
+  std::map<std::string, int, std::less<>> body_index_, joint_index_, dof_index_;
   Vec3 gravity_{0.0, 0.0, -9.81};
   int nq_ = 0, nv_ = 0;
   int num_cut_joints_ = 0;

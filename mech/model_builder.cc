@@ -45,25 +45,23 @@ bool IsRotation(TransformType t) {
 
 }  // namespace
 
-int Model::FindBody(const std::string& name) const {
-  for (int i = 0; i < num_bodies(); ++i)
-    if (bodies_[i].name == name) return i;
-  return -1;
+namespace {
+
+int Lookup(const std::map<std::string, int, std::less<>>& index, const std::string& name) {
+  const auto it = index.find(name);
+  return it == index.end() ? -1 : it->second;
 }
-int Model::FindJoint(const std::string& name) const {
-  for (int i = 0; i < static_cast<int>(joints_.size()); ++i)
-    if (joints_[i].name == name) return i;
-  return -1;
-}
-int Model::FindDof(const std::string& name) const {
-  for (int i = 0; i < static_cast<int>(dofs_.size()); ++i)
-    if (dofs_[i].name == name) return i;
-  return -1;
-}
+
+}  // namespace
+
+int Model::FindBody(const std::string& name) const { return Lookup(body_index_, name); }
+int Model::FindJoint(const std::string& name) const { return Lookup(joint_index_, name); }
+int Model::FindDof(const std::string& name) const { return Lookup(dof_index_, name); }
 
 ModelBuilder::ModelBuilder() : model_(new Model) {
   Body base;
   base.name = "Base0";
+  model_->body_index_.emplace(base.name, 0);
   model_->bodies_.push_back(base);
 }
 
@@ -79,14 +77,15 @@ void ModelBuilder::AddBody(BodySpec spec) {
   body.inertia = spec.inertia;
   body.points = std::move(spec.points);
   body.origin = spec.origin;
+  model_->body_index_.emplace(body.name, model_->num_bodies());
   model_->bodies_.push_back(std::move(body));
 }
 
 void ModelBuilder::AddJoint(JointSpec spec) {
   if (built_) throw std::logic_error("ModelBuilder used after Build()");
   const std::string where = Where(spec.origin) + "joint '" + spec.name + "': ";
-  for (const auto& other : joint_specs_)
-    if (other.name == spec.name) throw InputError(Where(spec.origin) + "joint '" + spec.name + "' is defined twice");
+  if (!joint_names_.insert(spec.name).second)
+    throw InputError(Where(spec.origin) + "joint '" + spec.name + "' is defined twice");
   for (const std::string* body : {&spec.body1, &spec.body2})
     if (model_->FindBody(*body) < 0)
       throw InputError(where + "unknown body '" + *body + "' (bodies are defined before the joints that use them)");
@@ -109,6 +108,7 @@ int ModelBuilder::AddDof(const std::string& name, int joint, bool rotational, do
     throw InputError(Where(joint_specs_[joint].origin) + "joint '" + joint_specs_[joint].name +
                      "': coordinate name '" + name + "' is used twice");
   Dof dof{name, joint, m.nq_, m.nv_, rotational};
+  m.dof_index_.emplace(name, static_cast<int>(m.dofs_.size()));
   m.dofs_.push_back(dof);
   m.initial_q_.push_back(q0);
   m.initial_v_.push_back(v0);
@@ -257,6 +257,7 @@ std::shared_ptr<const Model> ModelBuilder::Build() {
     joint.body1 = m.FindBody(joint_specs_[j].body1);
     joint.body2 = m.FindBody(joint_specs_[j].body2);
     joint.origin = joint_specs_[j].origin;
+    m.joint_index_.emplace(joint.name, static_cast<int>(m.joints_.size()));
     m.joints_.push_back(joint);
   }
   // Spanning tree: sweep the joints in file order until nothing new is placed.

@@ -8,6 +8,7 @@
 // axis, an unknown or repeated name, a body not connected to Base0.
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,7 @@ class ModelBuilder {
 
   std::unique_ptr<Model> model_;
   std::vector<JointSpec> joint_specs_;
+  std::set<std::string> joint_names_;
   bool built_ = false;
 };
 

@@ -69,11 +69,14 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
                                                           : CrossingDirection::kEither);
     }
   if (!mechanism_->constraints().empty() || mechanism_->model().has_quaternions()) DeclareProjection();
-  // which states each derivative and sensor reads, from the topology
-  if (auto sparsity = MechanismSparsity(*mechanism_, sensors_)) DeclareSparsity(std::move(*sparsity));
   for (const auto& sensor : sensors_)
     if (sensor.kind == mech::SensorKind::kReactionForce || sensor.kind == mech::SensorKind::kReactionTorque)
       ws_.want_reactions = true;
+}
+
+const BlockSparsity* MechanismBlock::sparsity() const {
+  if (!sparsity_) sparsity_ = MechanismSparsity(*mechanism_, sensors_);
+  return *sparsity_ ? &**sparsity_ : nullptr;
 }
 
 std::span<const double> MechanismBlock::Inputs(const BlockContext& ctx) const {

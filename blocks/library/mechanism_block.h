@@ -34,6 +34,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "blocks/block.h"
@@ -50,6 +51,10 @@ class MechanismBlock final : public Block {
   // Largest position-constraint residual (max norm) seen before projection
   // during the run, and at the last projection after it.
   double worst_constraint_residual() const { return worst_residual_; }
+
+  // From the topology, found on first use: for a long serial chain the
+  // pattern is dense, and `mechflow check` should not pay for it.
+  const BlockSparsity* sparsity() const override;
 
  private:
   void DoInitialize(const BlockContext& ctx) const override;
@@ -70,6 +75,7 @@ class MechanismBlock final : public Block {
   mutable std::uint64_t positions_at_ = ~std::uint64_t{0}, full_at_ = ~std::uint64_t{0},
                         elements_at_ = ~std::uint64_t{0};
   mutable double worst_residual_ = 0.0;
+  mutable std::optional<std::optional<BlockSparsity>> sparsity_;  // outer: found yet
 };
 
 }  // namespace mechflow::blocks

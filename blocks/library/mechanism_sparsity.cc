@@ -71,8 +71,8 @@ std::optional<BlockSparsity> MechanismSparsity(const mech::Mechanism& m,
   for (int i = 0; i < nq; ++i) group_coordinates[group_of_segment(q_owner[i])].push_back(i);
   for (int i = 0; i < nv; ++i) group_coordinates[group_of_segment(v_owner[i])].push_back(nq + i);
 
-  // what each element touches and reads
-  std::vector<IndexSet> element_groups(m.num_elements()), element_reads(m.num_elements());
+  // the groups each element touches
+  std::vector<IndexSet> element_groups(m.num_elements());
   for (int e = 0; e < m.num_elements(); ++e) {
     const mech::ForceElement& element = m.element(e);
     IndexSet& g = element_groups[e];
@@ -80,21 +80,38 @@ std::optional<BlockSparsity> MechanismSparsity(const mech::Mechanism& m,
       if (segment_of_body(body) != mech::kGround) g.push_back(group_of_segment(segment_of_body(body)));
     for (const int v : element.coordinates()) g.push_back(group_of_segment(v_owner[v]));
     Normalize(&g);
-    for (const int group : g) Add(group_coordinates[group], &element_reads[e]);
-    for (int k = 0; k < element.num_states(); ++k) element_reads[e].push_back(m.state_offset(e) + k);
-    Normalize(&element_reads[e]);
   }
+  const auto element_states = [&](int e, IndexSet* into) {
+    for (int k = 0; k < m.element(e).num_states(); ++k) into->push_back(m.state_offset(e) + k);
+  };
+  // what an element reads: the coordinates of its groups and its states
+  // (built where needed: one copy per element would be quadratic in a chain)
+  const auto element_reads = [&](int e) {
+    IndexSet reads;
+    for (const int group : element_groups[e]) Add(group_coordinates[group], &reads);
+    element_states(e, &reads);
+    Normalize(&reads);
+    return reads;
+  };
 
-  // what the accelerations of each group read, and whether inputs reach them
-  std::vector<IndexSet> group_reads(num_segments);
+  // What the accelerations of each group read: the coordinates of every
+  // group its elements touch, and those elements' states; and whether
+  // inputs reach them. Groups are gathered first, so each group's
+  // coordinates are added once however many elements share them.
+  std::vector<IndexSet> group_reads(num_segments), touched(num_segments);
   std::vector<bool> group_inputs(num_segments, false);
-  for (int g = 0; g < num_segments; ++g) group_reads[g] = group_coordinates[g];
+  for (int g = 0; g < num_segments; ++g) touched[g].push_back(g);
   for (int e = 0; e < m.num_elements(); ++e)
     for (const int g : element_groups[e]) {
-      Add(element_reads[e], &group_reads[g]);
+      Add(element_groups[e], &touched[g]);
+      element_states(e, &group_reads[g]);
       if (m.element(e).depends_on_inputs()) group_inputs[g] = true;
     }
-  for (IndexSet& s : group_reads) Normalize(&s);
+  for (int g = 0; g < num_segments; ++g) {
+    Normalize(&touched[g]);
+    for (const int h : touched[g]) Add(group_coordinates[h], &group_reads[g]);
+    Normalize(&group_reads[g]);
+  }
 
   IndexSet all_inputs(m.num_inputs());
   std::iota(all_inputs.begin(), all_inputs.end(), 0);
@@ -120,7 +137,7 @@ std::optional<BlockSparsity> MechanismSparsity(const mech::Mechanism& m,
   }
   for (int e = 0; e < m.num_elements(); ++e)
     for (int k = 0; k < m.element(e).num_states(); ++k) {
-      out.derivative_states[m.state_offset(e) + k] = element_reads[e];
+      out.derivative_states[m.state_offset(e) + k] = element_reads(e);
       if (m.element(e).depends_on_inputs()) out.derivative_inputs[m.state_offset(e) + k] = all_inputs;
     }
 
@@ -160,7 +177,7 @@ std::optional<BlockSparsity> MechanismSparsity(const mech::Mechanism& m,
         body_group_reads(model.joints()[sensor.index].body2, &row);
         break;
       case mech::SensorKind::kElement:
-        row = element_reads[sensor.index];
+        row = element_reads(sensor.index);
         break;
       default:
         row = everything;  // a kind added later: the safe answer
