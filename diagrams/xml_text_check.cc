@@ -51,7 +51,9 @@ class TextChecker {
   void Run() {
     CheckEncoding();
     for (std::size_t i = 0; i < text_.size();) {
-      if (StartsWith(i, "<!--")) {
+      if (text_[i] != '<' && text_[i] != '&') {
+        ++i;
+      } else if (StartsWith(i, "<!--")) {
         i = Skip(i, "-->", "a comment");
       } else if (StartsWith(i, "<![CDATA[")) {
         i = Skip(i, "]]>", "a CDATA section");

@@ -74,10 +74,6 @@ Mat3 ShaftFrame(const Vec3& axis, const Vec3& reference) {
 }  // namespace
 
 Constraints::Constraints(const Model& model, std::span<const double> q0) {
-  const auto& segments = model.segments();
-  is_ancestor_.assign(segments.size(), std::vector<bool>(segments.size(), false));
-  for (std::size_t s = 0; s < segments.size(); ++s)
-    for (int a = static_cast<int>(s); a != kGround; a = segments[a].parent) is_ancestor_[s][a] = true;
   Kinematics kin(model);
   const std::vector<double> v0(model.nv(), 0.0);
   UpdateKinematics(model, 0.0, q0, v0, &kin);
@@ -174,9 +170,10 @@ void Constraints::Jacobian(const Model& model, const Kinematics& kin, Eigen::Mat
       const int sb = side_segment[side];
       if (sb == kGround) continue;
       const double sign = side == 0 ? 1.0 : -1.0;
-      for (int a = 0; a < static_cast<int>(segments.size()); ++a) {
+      // the segments on the path from the root to this side's segment
+      for (int a = sb; a != kGround; a = segments[a].parent) {
         const Segment& seg = segments[a];
-        if (seg.drive != SegmentDrive::kDof || !is_ancestor_[sb][a]) continue;
+        if (seg.drive != SegmentDrive::kDof) continue;
         const int ncols = seg.motion == SegmentMotion::kFree ? 6 : 1;
         for (int c = 0; c < ncols; ++c) {
           const Vec6 axis = ncols == 6 ? Vec6(Vec6::Unit(c)) : kin.axis[a];

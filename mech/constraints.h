@@ -79,8 +79,6 @@ class Constraints {
   std::vector<Cut> cuts_;
   std::vector<int> cut_joints_;
   int size_ = 0;
-  // is_ancestor_[s][a]: segment a lies on the path from the root to s (incl. s)
-  std::vector<std::vector<bool>> is_ancestor_;
 };
 
 // Per-run solver storage. Until SelectIndependentRows() has run (at
