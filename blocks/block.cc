@@ -68,8 +68,8 @@ std::string SamplePeriodProblem(double period, double t_start, double t_end) {
   std::snprintf(text, sizeof text,
                 "the period %.6g s is too small for the run from t = %.6g to %.6g s (%s); use at least %.6g s", period,
                 t_start, t_end,
-                period < resolution ? "times that close cannot be told apart in double precision"
-                                    : "more than 1e8 instants in the run",
+                resolution > span / kMaxSampleHits ? "times that close cannot be told apart in double precision"
+                                                    : "more than 1e8 instants in the run",
                 least);
   return text;
 }

@@ -82,7 +82,7 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
     const std::string period = SamplePeriodProblem(diagram_.block(b).sample_time().period, options_.t_start,
                                                    options_.t_end);
     if (!period.empty())
-      throw InputError(diagram_.origin(b) + ": block '" + diagram_.block(b).name() + "': sample " + period);
+      throw InputError(diagram_.origin(b) + ": block '" + diagram_.block(b).name() + "': sample period: " + period);
   }
   ctx_.signals.assign(diagram_.num_signals(), 0.0);
   ctx_.discrete.assign(diagram_.num_discrete_states(), 0.0);

@@ -103,6 +103,29 @@ TEST(AlgebraicLoopTest, LoopWithoutSolutionNamesItsHops) {
                     HasSubstr("no unique solution")));
 }
 
+// A block feeding itself: y = 1 + s y through one sum (signs "+" and s).
+// Its input reads a copy of its output that the solver sets, so the loop is
+// solved like any other (y = 1 - y gives 0.5) or fails (y = 1 + y has no
+// solution) -- it once gave 0 and 2 and exited 0.
+testing::Run SelfLoop(const std::string& signs) {
+  return Simulate(Blocks(MakeBlock("constant", "c", {{"value", "1"}}), MakeBlock("sum", "s", {{"signs", signs}})),
+                  {{"c.y", "s.u1"}, {"s.y", "s.u2"}}, {"s.y"}, Options(1.0, 0.5));
+}
+
+TEST(AlgebraicLoopTest, OneBlockLoopsAreSolvedOrFail) {
+  const testing::Run half = SelfLoop("+-");
+  ASSERT_TRUE(half.outcome.ok) << half.outcome.failure;
+  ASSERT_EQ(half.diagram->loops().size(), 1u);
+  for (const double y : half.Column("s.y")) EXPECT_NEAR(y, 0.5, 1e-12);
+  const testing::Run none = SelfLoop("++");
+  ASSERT_FALSE(none.outcome.ok);
+  EXPECT_THAT(none.outcome.failure,
+              AllOf(HasSubstr("algebraic loop through s.y:\n  s.y -> s.u2 (feeds s.y directly)"),
+                    HasSubstr("could not be solved at t = 0: it has no unique solution"),
+                    HasSubstr("largest residual 1")));
+  EXPECT_EQ(none.outcome.t_reached, 0.0);
+}
+
 // A loop whose Newton iteration runs away (s = 1 + s^2 has no real root).
 TEST(AlgebraicLoopTest, DivergingLoopFailsClearly) {
   const testing::Run run = Simulate(

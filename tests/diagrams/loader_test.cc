@@ -192,6 +192,17 @@ TEST(LoaderTest, CountsAndIntervalsAreChecked) {
               HasSubstr("output interval: the period 1e-300 s is too small for the run from t = 0 to 1 s"));
   EXPECT_THAT(ErrorOf(Valid("<solver t_start='1e10' t_end='1e10+1'/><output interval='1e-5'/>")),
               HasSubstr("cannot be told apart in double precision"));
+  // a sampled block whose period the run could never get through: refused where the run is set up
+  const auto sampled = [](const std::string& period) {
+    return InputErrorOf([&] {
+      mechflow::testing::RunXml(Valid("<solver t_end='1'/>", "  <block type='sample_hold' name='h' period='" +
+                                                                 period + "'/>\n",
+                                      "  <connect from='x.y' to='h.u'/>\n"));
+    });
+  };
+  EXPECT_THAT(sampled("1e-300"), HasSubstr("test.xml:8: block 'h': sample period: the period 1e-300 s is too small for the run "
+                                           "from t = 0 to 1 s (more than 1e8 instants in the run); use at least 1e-08 s"));
+  EXPECT_EQ(sampled("1e-3"), "");
 }
 
 TEST(LoaderTest, SetOverridesOnlyNumbers) {
