@@ -6,17 +6,15 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 #include <string>
 
 #include "cli/modes_report.h"
 #include "cli/output_folder.h"
-#include "cli/plot.h"
 #include "cli/report.h"
+#include "cli/run_outputs.h"
 #include "cli/sweep.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/linearization.h"
-#include "blocks/suggest.h"
 #include "diagrams/loader.h"
 #include "mech/errors.h"
 
@@ -64,7 +62,6 @@ class Progress {
 
 int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
-  namespace fs = std::filesystem;
   const OutputFolder folder(args.out_dir);  // before the run: a bad --out is bad input
   blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
   sim.SetReports(loaded.reports);
@@ -102,59 +99,12 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
         << " difference Jacobians, largest accepted residual " << s.worst_residual << "\n";
   }
 
-  // results are written whether or not the run finished; a file that could
-  // not be written is a failure (exit 1), and what was written is said
-  std::vector<std::string> written, failed;
-  const auto write = [&](const std::string& name, const std::string& bytes, const std::string& note) {
-    try {
-      folder.Write(name, bytes);
-      written.push_back(name);
-      out << "wrote " << folder.PathOf(name) << note << "\n";
-    } catch (const WriteError& e) {
-      err << e.what() << "\n";
-      failed.push_back(name);
-    }
-  };
-  const auto text = [](const auto& write_to) {
-    std::ostringstream s;
-    write_to(s);
-    return s.str();
-  };
-  const std::string& csv = loaded.csv_file;
-  write(csv, text([&](std::ostream& s) { sim.results().WriteCsv(s); }),
-        " (" + std::to_string(sim.results().num_rows()) + " rows)");
-  // beside the results: tension_mechanism.csv -> tension_mechanism.report.csv
-  const std::string stem = fs::path(csv).replace_extension().string();
-  if (!sim.results().figures().empty())
-    write(stem + ".report.csv", text([&](std::ostream& s) { sim.results().WriteFiguresCsv(s); }), "");
-  if (loaded.control && !loaded.control->changes().empty())
-    write(stem + ".changes.csv",
-          text([&](std::ostream& s) { WriteScriptChanges(*loaded.control, *loaded.identifiers, s); }), "");
-  if (!loaded.plot_file.empty()) {
-    const std::string script =
-        GnuplotScript(sim.results(), loaded.groups, loaded.description.name, csv, loaded.plot_file);
-    try {
-      const std::string problem = DrawPlot(script, folder, loaded.plot_file);
-      if (problem.empty()) {
-        written.push_back(loaded.plot_file);
-        out << "wrote " << folder.PathOf(loaded.plot_file) << "\n";
-      } else {
-        err << "warning: no plot: " << problem << "\n";
-      }
-    } catch (const WriteError& e) {
-      err << e.what() << "\n";
-      failed.push_back(loaded.plot_file);
-    }
-  }
+  // results are written whether or not the run finished
+  const bool all_written = WriteRunOutputs(loaded, sim, folder, out, err);
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);
   PrintEventWarnings(*loaded.diagram, sim.events(), err);
-  if (!failed.empty()) {
-    err << "not written: " << blocks::JoinNames(failed) << " in " << folder.path() << "; written: "
-        << (written.empty() ? "nothing" : blocks::JoinNames(written)) << "\n";
-    return 1;
-  }
-  return outcome.ok ? 0 : 1;
+  return outcome.ok && all_written ? 0 : 1;
 }
 
 int CheckCommand(const Arguments& args, std::ostream& out, std::ostream&) {

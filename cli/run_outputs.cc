@@ -1,0 +1,64 @@
+#include "cli/run_outputs.h"
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "blocks/suggest.h"
+#include "cli/plot.h"
+#include "cli/report.h"
+
+namespace mechflow::cli {
+
+bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim, const OutputFolder& folder,
+                     std::ostream& out, std::ostream& err) {
+  std::vector<std::string> written, failed;
+  const auto write = [&](const std::string& name, const std::string& bytes, const std::string& note) {
+    try {
+      folder.Write(name, bytes);
+      written.push_back(name);
+      out << "wrote " << folder.PathOf(name) << note << "\n";
+    } catch (const WriteError& e) {
+      err << e.what() << "\n";
+      failed.push_back(name);
+    }
+  };
+  const auto text = [](const auto& write_to) {
+    std::ostringstream s;
+    write_to(s);
+    return s.str();
+  };
+  const std::string& csv = loaded.csv_file;
+  write(csv, text([&](std::ostream& s) { sim.results().WriteCsv(s); }),
+        " (" + std::to_string(sim.results().num_rows()) + " rows)");
+  // beside the results: tension_mechanism.csv -> tension_mechanism.report.csv
+  const std::string stem = std::filesystem::path(csv).replace_extension().string();
+  if (!sim.results().figures().empty())
+    write(stem + ".report.csv", text([&](std::ostream& s) { sim.results().WriteFiguresCsv(s); }), "");
+  if (loaded.control && !loaded.control->changes().empty())
+    write(stem + ".changes.csv",
+          text([&](std::ostream& s) { WriteScriptChanges(*loaded.control, *loaded.identifiers, s); }), "");
+  if (!loaded.plot_file.empty()) {
+    const std::string script =
+        GnuplotScript(sim.results(), loaded.groups, loaded.description.name, csv, loaded.plot_file);
+    try {
+      const std::string problem = DrawPlot(script, folder, loaded.plot_file);
+      if (problem.empty()) {
+        written.push_back(loaded.plot_file);
+        out << "wrote " << folder.PathOf(loaded.plot_file) << "\n";
+      } else {
+        err << "warning: no plot: " << problem << "\n";
+      }
+    } catch (const WriteError& e) {
+      err << e.what() << "\n";
+      failed.push_back(loaded.plot_file);
+    }
+  }
+  if (failed.empty()) return true;
+  err << "not written: " << blocks::JoinNames(failed) << " in " << folder.path() << "; written: "
+      << (written.empty() ? "nothing" : blocks::JoinNames(written)) << "\n";
+  return false;
+}
+
+}  // namespace mechflow::cli
