@@ -8,15 +8,17 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "blocks/simulator.h"
 #include "blocks/suggest.h"
+#include "cli/output_folder.h"
 #include "cli/ranks.h"
 #include "diagrams/loader.h"
 #include "mech/errors.h"
@@ -71,7 +73,7 @@ struct Plan {
   std::vector<std::string> names;          // varied identifiers (lower-case)
   std::vector<std::vector<double>> values; // per varied identifier
   int runs = 1;
-  fs::path out_dir;                        // absolute
+  std::shared_ptr<const OutputFolder> folder;  // shared by the threads
   std::string width;                       // digits of the largest run number
   std::vector<std::string> figure_labels;  // the header's figure columns
 };
@@ -135,10 +137,9 @@ RunRow RunOne(const Plan& plan, int index) {
     figures = sim.results().figures();
     // results are written whether or not the run finished, as `run` does
     const std::string name = RunFileName(plan, loaded.csv_file, index, values);
-    const fs::path path = plan.out_dir / name;
-    std::error_code ec;
-    fs::create_directories(path.parent_path(), ec);
-    sim.results().WriteCsv(path.string());
+    std::ostringstream csv;
+    sim.results().WriteCsv(csv);
+    plan.folder->Write(name, csv.str());
     results_file = name;
   } catch (const std::exception& e) {
     ok = false;
@@ -293,13 +294,12 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     if (ranks->root()) err << e.what() << "\n";
     return 2;
   }
-  std::error_code ec;
-  fs::create_directories(args.out_dir, ec);
-  if (ec) {
-    if (ranks->root()) err << "cannot create output folder '" << args.out_dir << "': " << ec.message() << "\n";
+  try {
+    plan.folder = std::make_shared<const OutputFolder>(args.out_dir);
+  } catch (const InputError& e) {
+    if (ranks->root()) err << e.what() << "\n";
     return 2;
   }
-  plan.out_dir = fs::absolute(args.out_dir);
 
   // this rank's runs, dealt in turn; threads take them in order
   std::vector<int> mine;
@@ -343,18 +343,18 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     failed += !row.ok;
     (row.ok ? out : err) << row.message << "\n";
   }
-  const fs::path summary = plan.out_dir / summary_name;
-  fs::create_directories(summary.parent_path(), ec);
-  std::ofstream file(summary);
-  file << header << "\n";
-  for (const RunRow& row : all) file << row.csv << "\n";
-  file.close();
-  if (!file) {
-    err << "cannot write '" << summary.string() << "'\n";
-    return 2;
+  std::ostringstream summary;
+  summary << header << "\n";
+  for (const RunRow& row : all) summary << row.csv << "\n";
+  out << "finished in " << wall << " s of wall time: " << plan.runs - failed << " ok, " << failed << " failed\n";
+  try {
+    plan.folder->Write(summary_name, summary.str());
+  } catch (const WriteError& e) {
+    err << e.what() << "\n";
+    return 1;
   }
-  out << "finished in " << wall << " s of wall time: " << plan.runs - failed << " ok, " << failed << " failed\n"
-      << "wrote " << summary.string() << " (" << plan.runs << " run" << (plan.runs == 1 ? "" : "s") << ")\n";
+  out << "wrote " << plan.folder->PathOf(summary_name) << " (" << plan.runs << " run" << (plan.runs == 1 ? "" : "s")
+      << ")\n";
   return failed > 0 ? 1 : 0;
 }
 
