@@ -51,9 +51,11 @@ int GuardedMove(lua_State* L) {
 }
 
 // The repetition items (*, +, -) of a Lua pattern, sets and escapes skipped:
-// each lets the matcher backtrack over the subject once more.
-int Repetitions(const char* p, std::size_t size) {
+// each lets the matcher backtrack over the subject once more. Optional items
+// (?) are counted in *optional: each doubles the ways to match.
+int Repetitions(const char* p, std::size_t size, int* optional) {
   int count = 0;
+  *optional = 0;
   for (std::size_t i = 0; i < size; ++i) {
     const char c = p[i];
     if (c == '%') {
@@ -67,6 +69,8 @@ int Repetitions(const char* p, std::size_t size) {
         if (p[i] == '%') ++i;
     } else if (c == '*' || c == '+' || c == '-') {
       ++count;
+    } else if (c == '?') {
+      ++*optional;
     }
   }
   return count;
@@ -79,17 +83,19 @@ int GuardedPattern(lua_State* L) {
   luaL_checklstring(L, 1, &n);
   const char* pattern = luaL_checklstring(L, 2, &m);
   const bool plain = lua_toboolean(L, lua_upvalueindex(3)) && lua_toboolean(L, 4);
-  const int repetitions = plain ? 0 : Repetitions(pattern, m);
-  if (repetitions > 0) {
+  int optional = 0;
+  const int repetitions = plain ? 0 : Repetitions(pattern, m, &optional);
+  if (repetitions > 0 || optional > 0) {
     const bool anchored = m > 0 && pattern[0] == '^';
-    const double steps = std::pow(static_cast<double>(n) + 1.0, repetitions + (anchored ? 0 : 1));
+    const double steps = std::pow(static_cast<double>(n) + 1.0, repetitions + (anchored ? 0 : 1)) *
+                         std::pow(2.0, optional);
     if (steps > kPatternStepBudget) {
       char text[160];
       std::snprintf(text, sizeof text, "may backtrack about %.3g steps on a subject of %zu bytes (at most %.3g allowed)",
                     steps, n, kPatternStepBudget);
       return luaL_error(L,
-                        "%s: the pattern '%s' %s; use fewer repetitions (*, +, -), anchor it with ^, or search a "
-                        "shorter string",
+                        "%s: the pattern '%s' %s; use fewer repetitions (*, +, -, ?), anchor it with ^, or search "
+                        "a shorter string",
                         lua_tostring(L, lua_upvalueindex(2)), pattern, text);
     }
   }

@@ -11,9 +11,9 @@
 //     would not stop it);
 //   - string.find, match, gmatch and gsub refuse a pattern whose backtracking
 //     over the subject could exceed kPatternStepBudget steps: a pattern with
-//     k repetition items (*, +, -) on n bytes may take about n^(k+1) steps
-//     (n^k when anchored with ^). Plain finds and patterns without
-//     repetitions are linear and always allowed;
+//     k repetition items (*, +, -) and j optional ones (?) on n bytes may
+//     take about n^(k+1) 2^j steps (n^k 2^j when anchored with ^). Plain
+//     finds and patterns without repetitions are linear and always allowed;
 //   - xpcall skips the script's message handler for a limit's error (raised
 //     inside a hook, where the handler would run with hooks off);
 //   - setmetatable refuses a metatable with __gc: finalizers run outside any
