@@ -127,6 +127,9 @@ void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
   std::map<std::string, std::string> column_origin;
   int column = 1;
   auto add = [&](blocks::SignalRef s, const std::string& group, const SourceLoc& loc) {
+    if (s.name == "time")
+      throw InputError(loc.str() + ": a logged column named 'time', which is the name of the first column (the "
+                       "time); give it another label");
     if (column_origin.count(s.name))
       throw InputError(loc.str() + ": a second logged column named '" + s.name + "' (the first is at " +
                        column_origin[s.name] + "); give one a different label");

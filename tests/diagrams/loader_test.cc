@@ -169,8 +169,9 @@ TEST(LoaderTest, SolverSettingsAreChecked) {
   EXPECT_THAT(ErrorOf(Valid("<solver t_end='0'/>")), HasSubstr("t_end must be a finite number greater than t_start"));
   EXPECT_THAT(ErrorOf(Valid("<solver t_end='-1'/>")), HasSubstr("t_end must be a finite number greater than t_start"));
   EXPECT_THAT(ErrorOf(Valid("<solver t_end='math.huge'/>")), HasSubstr("'math.huge' gives inf"));
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='2'/>")), HasSubstr("rtol must be > 0 and < 1"));
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='-1e-6'/>")), HasSubstr("rtol must be > 0"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='2'/>")), HasSubstr("rtol must be at least 1e-15 (double precision cannot follow a tighter one) and < 1"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='1e-300'/>")), HasSubstr("rtol must be at least 1e-15"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='-1e-6'/>")), HasSubstr("rtol must be at least 1e-15"));
   EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' atol='-1'/>")), HasSubstr("atol must be a finite number > 0"));
   LoadOptions options;
   options.t_end = -3;
@@ -185,6 +186,8 @@ TEST(LoaderTest, CountsAndIntervalsAreChecked) {
   EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' max_steps='1e30'/>")), HasSubstr("is 1e30" + std::string(whole)));
   EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' max_steps='0'/>")), HasSubstr(whole));
   EXPECT_EQ(LoadXml(Valid("<solver t_end='1' max_steps='1e6'/>")).solver.max_steps, 1000000);
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1'/><output><log signal='x.y' label='time'/></output>")),
+              HasSubstr("a logged column named 'time', which is the name of the first column"));
   EXPECT_THAT(ErrorOf(Valid("<output interval='0'/>")),
               HasSubstr("output setting 'interval' is 0; expected a time > 0 s (leave it out for 1000 rows)"));
   EXPECT_THAT(ErrorOf(Valid("<output interval='-1'/>")), HasSubstr("expected a time > 0 s"));
