@@ -8,6 +8,19 @@
 #include <atomic>
 #include <cstddef>
 
+// Under AddressSanitizer the sanitizer owns malloc: nothing is replaced and
+// kMallocCounted is false (tests that count skip themselves).
+#if defined(__SANITIZE_ADDRESS__)
+#define MECHFLOW_MALLOC_COUNTED 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define MECHFLOW_MALLOC_COUNTED 0
+#endif
+#endif
+#ifndef MECHFLOW_MALLOC_COUNTED
+#define MECHFLOW_MALLOC_COUNTED 1
+#endif
+
 extern "C" {
 void* __libc_malloc(std::size_t);
 void* __libc_calloc(std::size_t, std::size_t);
@@ -19,11 +32,12 @@ void __libc_free(void*);
 namespace {
 std::atomic<bool> g_counting{false};
 std::atomic<long> g_calls{0};
-void Count() {
+[[maybe_unused]] void Count() {
   if (g_counting.load(std::memory_order_relaxed)) g_calls.fetch_add(1, std::memory_order_relaxed);
 }
 }  // namespace
 
+#if MECHFLOW_MALLOC_COUNTED
 extern "C" {
 void* malloc(std::size_t n) {
   Count();
@@ -48,3 +62,6 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t n) {
 }
 void free(void* p) { __libc_free(p); }
 }
+#endif
+
+constexpr bool kMallocCounted = MECHFLOW_MALLOC_COUNTED;

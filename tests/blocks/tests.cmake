@@ -1,7 +1,9 @@
 # Tests of blocks/.
 mechflow_test(simulator_test unit tests/blocks/simulator_test.cc)
 mechflow_test(library_test unit tests/blocks/library_test.cc)
-mechflow_test(no_allocation_test unit tests/blocks/no_allocation_test.cc)
+if(NOT MECHFLOW_SANITIZE AND NOT MECHFLOW_FUZZ)  # counts malloc calls (see tests/mech/tests.cmake)
+  mechflow_test(no_allocation_test unit tests/blocks/no_allocation_test.cc)
+endif()
 mechflow_test(registry_test unit tests/blocks/registry_test.cc)
 mechflow_test(sources_test unit tests/blocks/sources_test.cc)
 mechflow_test(arithmetic_test unit tests/blocks/arithmetic_test.cc)
