@@ -62,7 +62,7 @@ PendulumChain::PendulumChain(const std::vector<double>& masses, const std::vecto
   sin_.resize(n_);
   w2_.resize(n_);
   m_.resize(n_, n_);
-  llt_ = Eigen::LLT<Eigen::MatrixXd>(n_);
+  llt_.compute(Eigen::MatrixXd::Identity(n_, n_));  // sized now; an empty LLT leaves its status uninitialised
 }
 
 bool PendulumChain::Accelerations(const Eigen::Ref<const Eigen::VectorXd>& theta,

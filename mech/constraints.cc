@@ -305,7 +305,9 @@ int ConstraintWorkspace::SelectIndependentRows(const Eigen::MatrixXd& full) {
   solution.setZero(n + r);
   reduced.setZero(r);
   kkt_lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n + r);
-  jjt_llt = Eigen::LLT<Eigen::MatrixXd>(r);
+  // sized now (no allocation in the solve); computed rather than constructed
+  // empty, which would leave its status uninitialised (UBSan reports the copy)
+  jjt_llt.compute(Eigen::MatrixXd::Identity(r, r));
   return m - r;
 }
 

@@ -93,8 +93,10 @@ class CompiledTimeFunction final : public mech::TimeFunction {
   // Parentheses, unary signs and function calls nested deeper than this are
   // refused (the parser is recursive).
   static constexpr int kMaxNesting = 100;
-  // Longer texts are refused (compilation recurses along chains like t+t+...).
-  static constexpr int kMaxLength = 10000;
+  // Longer texts are refused: compilation recurses along chains like
+  // t+t+..., one level per operator; at 10000 characters that overflowed
+  // the stack of a sanitizer build (found by its test run).
+  static constexpr int kMaxLength = 2000;
 
   // Compiles `text` (grammar above) with the identifiers' current values.
   // `what` starts every message ("model.xml:12: joint 'j1' transformation 2").
