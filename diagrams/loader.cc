@@ -56,8 +56,12 @@ blocks::BlockParams EvaluateParams(const BlockDesc& b, const blocks::BlockType& 
         break;
       case blocks::ParamKind::kPath: {
         const std::filesystem::path p = std::filesystem::path(folder) / text;
-        if (!std::filesystem::is_regular_file(p))
+        if (!std::filesystem::exists(p))
           throw InputError(what + ": file '" + text + "' not found (looked for " + p.lexically_normal().string() + ")");
+        // a pipe or device would block or never end when it is read
+        if (!std::filesystem::is_regular_file(p))
+          throw InputError(what + ": '" + p.lexically_normal().string() +
+                           "' is not a regular file (a folder, pipe or device); give the path of a file");
         params.SetText(spec.name, p.lexically_normal().string());
         break;
       }

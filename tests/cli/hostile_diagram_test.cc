@@ -170,7 +170,16 @@ TEST_F(HostileDiagramTest, FilesThatNeverEndAreRefusedAtOnce) {
   std::ofstream(script_user) << "<diagram><script src=\"fifo.lua\"/></diagram>\n";
   const fs::path mechanism_user = dir_ / "m.xml";
   std::ofstream(mechanism_user) << "<diagram>\n<mechanism name=\"m\" src=\"/dev/zero\"/></diagram>\n";
+  const fs::path block_user = dir_ / "b.xml";
+  std::ofstream(block_user) << "<diagram><blocks>\n<block type=\"lua\" name=\"l\" src=\"fifo.lua\"/></blocks></diagram>\n";
+  const fs::path table_user = dir_ / "t.xml";
+  std::ofstream(table_user) << "<diagram><blocks>\n<block type=\"table\" name=\"t\" file=\"/dev/zero\"/></blocks></diagram>\n";
   for (const Case& c : {Case{"check /dev/zero", "diagram file '/dev/zero' is not a regular file (a device)"},
+                        Case{"run /dev/zero --out " + Out(), "diagram file '/dev/zero' is not a regular file"},
+                        Case{"check " + block_user.string(), "b.xml:2: block 'l' parameter 'src': '" + fifo.string() +
+                                                                 "' is not a regular file (a folder, pipe or device)"},
+                        Case{"check " + table_user.string(), "t.xml:2: block 't' parameter 'file': '/dev/zero' is not a "
+                                                             "regular file"},
                         Case{"check " + dir_.string(), "is not a regular file (a folder)"},
                         Case{"check " + fifo.string(), "is not a regular file (a pipe)"},
                         Case{"check " + big.string(), "has 67108875 bytes; input files may have at most 64 MiB"},
