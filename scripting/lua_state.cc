@@ -19,6 +19,9 @@ namespace {
 // Every function below is called by Lua and may raise a Lua error (a
 // long jump): none may own a C++ object with a destructor.
 
+// The LuaState that owns L (kept in Lua's extra space for the hook).
+LuaState& OwnerOf(lua_State* L) { return **static_cast<LuaState**>(lua_getextraspace(L)); }
+
 double Now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -97,7 +100,7 @@ int SetUp(lua_State* L) {
   lua_getglobal(L, "load");
   lua_pushcclosure(L, &TextOnlyLoad, 1);
   lua_setglobal(L, "load");
-  InstallLuaGuards(L, (*static_cast<LuaState**>(lua_getextraspace(L)))->memory_limit());
+  InstallLuaGuards(L, OwnerOf(L).memory_limit());
 
   lua_getglobal(L, LUA_MATHLIBNAME);
   for (const Alias& alias : kMathAliases) {
@@ -122,7 +125,7 @@ int Panic(lua_State* L) {
 
 // Called by Lua (may long-jump): owns no C++ object with a destructor.
 void LuaState::InstructionHook(lua_State* L, lua_Debug*) {
-  LuaState* lua = *static_cast<LuaState**>(lua_getextraspace(L));
+  LuaState* lua = &OwnerOf(L);
   CallBudget& call = lua->call_;
   if (call.exceeded == Exceeded::kNone) {
     call.instructions += call.interval;
@@ -200,11 +203,11 @@ BoundedCall::BoundedCall(LuaState& lua) : L_(lua.get()) {
 BoundedCall::~BoundedCall() {
   if (!armed_) return;
   lua_sethook(L_, nullptr, 0, 0);
-  (*static_cast<LuaState**>(lua_getextraspace(L_)))->call_.exceeded = LuaState::Exceeded::kNone;
+  OwnerOf(L_).call_.exceeded = LuaState::Exceeded::kNone;
 }
 
 bool LuaState::LimitPassed(lua_State* L) {
-  return (*static_cast<LuaState**>(lua_getextraspace(L)))->call_.exceeded != Exceeded::kNone;
+  return OwnerOf(L).call_.exceeded != Exceeded::kNone;
 }
 
 std::string LuaState::ErrorText(int status) const {
