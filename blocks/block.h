@@ -24,6 +24,8 @@
 // the constructor. They report bad numbers by throwing SimulationError, which
 // the simulator turns into a failed (or retried) step.
 
+#include <algorithm>
+#include <cmath>
 #include <span>
 #include <string>
 #include <string_view>
@@ -58,6 +60,12 @@ struct SampleTime {
   double offset = 0.0;  // [s]
   bool is_periodic() const { return period > 0.0; }
 };
+
+// True when two instants are one up to rounding (1e-12 relative, as the
+// periods above may be no finer): 3 * 0.1 is the instant 0.3.
+inline bool SameInstant(double a, double b) {
+  return std::abs(a - b) <= 1e-12 * std::max({1.0, std::abs(a), std::abs(b)});
+}
 
 // At most this many hits of one period over a run: a period so small that a
 // run could not get through its hits is refused rather than left to hang.

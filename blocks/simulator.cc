@@ -383,8 +383,9 @@ void Simulator::HandleSampleHits(double t) {
   EvaluateAt(t, ctx_.x);
   for (size_t i = 0; i < periodic.size(); ++i) {
     const SampleTime& st = diagram_.block(periodic[i]).sample_time();
-    // the same formula that produced the stop time, so equality is exact
-    if (st.offset + next_hit_[i] * st.period != t) continue;
+    // the same formula that produced the stop time, so equality is exact --
+    // except at t_end, which a hit may pass by a rounding (3 * 0.1 > 0.3)
+    if (!SameInstant(st.offset + next_hit_[i] * st.period, t)) continue;
     diagram_.block(periodic[i]).OnSampleHit(BlockContext(&ctx_, &diagram_.layout(periodic[i])));
     ++next_hit_[i];
     ++stats_.sample_hits;
@@ -589,7 +590,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       double t_out = std::min(output_time(next_output), stop);
       // an output time that rounding puts a hair before a sample hit is taken
       // at the hit, so the row shows the values after it (right-continuous)
-      if (stop - t_out <= 1e-12 * std::max(1.0, std::abs(stop))) t_out = stop;
+      if (SameInstant(stop, t_out)) t_out = stop;
       if (t_out <= t) {  // an output time that coincides with the last event
         if (control_ && CallControl(t, y, &RunControl::Output)) Reinitialize(t);
         Record(t, y);
@@ -629,12 +630,13 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       }
       const bool at_stop = flag == CV_TSTOP_RETURN || t_ret >= stop;
       if (at_stop) std::copy(interpolated.begin(), interpolated.end(), y);
-      if (at_stop && t_ret < t_end) {
-        // a sample hit or control timer: update before the row is taken
+      if (at_stop) {
+        // a sample hit or control timer (also one at t_end): update before
+        // the row is taken
         ctx_.x = y;
         HandleSampleHits(t_ret);
-        if (control_ && control_->NextTimer() == t_ret) CallControl(t_ret, y, &RunControl::Timer);
-        Reinitialize(t_ret);
+        if (control_ && SameInstant(control_->NextTimer(), t_ret)) CallControl(t_ret, y, &RunControl::Timer);
+        if (t_ret < t_end) Reinitialize(t_ret);
       }
       if (t_ret >= t_out) {
         // reached an output time (with interpolation, the solver may be ahead)

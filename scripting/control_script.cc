@@ -120,7 +120,7 @@ void ControlScript::Timer(blocks::ControlPoint& point) {
   const double t = point.time();
   // by index: a callback may register more timers; one due at once runs now
   for (std::size_t i = 0; i < timers_.size(); ++i) {
-    if (timers_[i].when() != t) continue;
+    if (!blocks::SameInstant(timers_[i].when(), t)) continue;
     ++timers_[i].next;
     Call(timers_[i].function_ref, "the function given to sim:every", point);
   }

@@ -38,6 +38,21 @@ TEST(SampleHoldTest, UpdatesExactlyAtOffsetPlusMultiplesOfThePeriod) {
   EXPECT_EQ(run.sim->stats().sample_hits, 10);
 }
 
+// A hit at t_end is taken before the last row, also when rounding puts it a
+// hair past t_end (3 * 0.1 = 0.30000000000000004 > 0.3): the rows were once
+// 0, 0.1, 0.2, 0.2.
+TEST(SampleHoldTest, AHitAtTheEndIsInTheLastRow) {
+  for (const double t_end : {0.3, 1.0}) {
+    const auto run = Simulate(Blocks(MakeBlock("clock", "clk"), MakeBlock("sample_hold", "h", {{"period", "0.1"}})),
+                              {{"clk", "h"}}, {"h.y"}, Options(t_end, 0.1));
+    ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+    const auto t = run.Time(), held = run.Column("h.y");
+    ASSERT_EQ(t.size(), static_cast<size_t>(std::lround(t_end / 0.1)) + 1);
+    for (size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(held[i], t[i], 1e-12) << "t = " << t[i];
+    EXPECT_EQ(run.sim->stats().sample_hits, std::lround(t_end / 0.1) + 1) << "t_end = " << t_end;
+  }
+}
+
 // y depends on u only through the hits: a loop through the hold is not
 // algebraic. x_{k+1} = x_k / 2 + 1 sampled every 0.25 s from x = 0.
 TEST(SampleHoldTest, BreaksAFeedbackLoop) {

@@ -213,6 +213,16 @@ TEST(ControlScriptTest, LogWritesTheTimeAndValuesToStderr) {
   EXPECT_EQ(err, "t = 1.0: done\t42\ttrue\n");
 }
 
+// A timer due at t_end runs before the last row (3 * 0.1 passes 0.3 by a rounding).
+TEST(ControlScriptTest, ATimerAtTheEndRunsBeforeTheLastRow) {
+  auto run = RunXml(Diagram(R"(function init(sim) sim:every(0.1, function(sim) sim:set("u", sim.t) end) end)",
+                            R"(<solver t_end="0.3"/>)"));
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const std::vector<double> u = run.Column("u");
+  ASSERT_EQ(u.size(), 4u);
+  EXPECT_NEAR(u.back(), 0.3, 1e-12);
+}
+
 TEST(ControlScriptTest, EveryChecksItsArguments) {
   auto run = RunXml(Diagram(R"(function init(sim) sim:every(0, function() end) end)"));
   ASSERT_FALSE(run.outcome.ok);
