@@ -61,12 +61,6 @@ struct SampleTime {
   bool is_periodic() const { return period > 0.0; }
 };
 
-// True when two instants are one up to rounding (1e-12 relative, as the
-// periods above may be no finer): 3 * 0.1 is the instant 0.3.
-inline bool SameInstant(double a, double b) {
-  return std::abs(a - b) <= 1e-12 * std::max({1.0, std::abs(a), std::abs(b)});
-}
-
 // At most this many hits of one period over a run: a period so small that a
 // run could not get through its hits is refused rather than left to hang.
 inline constexpr double kMaxSampleHits = 1e8;
@@ -76,6 +70,13 @@ inline constexpr double kMaxSampleHits = 1e8;
 // spacing of doubles near the run's times allows to tell apart (1e-12 of the
 // largest |t|). Otherwise what is wrong and what period would do.
 std::string SamplePeriodProblem(double period, double t_start, double t_end);
+
+// True when two instants are one up to rounding (1e-12 relative, the
+// resolution SamplePeriodProblem asks periods to exceed): 3 * 0.1 is the
+// instant 0.3.
+inline bool SameInstant(double a, double b) {
+  return std::abs(a - b) <= 1e-12 * std::max({1.0, std::abs(a), std::abs(b)});
+}
 
 class Block {
  public:

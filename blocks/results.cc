@@ -1,7 +1,6 @@
 #include "blocks/results.h"
 
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 
 namespace mechflow::blocks {
@@ -49,20 +48,6 @@ void Results::WriteCsv(std::ostream& out) const {
     }
     out << '\n';
   }
-}
-
-void Results::WriteCsv(const std::string& path) const {
-  std::ofstream file(path);
-  if (!file) throw std::runtime_error("cannot write '" + path + "'");
-  WriteCsv(file);
-  if (!file) throw std::runtime_error("error while writing '" + path + "'");
-}
-
-void Results::WriteFiguresCsv(const std::string& path) const {
-  std::ofstream file(path);
-  if (!file) throw std::runtime_error("cannot write '" + path + "'");
-  WriteFiguresCsv(file);
-  if (!file) throw std::runtime_error("error while writing '" + path + "'");
 }
 
 void Results::WriteFiguresCsv(std::ostream& file) const {

@@ -31,16 +31,13 @@ class Results {
   const std::vector<ReportFigure>& figures() const { return figures_; }
   void SetFigures(std::vector<ReportFigure> figures) { figures_ = std::move(figures); }
   // label,kind,signal,value,unit,time: one line per figure (empty value and
-  // time when not found); full double precision. Throws std::runtime_error
-  // when the file cannot be written.
-  void WriteFiguresCsv(const std::string& path) const;
+  // time when not found); full double precision. (Files are written by the
+  // CLI's OutputFolder, which checks every write.)
   void WriteFiguresCsv(std::ostream& out) const;
 
   // CSV with a header line (a label holding a comma or quote is quoted);
   // full double precision.
   void WriteCsv(std::ostream& out) const;
-  // Writes to `path`; throws std::runtime_error when the file cannot be written.
-  void WriteCsv(const std::string& path) const;
 
  private:
   std::vector<std::string> columns_;

@@ -56,12 +56,9 @@ blocks::BlockParams EvaluateParams(const BlockDesc& b, const blocks::BlockType& 
         break;
       case blocks::ParamKind::kPath: {
         const std::filesystem::path p = std::filesystem::path(folder) / text;
+        // (whether it is a regular file is checked where it is read: blocks/input_file.h)
         if (!std::filesystem::exists(p))
           throw InputError(what + ": file '" + text + "' not found (looked for " + p.lexically_normal().string() + ")");
-        // a pipe or device would block or never end when it is read
-        if (!std::filesystem::is_regular_file(p))
-          throw InputError(what + ": '" + p.lexically_normal().string() +
-                           "' is not a regular file (a folder, pipe or device); give the path of a file");
         params.SetText(spec.name, p.lexically_normal().string());
         break;
       }

@@ -176,10 +176,10 @@ TEST_F(HostileDiagramTest, FilesThatNeverEndAreRefusedAtOnce) {
   std::ofstream(table_user) << "<diagram><blocks>\n<block type=\"table\" name=\"t\" file=\"/dev/zero\"/></blocks></diagram>\n";
   for (const Case& c : {Case{"check /dev/zero", "diagram file '/dev/zero' is not a regular file (a device)"},
                         Case{"run /dev/zero --out " + Out(), "diagram file '/dev/zero' is not a regular file"},
-                        Case{"check " + block_user.string(), "b.xml:2: block 'l' parameter 'src': '" + fifo.string() +
-                                                                 "' is not a regular file (a folder, pipe or device)"},
-                        Case{"check " + table_user.string(), "t.xml:2: block 't' parameter 'file': '/dev/zero' is not a "
-                                                             "regular file"},
+                        Case{"check " + block_user.string(), "b.xml:2: block 'l' (lua): Lua file '" + fifo.string() +
+                                                                 "' is not a regular file (a pipe)"},
+                        Case{"check " + table_user.string(), "t.xml:2: block 't' (table): table file '/dev/zero' is not "
+                                                             "a regular file (a device)"},
                         Case{"check " + dir_.string(), "is not a regular file (a folder)"},
                         Case{"check " + fifo.string(), "is not a regular file (a pipe)"},
                         Case{"check " + big.string(), "has 67108875 bytes; input files may have at most 64 MiB"},
