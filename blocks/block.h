@@ -161,6 +161,9 @@ class Block {
   void Project(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const {
     DoProject(ctx, correction, error);
   }
+  // After a failed run: what the block knows about why (e.g. a mechanism at
+  // a singular position), as a sentence; empty when it knows nothing.
+  virtual std::string FailureNote() const { return {}; }
 
  protected:
   // Declarations, for constructors only. Return the new port's index.

@@ -88,6 +88,8 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   ctx_.signals.assign(diagram_.num_signals(), 0.0);
   ctx_.discrete.assign(diagram_.num_discrete_states(), 0.0);
   row_.resize(results_.num_columns());
+  frozen_y_.assign(diagram_.num_states(), 0.0);
+  frozen_slope_.assign(diagram_.num_states(), 0.0);
   for (const int b : diagram_.crossing_blocks())
     for (int i = 0; i < diagram_.layout(b).num_crossings; ++i) crossing_owner_.push_back(b);
   roots_found_.assign(diagram_.num_zero_crossings(), 0);
@@ -240,6 +242,39 @@ void Simulator::Record(double t, double* x) {
   for (const SignalRef& s : logged_)
     for (int i = 0; i < s.width; ++i) row_[column++] = ctx_.signals[s.offset + i];
   results_.AddRow(row_.data());
+}
+
+void Simulator::RefuseFrozenState() {
+  if (frozen_y_.empty()) return;  // no states, nothing can freeze
+  void* mem = solver_->cvode.get();
+  double tn = 0.0;
+  N_Vector yn = nullptr;
+  Check(CVodeGetCurrentTime(mem, &tn), "CVodeGetCurrentTime");
+  Check(CVodeGetCurrentState(mem, &yn), "CVodeGetCurrentState");
+  const double* y = N_VGetArrayPointer(yn);
+  const std::size_t n = frozen_y_.size();
+  const bool same = frozen_valid_ && tn > frozen_tn_ && std::equal(y, y + n, frozen_y_.begin());
+  const double tn_before = frozen_tn_;
+  frozen_valid_ = true;
+  frozen_tn_ = tn;
+  std::copy(y, y + n, frozen_y_.begin());
+  if (!same) return;
+  // The solver's own state did not change while its time advanced: frozen
+  // unless its own derivative there is zero too (nothing moves).
+  N_Vector slope = N_VMake_Serial(static_cast<sunindextype>(n), frozen_slope_.data(), solver_->ctx.get());
+  const int flag = CVodeGetDky(mem, tn, 1, slope);
+  N_VDestroy(slope);
+  Check(flag, "CVodeGetDky");
+  for (std::size_t i = 0; i < n; ++i) {
+    const double resolution = 1e-3 * (options_.rtol * std::abs(y[i]) + options_.atol);
+    if (std::abs(frozen_slope_[i]) * (tn - tn_before) > resolution) {
+      std::ostringstream out;
+      out << "the integrator's state stopped changing from t = " << tn_before << " to " << tn
+          << " s while its derivative is not zero (state " << i << ": x' = " << frozen_slope_[i]
+          << "): refusing to write rows of frozen motion";
+      throw SimulationError(out.str());
+    }
+  }
 }
 
 int Simulator::Rhs(double t, N_Vector y, N_Vector ydot, void* user) {
@@ -450,6 +485,7 @@ void Simulator::Reinitialize(double t) {
                           " (blocks keep switching each other's modes)");
   AccumulateStats();
   Check(CVodeReInit(solver_->cvode.get(), t, solver_->y.get()), "CVodeReInit");
+  frozen_valid_ = false;  // a new start: the history compared against is gone
   ++stats_.reinits;
 }
 
@@ -553,6 +589,9 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     Check(CVodeSetMaxNumSteps(mem, options_.max_steps), "CVodeSetMaxNumSteps");
     if (options_.max_step > 0.0) Check(CVodeSetMaxStep(mem, options_.max_step), "CVodeSetMaxStep");
     if (options_.initial_step > 0.0) Check(CVodeSetInitStep(mem, options_.initial_step), "CVodeSetInitStep");
+    // Below this step t + h == t (or nearly): steps would not advance time,
+    // and CVODE, merely warning, would go on writing rows of a frozen state.
+    Check(CVodeSetMinStep(mem, MinimumStep(t0, t_end)), "CVodeSetMinStep");
     // projection needs the linear solver attached first (CVODE's rule)
     for (int b = 0; b < diagram_.num_blocks(); ++b) {
       if (!diagram_.block(b).has_projection()) continue;
@@ -617,6 +656,15 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
         outcome.failure = sundials::CvodeFlagName(flag);
         if (!callback_failure_.empty()) outcome.failure += ": " + callback_failure_;
         else if (!solver_message_.empty()) outcome.failure += ": " + solver_message_;
+        double h = 0.0;
+        if (CVodeGetCurrentStep(mem, &h) == CV_SUCCESS && std::abs(h) <= 2.0 * MinimumStep(t0, t_end))
+          outcome.failure += " (the step size fell to the resolution of time: the solver cannot meet the tolerances "
+                             "here; a singular position, a discontinuity without an event, or rtol below what the "
+                             "model's round-off allows)";
+        for (int b = 0; b < diagram_.num_blocks(); ++b) {
+          const std::string note = diagram_.block(b).FailureNote();
+          if (!note.empty()) outcome.failure += "; block '" + diagram_.block(b).name() + "': " + note;
+        }
         break;
       }
       if (flag == CV_ROOT_RETURN) {
@@ -649,6 +697,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
           Reinitialize(t_ret);
           x_out = y;
         }
+        RefuseFrozenState();
         Record(t_ret, x_out);
         if (progress) progress(t_ret);
         ++next_output;

@@ -157,6 +157,16 @@ class Simulator {
   bool StillEvaluated(double t, const double* x) const;
   void RememberEvaluated(double t, const double* x, const double* g);
   void Record(double t, double* x);
+  // Before an output row: when CVODE's own time advanced since the last row
+  // (no re-initialisation between) while its own state stayed the same bit
+  // for bit, although its derivative there is not zero, the motion froze
+  // (the step size fell below the resolution of time): throws
+  // SimulationError instead of letting such rows become output.
+  void RefuseFrozenState();
+  // The smallest step: a few units of round-off of the run's largest time.
+  static double MinimumStep(double t0, double t_end) {
+    return 8.0 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t0), std::abs(t_end), 1e-300});
+  }
   void HandleCrossings(double t);
   void HandleSampleHits(double t);
   double NextSampleHit() const;
@@ -179,6 +189,9 @@ class Simulator {
   std::vector<EventRecord> events_;
   Context ctx_;
   std::vector<double> row_;
+  std::vector<double> frozen_y_, frozen_slope_;  // CVODE's state at the last row, scratch
+  double frozen_tn_ = 0.0;                       // and its time
+  bool frozen_valid_ = false;
   std::vector<int> crossing_owner_;      // crossing index -> block
   std::vector<int> roots_found_;
   std::vector<long> next_hit_;           // per periodic block: next k

@@ -10,8 +10,7 @@
 // so a multiplier is the wrench [moment about x_B; force] that body 2
 // receives, in G's axes. Equations that a loop satisfies identically (a
 // planar loop's out-of-plane rows, Convel1's redundant ones) make J rank
-// deficient; every solve here is least-squares/least-norm (complete
-// orthogonal decomposition), so redundancy is accepted and reported as a rank.
+// deficient; the solves (mech/constraint_solve.h) accept that redundancy.
 //
 // A constant-velocity joint (ELEMENTS.md 2.5) gives four rows: the centres
 // coincide (p2 - p1, global axes) and the zero-twist condition
@@ -22,9 +21,6 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
-#include <Eigen/QR>
 
 #include "mech/kinematics.h"
 
@@ -80,44 +76,5 @@ class Constraints {
   std::vector<int> cut_joints_;
   int size_ = 0;
 };
-
-// Per-run solver storage. Until SelectIndependentRows() has run (at
-// assembly), solves use a complete orthogonal decomposition of the full J
-// (allocates; set-up only). Afterwards only the independent rows are used:
-// the KKT matrix is then regular and solved by partial-pivot LU, projections
-// by Cholesky of Jr Jr^T -- both in preallocated storage.
-struct ConstraintWorkspace {
-  explicit ConstraintWorkspace(const Model& model, const Constraints& constraints);
-  // Keeps the rows of J that are independent at the current configuration
-  // (rank-revealing QR); returns how many rows were dropped as redundant.
-  int SelectIndependentRows(const Eigen::MatrixXd& J);
-  bool rows_selected() const { return !active.empty() || selected_none; }
-
-  Eigen::MatrixXd M, J, Jr, kkt, JJt;
-  Eigen::VectorXd phi, psi, bias, rhs, solution, lambda, reduced, step;
-  std::vector<int> active;  // independent rows of J
-  bool selected_none = false;
-  Eigen::PartialPivLU<Eigen::MatrixXd> kkt_lu;
-  Eigen::LLT<Eigen::MatrixXd> jjt_llt;
-  std::vector<Vec6> scratch;
-  std::vector<Vec6> loads;  // segment loads with the constraint wrenches added
-  std::vector<double> h;    // inverse dynamics with v' = 0
-  std::vector<double> zero;
-};
-
-// Moves q (and then v) onto the constraint manifold by Gauss-Newton with
-// least-norm steps; returns the final position residual norm. Quaternion
-// coordinates are updated through their rotation vector.
-double ProjectPositions(const Model& model, const Constraints& constraints, double t, std::span<double> q,
-                        std::span<const double> v, double tolerance, int max_iterations, Kinematics* kin,
-                        ConstraintWorkspace* ws);
-// Assembly, first phase: closes the loops by moving only the coordinates of
-// the loop-closing joints themselves (their ghost segments), so consistent
-// user coordinates are kept exactly. Returns the residual norm reached.
-double AssembleCutCoordinates(const Model& model, const Constraints& constraints, std::span<double> q,
-                              std::span<const double> v, Kinematics* kin, ConstraintWorkspace* ws);
-
-void ProjectVelocities(const Model& model, const Constraints& constraints, double t, std::span<const double> q,
-                       std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws);
 
 }  // namespace mechflow::mech

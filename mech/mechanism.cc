@@ -55,33 +55,13 @@ void AddConstraintLoads(const Mechanism& mechanism, MechanismWorkspace* ws) {
 void SolveConstrained(const Mechanism& mechanism, MechanismWorkspace* ws) {
   const Model& model = mechanism.model();
   ConstraintWorkspace& c = ws->constraint;
-  const int n = model.nv();
-  // f = tau - h(q, v, external): the accelerations' right-hand side.
+  // f = tau - h(q, v, external): the accelerations' right-hand side (in c.h)
   InverseDynamics(model, ws->kin, c.zero, ws->loads.segment_loads(), c.h, &ws->dyn);
+  for (int i = 0; i < model.nv(); ++i) c.h[i] = ws->loads.generalized()[i] - c.h[i];
   MassMatrix(model, ws->kin, &c.M, &ws->dyn);
   mechanism.constraints().Jacobian(model, ws->kin, &c.J);
   mechanism.constraints().AccelerationBias(model, ws->kin, &c.scratch, &c.bias);
-  if (!c.rows_selected()) c.SelectIndependentRows(c.J);
-  const int r = static_cast<int>(c.active.size());
-  // [M Jr^T; Jr 0] [v'; mu] = [f; -bias_r]; the force on the system is
-  // Jr^T lambda_r with lambda_r = -mu. Redundant rows get zero multipliers.
-  c.kkt.topLeftCorner(n, n) = c.M;
-  for (int i = 0; i < r; ++i) {
-    c.kkt.block(n + i, 0, 1, n) = c.J.row(c.active[i]);
-    c.kkt.block(0, n + i, n, 1) = c.J.row(c.active[i]).transpose();
-    c.rhs(n + i) = -c.bias(c.active[i]);
-  }
-  for (int i = 0; i < n; ++i) c.rhs(i) = ws->loads.generalized()[i] - c.h[i];
-  c.kkt_lu.compute(c.kkt);
-  c.solution.noalias() = c.kkt_lu.solve(c.rhs);
-  if (!c.solution.allFinite()) {
-    std::ostringstream out;
-    out << "singular constrained mass matrix at t = " << ws->kin.time;
-    throw SimulationError(out.str());
-  }
-  c.lambda.setZero();
-  for (int i = 0; i < r; ++i) c.lambda(c.active[i]) = -c.solution(n + i);
-  for (int i = 0; i < n; ++i) ws->vdot[i] = c.solution(i);
+  SolveConstrainedAccelerations(c.h, ws->vdot, &c);
 }
 
 // A loop whose own coordinates are all fixed by its constraint (and that no
@@ -243,8 +223,6 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
   std::span<double> q = x.subspan(0, model.nq()), v = x.subspan(model.nq(), model.nv());
   const Constraints& constraints = mechanism.constraints();
   if (!constraints.empty()) {
-    ws->constraint.active.clear();  // a new run selects its own independent rows
-    ws->constraint.selected_none = false;
     AssembleCutCoordinates(model, constraints, q, v, &ws->kin, &ws->constraint);
     const double residual = ProjectPositions(model, constraints, 0.0, q, v, 1e-12, 50, &ws->kin, &ws->constraint);
     if (!(residual <= 1e-9)) {
@@ -257,7 +235,7 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
     }
     ProjectVelocities(model, constraints, 0.0, q, v, &ws->kin, &ws->constraint);
     CheckLoopsLeaveMotion(mechanism, ws);
-    ws->constraint.SelectIndependentRows(ws->constraint.J);
+    RecordGenericRank(model, constraints, ws->kin, &ws->constraint);
   }
   EvaluatePositions(mechanism, 0.0, x, ws);
   SetParameterArgs(0.0, inputs, ws);

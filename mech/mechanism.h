@@ -10,9 +10,9 @@
 //
 // Accelerations: a tree is solved by the articulated-body algorithm, O(n);
 // with cut joints the mass matrix and the constraint Jacobian form a KKT
-// system solved with a rank-revealing decomposition, so redundant
-// constraints (planar loops, Convel1) are accepted and their multipliers are
-// the least-norm ones (mech/constraints.h).
+// system solved through its Schur complement with damped pivots, so
+// redundant and momentarily singular constraints are accepted
+// (mech/constraint_solve.h).
 
 #include <memory>
 #include <span>
@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 #include <Eigen/QR>
 
+#include "mech/constraint_solve.h"
 #include "mech/constraints.h"
 #include "mech/dynamics.h"
 #include "mech/force_element.h"

@@ -185,8 +185,11 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
     mech::UpdateKinematics(model, ctx.time(), q, v, &ws_.kin);
     mechanism_->constraints().Residual(model, ws_.kin, &ws_.constraint.phi);
     worst_residual_ = std::max(worst_residual_, ws_.constraint.phi.lpNorm<Eigen::Infinity>());
+    // To round-off, always: a projection that skipped small residuals would
+    // move the state by jumps of its tolerance, which CVODE adds to its
+    // history (at rtol 1e-12 that stalled the step size).
     const double after =
-        mech::ProjectPositions(model, mechanism_->constraints(), ctx.time(), q, v, 1e-13, 5, &ws_.kin, &ws_.constraint);
+        mech::ProjectPositions(model, mechanism_->constraints(), ctx.time(), q, v, 1e-16, 5, &ws_.kin, &ws_.constraint);
     if (!std::isfinite(after))
       throw SimulationError("mechanism '" + name() + "': projection onto the loop constraints failed at t = " +
                             std::to_string(ctx.time()));
@@ -199,6 +202,11 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
                             std::to_string(ctx.time()));
   }
   positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
+}
+
+std::string MechanismBlock::FailureNote() const {
+  if (mechanism_->constraints().empty()) return {};
+  return mech::SingularPositionNote(mechanism_->model(), mechanism_->constraints(), ws_.constraint);
 }
 
 }  // namespace mechflow::blocks

@@ -55,6 +55,9 @@ class MechanismBlock final : public Block {
   // From the topology, found on first use: for a long serial chain the
   // pattern is dense, and `mechflow check` should not pay for it.
   const BlockSparsity* sparsity() const override;
+  // Names the loop constraint that became dependent when the run failed at
+  // a singular position.
+  std::string FailureNote() const override;
 
  private:
   void DoInitialize(const BlockContext& ctx) const override;

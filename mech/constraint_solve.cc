@@ -1,0 +1,222 @@
+#include "mech/constraint_solve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/QR>
+
+#include "mech/errors.h"
+
+namespace mechflow::mech {
+namespace {
+
+// Pivots below kNoise * (largest) are round-off: the direction is redundant.
+constexpr double kNoise = 1e-13;
+// Damping of the pivots relative to the largest (singular-value ratio 1e-5).
+constexpr double kDamping = 1e-10;
+// Position residuals below this are in Newton's quadratic regime.
+constexpr double kQuadraticRegime = 1e-8;
+// Pivots above kRank * (largest) count towards the numerical rank.
+constexpr double kRank = 1e-8;
+
+// Factors ws->G and solves G x = b (b in ws->rhs, x written there) with the
+// damped pivots; records the rank and the weakest counted pivot's row.
+void DampedGramSolve(ConstraintWorkspace* ws) {
+  const int m = static_cast<int>(ws->G.rows());
+  ws->G_ldlt.compute(ws->G);
+  const auto d = ws->G_ldlt.vectorD();
+  const double largest = m > 0 ? d.cwiseAbs().maxCoeff() : 0.0;
+  ws->pivoted.noalias() = ws->G_ldlt.transpositionsP() * ws->rhs;
+  ws->G_ldlt.matrixL().solveInPlace(ws->pivoted);
+  const double mu = kDamping * largest;
+  ws->rank = 0;
+  for (int i = 0; i < m; ++i) {
+    const double di = d(i);
+    if (!(std::abs(di) > kNoise * largest)) {
+      ws->pivoted(i) = 0.0;
+      continue;
+    }
+    ws->pivoted(i) *= di / (di * di + mu * mu);
+    if (std::abs(di) > kRank * largest) ++ws->rank;
+  }
+  // the pivots come largest first (symmetric pivoting): within the generic
+  // rank, the last one is the weakest
+  const int weakest = std::min(ws->generic_rank, m) - 1;
+  ws->G_ldlt.matrixU().solveInPlace(ws->pivoted);
+  ws->rhs.noalias() = ws->G_ldlt.transpositionsP().transpose() * ws->pivoted;
+  ws->weakest_row = -1;
+  if (weakest >= 0) {
+    // pivot i is row order[i]: the transpositions applied to 0 .. m-1
+    const auto& P = ws->G_ldlt.transpositionsP();
+    for (int i = 0; i < m; ++i) ws->order[i] = i;
+    for (int k = 0; k < m; ++k) std::swap(ws->order[k], ws->order[P.coeff(k)]);
+    ws->weakest_row = ws->order[weakest];
+  }
+}
+
+// Least-norm dv with J dv = e (ws->J given), through G = J J^T.
+void LeastNormStep(const Eigen::VectorXd& e, ConstraintWorkspace* ws) {
+  ws->G.noalias() = ws->J * ws->J.transpose();
+  ws->rhs = e;
+  DampedGramSolve(ws);
+  ws->step.noalias() = ws->J.transpose() * ws->rhs;
+}
+
+// q += dv, with quaternion blocks advanced by the rotation vector in body axes.
+void AddVelocityStep(const Model& model, std::span<double> q, const Eigen::VectorXd& dv) {
+  for (const Dof& dof : model.dofs()) q[dof.q_index] += dv(dof.v_index);
+  for (const Segment& seg : model.segments()) {
+    if (seg.motion != SegmentMotion::kFree) continue;
+    const int iq = seg.q_index, iv = seg.v_index;
+    Eigen::Quaterniond quat(q[iq + 3], q[iq + 4], q[iq + 5], q[iq + 6]);
+    const Vec3 dtheta = dv.segment<3>(iv);
+    const Vec3 dp = quat.normalized().toRotationMatrix() * dv.segment<3>(iv + 3);
+    const double angle = dtheta.norm();
+    if (angle > 0.0) quat = quat * Eigen::Quaterniond(Eigen::AngleAxisd(angle, dtheta / angle));
+    quat.normalize();
+    for (int c = 0; c < 3; ++c) q[iq + c] += dp(c);
+    q[iq + 3] = quat.w();
+    q[iq + 4] = quat.x();
+    q[iq + 5] = quat.y();
+    q[iq + 6] = quat.z();
+  }
+}
+
+}  // namespace
+
+ConstraintWorkspace::ConstraintWorkspace(const Model& model, const Constraints& constraints) {
+  const int m = constraints.size(), n = model.nv();
+  if (m > 0) {  // dense, and needed only to solve with constraints
+    M.setZero(n, n);
+    MinvJt.setZero(n, m);
+    JtJ.setZero(n, n);
+    // sized now (no allocation in the solves); computed rather than
+    // constructed empty, which would leave their status uninitialised
+    M_llt.compute(Eigen::MatrixXd::Identity(n, n));
+    G_ldlt.compute(Eigen::MatrixXd::Identity(m, m));
+  }
+  J.setZero(m, n);
+  G.setZero(m, m);
+  phi.setZero(m);
+  psi.setZero(m);
+  bias.setZero(m);
+  lambda.setZero(m);
+  rhs.setZero(m);
+  pivoted.setZero(m);
+  order.assign(m, 0);
+  step.setZero(n);
+  vfree.setZero(n);
+  scratch.assign(model.segments().size(), Vec6::Zero());
+  loads.assign(model.segments().size(), Vec6::Zero());
+  h.assign(n, 0.0);
+  zero.assign(n, 0.0);
+}
+
+void SolveConstrainedAccelerations(std::span<const double> f, std::span<double> vdot, ConstraintWorkspace* ws) {
+  const int n = static_cast<int>(ws->M.rows());
+  // The ghost segments of cut joints carry no mass, so M alone is singular;
+  // the constraints fix those directions. With M~ = M + alpha J^T J (regular
+  // when they do), M v' = f + J^T lambda, J v' = -bias is the same system as
+  //   M~ v' = f + J^T lambda~,  lambda = lambda~ + alpha bias,
+  // solved by its Schur complement: (J M~^-1 J^T) lambda~ = -(J M~^-1 f + bias).
+  ws->JtJ.noalias() = ws->J.transpose() * ws->J;
+  const double jj = ws->JtJ.diagonal().maxCoeff();
+  const double alpha = jj > 0.0 ? ws->M.diagonal().maxCoeff() / jj : 0.0;
+  ws->M.noalias() += alpha * ws->JtJ;
+  ws->M_llt.compute(ws->M);
+  if (ws->M_llt.info() != Eigen::Success)
+    throw SimulationError("the mass matrix is singular in a direction the loop constraints leave free");
+  for (int i = 0; i < n; ++i) ws->vfree(i) = f[i];
+  ws->M_llt.solveInPlace(ws->vfree);
+  ws->MinvJt = ws->J.transpose();
+  ws->M_llt.solveInPlace(ws->MinvJt);
+  ws->G.noalias() = ws->J * ws->MinvJt;
+  ws->rhs.noalias() = ws->J * ws->vfree;
+  ws->rhs = -ws->rhs - ws->bias;
+  DampedGramSolve(ws);
+  ws->vfree.noalias() += ws->MinvJt * ws->rhs;
+  ws->lambda = ws->rhs + alpha * ws->bias;
+  for (int i = 0; i < n; ++i) vdot[i] = ws->vfree(i);
+  if (!ws->vfree.allFinite()) throw SimulationError("the constrained accelerations are not finite");
+}
+
+double ProjectPositions(const Model& model, const Constraints& constraints, double t, std::span<double> q,
+                        std::span<const double> v, double tolerance, int max_iterations, Kinematics* kin,
+                        ConstraintWorkspace* ws) {
+  double norm = 0.0, previous = std::numeric_limits<double>::infinity();
+  for (int it = 0;; ++it) {
+    UpdateKinematics(model, t, q, v, kin);
+    constraints.Residual(model, *kin, &ws->phi);
+    norm = ws->phi.size() ? ws->phi.lpNorm<Eigen::Infinity>() : 0.0;
+    // stop at the tolerance, or where round-off stops the progress: from a
+    // residual that small Newton converges quadratically, so a step that
+    // gains less than a factor 4 only stirs the round-off
+    const bool stalled = previous < kQuadraticRegime && norm > 0.25 * previous;
+    if (norm <= tolerance || it >= max_iterations || !std::isfinite(norm) || stalled) break;
+    previous = norm;
+    constraints.Jacobian(model, *kin, &ws->J);
+    LeastNormStep(ws->phi, ws);
+    ws->step = -ws->step;
+    AddVelocityStep(model, q, ws->step);
+  }
+  return norm;
+}
+
+double AssembleCutCoordinates(const Model& model, const Constraints& constraints, std::span<double> q,
+                              std::span<const double> v, Kinematics* kin, ConstraintWorkspace* ws) {
+  std::vector<int> ghost_columns;
+  for (const Segment& seg : model.segments())
+    if (seg.ghost && seg.drive == SegmentDrive::kDof) ghost_columns.push_back(seg.v_index);
+  double norm = 0.0;
+  for (int it = 0;; ++it) {
+    UpdateKinematics(model, 0.0, q, v, kin);
+    constraints.Residual(model, *kin, &ws->phi);
+    norm = ws->phi.size() ? ws->phi.lpNorm<Eigen::Infinity>() : 0.0;
+    if (norm <= 1e-12 || it >= 30 || ghost_columns.empty() || !std::isfinite(norm)) break;
+    constraints.Jacobian(model, *kin, &ws->J);
+    Eigen::MatrixXd Jg(ws->J.rows(), ghost_columns.size());
+    for (std::size_t c = 0; c < ghost_columns.size(); ++c) Jg.col(c) = ws->J.col(ghost_columns[c]);
+    const Eigen::VectorXd step = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jg).solve(ws->phi);
+    for (std::size_t c = 0; c < ghost_columns.size(); ++c) {
+      for (const Dof& dof : model.dofs())
+        if (dof.v_index == ghost_columns[c]) q[dof.q_index] -= step(c);
+    }
+  }
+  return norm;
+}
+
+void ProjectVelocities(const Model& model, const Constraints& constraints, double t, std::span<const double> q,
+                       std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws) {
+  UpdateKinematics(model, t, q, v, kin);
+  constraints.VelocityResidual(model, *kin, &ws->psi);
+  constraints.Jacobian(model, *kin, &ws->J);
+  LeastNormStep(ws->psi, ws);
+  for (int i = 0; i < model.nv(); ++i) v[i] -= ws->step(i);
+}
+
+void RecordGenericRank(const Model& model, const Constraints& constraints, const Kinematics& kin,
+                       ConstraintWorkspace* ws) {
+  constraints.Jacobian(model, kin, &ws->J);
+  ws->generic_rank = -1;
+  LeastNormStep(ws->phi, ws);
+  ws->generic_rank = ws->rank;
+}
+
+std::string SingularPositionNote(const Model& model, const Constraints& constraints,
+                                 const ConstraintWorkspace& ws) {
+  if (ws.generic_rank < 0 || ws.rank >= ws.generic_rank || ws.weakest_row < 0) return {};
+  std::string joint;
+  for (int k = 0; k < static_cast<int>(constraints.cut_joints().size()); ++k)
+    if (ws.weakest_row >= constraints.row(k) && ws.weakest_row < constraints.row(k) + constraints.rows(k))
+      joint = model.joints()[constraints.cut_joints()[k]].name;
+  std::ostringstream out;
+  out << "the loops are at a singular position: their constraints have rank " << ws.rank << " here, "
+      << ws.generic_rank << " at the start, and the constraint of joint '" << joint
+      << "' became dependent on the others (links aligned, a dead centre: the mechanism has momentarily more "
+         "degrees of freedom)";
+  return out.str();
+}
+
+}  // namespace mechflow::mech

@@ -1,0 +1,90 @@
+#pragma once
+// Solving with the loop constraints (mech/constraints.h): constrained
+// accelerations and multipliers, projections of positions and velocities
+// onto the constraints, and assembly.
+//
+// The constraint Jacobian J may be rank deficient for good (a planar loop's
+// out-of-plane rows, Bricard's linkage, Convel1) or for a moment (a
+// parallelogram passing its collinear position, where it has one more
+// degree of freedom). Every solve therefore factors a Gram matrix of the
+// full J afresh -- G = J J^T for projections, G = J M^-1 J^T for
+// accelerations -- by Cholesky with symmetric pivoting (Eigen's LDLT), and
+// inverts each pivot d as d / (d^2 + mu^2), mu = kDamping * (largest pivot):
+//   - well-conditioned directions are solved exactly (to (mu/d)^2);
+//   - redundant directions (pivots at round-off) contribute nothing;
+//   - a direction that goes singular fades out smoothly instead of blowing
+//     up (damped least squares), so the right-hand side stays continuous.
+// Why not select the independent rows once, at the start: a row set that is
+// independent there can become dependent later while J keeps its rank. In
+// Bricard's linkage at t = 0.894 s the rows chosen at t = 0 had a least
+// singular value of 5e-5 while J's five stayed above 1.1; the round-off
+// they amplified froze the integrator's time at rtol 1e-11.
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include "mech/constraints.h"
+
+namespace mechflow::mech {
+
+// Per-run storage for the solves: sized once, no allocation afterwards.
+struct ConstraintWorkspace {
+  ConstraintWorkspace(const Model& model, const Constraints& constraints);
+
+  Eigen::MatrixXd M, J;
+  Eigen::MatrixXd JtJ;     // J^T J (nv x nv)
+  Eigen::MatrixXd MinvJt;  // M~^-1 J^T (nv x m), M~ = M + alpha J^T J
+  Eigen::MatrixXd G;       // the Gram matrix of the last solve (m x m)
+  Eigen::LLT<Eigen::MatrixXd> M_llt;
+  Eigen::LDLT<Eigen::MatrixXd> G_ldlt;
+  Eigen::VectorXd phi, psi, bias, lambda, step, rhs, pivoted, vfree;
+  std::vector<Vec6> scratch;
+  std::vector<Vec6> loads;  // segment loads with the constraint wrenches added
+  std::vector<double> h;    // inverse dynamics with v' = 0
+  std::vector<double> zero;
+
+  // The numerical rank of G at the last solve, the rank found at assembly
+  // (the loops' generic rank), and the constraint row whose pivot was the
+  // weakest of the generic-rank ones (what turns singular first).
+  int rank = 0;
+  int generic_rank = -1;
+  int weakest_row = -1;
+  std::vector<int> order;  // pivot order of the last factorisation
+};
+
+// Constrained accelerations: M v' = f + J^T lambda with J v' + bias = 0,
+// where f = tau - h. Reads ws->M (overwritten), J, bias (filled by the
+// caller) and f; writes vdot (nv) and ws->lambda (the wrench body 2
+// receives, per row).
+void SolveConstrainedAccelerations(std::span<const double> f, std::span<double> vdot, ConstraintWorkspace* ws);
+
+// Moves q (and then v) onto the constraint manifold by Gauss-Newton with
+// least-norm steps; returns the final position residual norm. Quaternion
+// coordinates are updated through their rotation vector.
+double ProjectPositions(const Model& model, const Constraints& constraints, double t, std::span<double> q,
+                        std::span<const double> v, double tolerance, int max_iterations, Kinematics* kin,
+                        ConstraintWorkspace* ws);
+// Assembly, first phase: closes the loops by moving only the coordinates of
+// the loop-closing joints themselves (their ghost segments), so consistent
+// user coordinates are kept exactly. Returns the residual norm reached.
+double AssembleCutCoordinates(const Model& model, const Constraints& constraints, std::span<double> q,
+                              std::span<const double> v, Kinematics* kin, ConstraintWorkspace* ws);
+
+void ProjectVelocities(const Model& model, const Constraints& constraints, double t, std::span<const double> q,
+                       std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws);
+
+// Records the rank of the loops at the current (assembled) position as their
+// generic rank; later solves compare against it.
+void RecordGenericRank(const Model& model, const Constraints& constraints, const Kinematics& kin,
+                       ConstraintWorkspace* ws);
+
+// When the last solve found the loops below their generic rank: a sentence
+// naming the joint whose constraint became dependent; empty otherwise.
+std::string SingularPositionNote(const Model& model, const Constraints& constraints,
+                                 const ConstraintWorkspace& ws);
+
+}  // namespace mechflow::mech
