@@ -90,6 +90,7 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   row_.resize(results_.num_columns());
   frozen_y_.assign(diagram_.num_states(), 0.0);
   frozen_slope_.assign(diagram_.num_states(), 0.0);
+  frozen_before_.assign(diagram_.num_states(), 0.0);
   for (const int b : diagram_.crossing_blocks())
     for (int i = 0; i < diagram_.layout(b).num_crossings; ++i) crossing_owner_.push_back(b);
   roots_found_.assign(diagram_.num_zero_crossings(), 0);
@@ -253,28 +254,33 @@ void Simulator::RefuseFrozenState() {
   Check(CVodeGetCurrentState(mem, &yn), "CVodeGetCurrentState");
   const double* y = N_VGetArrayPointer(yn);
   const std::size_t n = frozen_y_.size();
-  const bool same = frozen_valid_ && tn > frozen_tn_ && std::equal(y, y + n, frozen_y_.begin());
+  const bool advanced = frozen_valid_ && tn > frozen_tn_;
   const double tn_before = frozen_tn_;
+  std::copy(frozen_y_.begin(), frozen_y_.end(), frozen_before_.begin());
   frozen_valid_ = true;
   frozen_tn_ = tn;
   std::copy(y, y + n, frozen_y_.begin());
-  if (!same) return;
-  // The solver's own state did not change while its time advanced: frozen
-  // unless its own derivative there is zero too (nothing moves).
+  if (!advanced || !std::equal(y, y + n, frozen_before_.begin())) return;
+  // the solver's own derivative there
   N_Vector slope = N_VMake_Serial(static_cast<sunindextype>(n), frozen_slope_.data(), solver_->ctx.get());
   const int flag = CVodeGetDky(mem, tn, 1, slope);
   N_VDestroy(slope);
   Check(flag, "CVodeGetDky");
-  for (std::size_t i = 0; i < n; ++i) {
-    const double resolution = 1e-3 * (options_.rtol * std::abs(y[i]) + options_.atol);
-    if (std::abs(frozen_slope_[i]) * (tn - tn_before) > resolution) {
-      std::ostringstream out;
-      out << "the integrator's state stopped changing from t = " << tn_before << " to " << tn
-          << " s while its derivative is not zero (state " << i << ": x' = " << frozen_slope_[i]
-          << "): refusing to write rows of frozen motion";
-      throw SimulationError(out.str());
-    }
-  }
+  const int i = FrozenState(frozen_before_, frozen_y_, frozen_slope_, tn - tn_before, options_.rtol, options_.atol);
+  if (i < 0) return;
+  std::ostringstream out;
+  out << "the integrator's state stopped changing from t = " << tn_before << " to " << tn
+      << " s while its derivative is not zero (state " << i << ": x' = " << frozen_slope_[i]
+      << "): refusing to write rows of frozen motion";
+  throw SimulationError(out.str());
+}
+
+int FrozenState(std::span<const double> before, std::span<const double> after, std::span<const double> slope,
+                double dt, double rtol, double atol) {
+  if (!std::equal(before.begin(), before.end(), after.begin(), after.end())) return -1;
+  for (std::size_t i = 0; i < after.size(); ++i)
+    if (std::abs(slope[i]) * dt > 1e-3 * (rtol * std::abs(after[i]) + atol)) return static_cast<int>(i);
+  return -1;
 }
 
 int Simulator::Rhs(double t, N_Vector y, N_Vector ydot, void* user) {

@@ -40,6 +40,7 @@
 
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,12 @@ struct RunOutcome {
   bool stopped = false;     // ended early by its control (ok stays true)
   std::string stop_reason;  // when stopped: the control's reason
 };
+
+// Frozen motion: the same state bit for bit `dt` seconds apart although the
+// slope would have moved component i by more than a thousandth of its error
+// weight. Returns the first such i, or -1.
+int FrozenState(std::span<const double> before, std::span<const double> after, std::span<const double> slope,
+                double dt, double rtol, double atol);
 
 class Simulator {
  public:
@@ -189,7 +196,7 @@ class Simulator {
   std::vector<EventRecord> events_;
   Context ctx_;
   std::vector<double> row_;
-  std::vector<double> frozen_y_, frozen_slope_;  // CVODE's state at the last row, scratch
+  std::vector<double> frozen_y_, frozen_before_, frozen_slope_;  // CVODE's state at the last row, scratch
   double frozen_tn_ = 0.0;                       // and its time
   bool frozen_valid_ = false;
   std::vector<int> crossing_owner_;      // crossing index -> block

@@ -1,8 +1,10 @@
 // Simulator guards: a crossing that keeps firing at one instant fails the run
 // instead of looping; a run that fails before the solver is set up prints
-// nothing from SUNDIALS.
+// nothing from SUNDIALS; a step size at the resolution of time and a solver
+// state that froze end the run with a message instead of rows.
 
 #include <memory>
+#include <vector>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -118,6 +120,48 @@ TEST(SimulatorGuardsTest, AFailureBeforeTheSolverIsSetUpPrintsNothing) {
   EXPECT_EQ(sim.stats().steps, 0);
   EXPECT_EQ(sim.stats().jac_evals, 0);
   EXPECT_EQ(sim.stats().projections, 0);
+}
+
+// x' = 1 / (1 - t)^2: x = 1 / (1 - t) - 1 blows up at t = 1, and the step
+// size with it.
+class BlowUp : public Block {
+ public:
+  BlowUp() : Block("blow_up", "b") {
+    DeclareOutputPort("x");
+    DeclareNoFeedthrough();
+    DeclareContinuousStates(1);
+  }
+
+ protected:
+  void DoInitialize(const BlockContext& ctx) const override { ctx.state()[0] = 0.0; }
+  void DoCalcOutput(int, const BlockContext& ctx) const override { ctx.output(0)[0] = ctx.state()[0]; }
+  void DoCalcDerivatives(const BlockContext& ctx) const override {
+    ctx.derivative()[0] = 1.0 / ((1.0 - ctx.time()) * (1.0 - ctx.time()));
+  }
+};
+
+TEST(SimulatorGuardsTest, AStepAtTheResolutionOfTimeFailsWithAReason) {
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<BlowUp>());
+  auto diagram = builder.Build();
+  Simulator sim(*diagram, Options(), {diagram->ResolveSignal("b.x")});
+  const RunOutcome outcome = sim.Run();
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_NE(outcome.failure.find("the step size fell to the resolution of time"), std::string::npos)
+      << outcome.failure;
+  EXPECT_LT(outcome.t_reached, 1.0);
+  EXPECT_GT(outcome.t_reached, 0.99);
+}
+
+TEST(SimulatorGuardsTest, FrozenMotionIsTheSameStateWithANonzeroSlope) {
+  const std::vector<double> x = {1.5706729, 0.0}, moved = {1.5706730, 0.0};
+  // a joint turning at 2.23 rad/s that stays put for 0.01 s: frozen
+  EXPECT_EQ(FrozenState(x, x, std::vector<double>{2.23, 0.0}, 0.01, 1e-11, 1e-13), 0);
+  // it moved, or nothing moves, or the change is below the tolerance
+  EXPECT_EQ(FrozenState(x, moved, std::vector<double>{2.23, 0.0}, 0.01, 1e-11, 1e-13), -1);
+  EXPECT_EQ(FrozenState(x, x, std::vector<double>{0.0, 0.0}, 0.01, 1e-11, 1e-13), -1);
+  EXPECT_EQ(FrozenState(x, x, std::vector<double>{1e-20, 0.0}, 0.01, 1e-11, 1e-13), -1);
+  EXPECT_EQ(FrozenState(x, x, std::vector<double>{0.0, -3.0}, 0.01, 1e-11, 1e-13), 1);
 }
 
 }  // namespace
