@@ -18,19 +18,27 @@ constexpr double kNoise = 1e-13;
 constexpr double kDamping = 1e-10;
 // Position residuals below this are in Newton's quadratic regime.
 constexpr double kQuadraticRegime = 1e-8;
+// Projections damp by a tenth of the weakest pivot found at assembly: a
+// direction that a singular position opens (sigma below ~0.3 of the
+// weakest one at the start) is corrected over a few steps instead of at
+// once. Correcting it at once amplifies the residual's round-off by
+// 1/sigma in the positions and again in the velocities that follow them;
+// at rtol 1e-11 the coupling rods then moved states by 2.5e-10 per step and
+// the step size collapsed at a dead centre.
+constexpr double kProjectionDamping = 0.1;
 // Pivots above kRank * (largest) count towards the numerical rank.
 constexpr double kRank = 1e-8;
 
 // Factors ws->G and solves G x = b (b in ws->rhs, x written there) with the
 // damped pivots; records the rank and the weakest counted pivot's row.
-void DampedGramSolve(ConstraintWorkspace* ws) {
+void DampedGramSolve(ConstraintWorkspace* ws, double damping = kDamping, double reference = 0.0) {
   const int m = static_cast<int>(ws->G.rows());
   ws->G_ldlt.compute(ws->G);
   const auto d = ws->G_ldlt.vectorD();
   const double largest = m > 0 ? d.cwiseAbs().maxCoeff() : 0.0;
   ws->pivoted.noalias() = ws->G_ldlt.transpositionsP() * ws->rhs;
   ws->G_ldlt.matrixL().solveInPlace(ws->pivoted);
-  const double mu = kDamping * largest;
+  const double mu = std::max(damping * largest, reference);
   ws->rank = 0;
   for (int i = 0; i < m; ++i) {
     const double di = d(i);
@@ -52,16 +60,47 @@ void DampedGramSolve(ConstraintWorkspace* ws) {
     const auto& P = ws->G_ldlt.transpositionsP();
     for (int i = 0; i < m; ++i) ws->order[i] = i;
     for (int k = 0; k < m; ++k) std::swap(ws->order[k], ws->order[P.coeff(k)]);
-    ws->weakest_row = ws->order[weakest];
+    ws->weakest_row = ws->rows[ws->order[weakest]];
   }
+}
+
+// Copies the rows of J that are not exactly zero into ws->Jc (a planar
+// loop's out-of-plane rows are), and sizes the solves for them; they
+// allocate only when that set of rows changes.
+void CompactRows(ConstraintWorkspace* ws) {
+  const int m = static_cast<int>(ws->J.rows()), n = static_cast<int>(ws->J.cols());
+  int count = 0;
+  bool same = true;
+  for (int i = 0; i < m; ++i) {
+    if (ws->J.row(i).cwiseAbs().maxCoeff() == 0.0) continue;
+    same = same && count < static_cast<int>(ws->rows.size()) && ws->rows[count] == i;
+    ++count;
+  }
+  if (!same || count != static_cast<int>(ws->rows.size())) {
+    ws->rows.clear();
+    for (int i = 0; i < m; ++i)
+      if (ws->J.row(i).cwiseAbs().maxCoeff() != 0.0) ws->rows.push_back(i);
+    ws->Jc.resize(count, n);
+    ws->X.resize(n, count);
+    ws->G.resize(count, count);
+    ws->rhs.resize(count);
+    ws->pivoted.resize(count);
+    ws->order.assign(count, 0);
+    ws->G_ldlt = Eigen::LDLT<Eigen::MatrixXd>(count);
+  }
+  for (int k = 0; k < count; ++k) ws->Jc.row(k) = ws->J.row(ws->rows[k]);
 }
 
 // Least-norm dv with J dv = e (ws->J given), through G = J J^T.
 void LeastNormStep(const Eigen::VectorXd& e, ConstraintWorkspace* ws) {
-  ws->G.noalias() = ws->J * ws->J.transpose();
-  ws->rhs = e;
-  DampedGramSolve(ws);
-  ws->step.noalias() = ws->J.transpose() * ws->rhs;
+  CompactRows(ws);
+  ws->G.setZero();
+  ws->G.selfadjointView<Eigen::Lower>().rankUpdate(ws->Jc);  // the solve reads the lower half
+  for (std::size_t k = 0; k < ws->rows.size(); ++k) ws->rhs(k) = e(ws->rows[k]);
+  DampedGramSolve(ws, kDamping, kProjectionDamping * ws->reference_pivot);
+  const int weakest = std::min(ws->generic_rank, static_cast<int>(ws->rows.size())) - 1;
+  ws->weakest_pivot = weakest >= 0 ? std::abs(ws->G_ldlt.vectorD()(weakest)) : 0.0;
+  ws->step.noalias() = ws->Jc.transpose() * ws->rhs;
 }
 
 // q += dv, with quaternion blocks advanced by the rotation vector in body axes.
@@ -90,22 +129,15 @@ ConstraintWorkspace::ConstraintWorkspace(const Model& model, const Constraints& 
   const int m = constraints.size(), n = model.nv();
   if (m > 0) {  // dense, and needed only to solve with constraints
     M.setZero(n, n);
-    MinvJt.setZero(n, m);
-    JtJ.setZero(n, n);
     // sized now (no allocation in the solves); computed rather than
     // constructed empty, which would leave their status uninitialised
     M_llt.compute(Eigen::MatrixXd::Identity(n, n));
-    G_ldlt.compute(Eigen::MatrixXd::Identity(m, m));
   }
   J.setZero(m, n);
-  G.setZero(m, m);
   phi.setZero(m);
   psi.setZero(m);
   bias.setZero(m);
   lambda.setZero(m);
-  rhs.setZero(m);
-  pivoted.setZero(m);
-  order.assign(m, 0);
   step.setZero(n);
   vfree.setZero(n);
   scratch.assign(model.segments().size(), Vec6::Zero());
@@ -121,23 +153,29 @@ void SolveConstrainedAccelerations(std::span<const double> f, std::span<double> 
   // when they do), M v' = f + J^T lambda, J v' = -bias is the same system as
   //   M~ v' = f + J^T lambda~,  lambda = lambda~ + alpha bias,
   // solved by its Schur complement: (J M~^-1 J^T) lambda~ = -(J M~^-1 f + bias).
-  ws->JtJ.noalias() = ws->J.transpose() * ws->J;
-  const double jj = ws->JtJ.diagonal().maxCoeff();
+  // With M~ = L L^T and X = L^-1 J^T: G = X^T X, J M~^-1 f = X^T y with
+  // y = L^-1 f, and v' = L^-T (y + X lambda~). Lower halves only.
+  CompactRows(ws);
+  const double jj = ws->Jc.colwise().squaredNorm().maxCoeff();
   const double alpha = jj > 0.0 ? ws->M.diagonal().maxCoeff() / jj : 0.0;
-  ws->M.noalias() += alpha * ws->JtJ;
+  ws->M.selfadjointView<Eigen::Lower>().rankUpdate(ws->Jc.transpose(), alpha);
   ws->M_llt.compute(ws->M);
   if (ws->M_llt.info() != Eigen::Success)
     throw SimulationError("the mass matrix is singular in a direction the loop constraints leave free");
+  const auto L = ws->M_llt.matrixL();
   for (int i = 0; i < n; ++i) ws->vfree(i) = f[i];
-  ws->M_llt.solveInPlace(ws->vfree);
-  ws->MinvJt = ws->J.transpose();
-  ws->M_llt.solveInPlace(ws->MinvJt);
-  ws->G.noalias() = ws->J * ws->MinvJt;
-  ws->rhs.noalias() = ws->J * ws->vfree;
-  ws->rhs = -ws->rhs - ws->bias;
+  L.solveInPlace(ws->vfree);  // y
+  ws->X = ws->Jc.transpose();
+  L.solveInPlace(ws->X);
+  ws->G.setZero();
+  ws->G.selfadjointView<Eigen::Lower>().rankUpdate(ws->X.transpose());
+  ws->rhs.noalias() = ws->X.transpose() * ws->vfree;
+  for (std::size_t k = 0; k < ws->rows.size(); ++k) ws->rhs(k) = -ws->rhs(k) - ws->bias(ws->rows[k]);
   DampedGramSolve(ws);
-  ws->vfree.noalias() += ws->MinvJt * ws->rhs;
-  ws->lambda = ws->rhs + alpha * ws->bias;
+  ws->vfree.noalias() += ws->X * ws->rhs;
+  ws->M_llt.matrixU().solveInPlace(ws->vfree);
+  ws->lambda = alpha * ws->bias;
+  for (std::size_t k = 0; k < ws->rows.size(); ++k) ws->lambda(ws->rows[k]) += ws->rhs(k);
   for (int i = 0; i < n; ++i) vdot[i] = ws->vfree(i);
   if (!ws->vfree.allFinite()) throw SimulationError("the constrained accelerations are not finite");
 }
@@ -164,11 +202,27 @@ double ProjectPositions(const Model& model, const Constraints& constraints, doub
   return norm;
 }
 
+namespace {
+
+std::vector<int> GhostColumns(const Model& model) {
+  std::vector<int> columns;
+  for (const Segment& seg : model.segments())
+    if (seg.ghost && seg.drive == SegmentDrive::kDof) columns.push_back(seg.v_index);
+  return columns;
+}
+
+// Least-squares change of the ghost columns that removes `residual` (J given).
+Eigen::VectorXd GhostStep(const Eigen::MatrixXd& J, const std::vector<int>& columns, const Eigen::VectorXd& residual) {
+  Eigen::MatrixXd Jg(J.rows(), columns.size());
+  for (std::size_t c = 0; c < columns.size(); ++c) Jg.col(c) = J.col(columns[c]);
+  return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jg).solve(residual);
+}
+
+}  // namespace
+
 double AssembleCutCoordinates(const Model& model, const Constraints& constraints, std::span<double> q,
                               std::span<const double> v, Kinematics* kin, ConstraintWorkspace* ws) {
-  std::vector<int> ghost_columns;
-  for (const Segment& seg : model.segments())
-    if (seg.ghost && seg.drive == SegmentDrive::kDof) ghost_columns.push_back(seg.v_index);
+  const std::vector<int> ghost_columns = GhostColumns(model);
   double norm = 0.0;
   for (int it = 0;; ++it) {
     UpdateKinematics(model, 0.0, q, v, kin);
@@ -176,15 +230,24 @@ double AssembleCutCoordinates(const Model& model, const Constraints& constraints
     norm = ws->phi.size() ? ws->phi.lpNorm<Eigen::Infinity>() : 0.0;
     if (norm <= 1e-12 || it >= 30 || ghost_columns.empty() || !std::isfinite(norm)) break;
     constraints.Jacobian(model, *kin, &ws->J);
-    Eigen::MatrixXd Jg(ws->J.rows(), ghost_columns.size());
-    for (std::size_t c = 0; c < ghost_columns.size(); ++c) Jg.col(c) = ws->J.col(ghost_columns[c]);
-    const Eigen::VectorXd step = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jg).solve(ws->phi);
+    const Eigen::VectorXd step = GhostStep(ws->J, ghost_columns, ws->phi);
     for (std::size_t c = 0; c < ghost_columns.size(); ++c) {
       for (const Dof& dof : model.dofs())
         if (dof.v_index == ghost_columns[c]) q[dof.q_index] -= step(c);
     }
   }
   return norm;
+}
+
+void AssembleCutVelocities(const Model& model, const Constraints& constraints, std::span<const double> q,
+                           std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws) {
+  const std::vector<int> ghost_columns = GhostColumns(model);
+  if (ghost_columns.empty()) return;
+  UpdateKinematics(model, 0.0, q, v, kin);
+  constraints.VelocityResidual(model, *kin, &ws->psi);
+  constraints.Jacobian(model, *kin, &ws->J);
+  const Eigen::VectorXd step = GhostStep(ws->J, ghost_columns, ws->psi);
+  for (std::size_t c = 0; c < ghost_columns.size(); ++c) v[ghost_columns[c]] -= step(c);
 }
 
 void ProjectVelocities(const Model& model, const Constraints& constraints, double t, std::span<const double> q,
@@ -202,20 +265,27 @@ void RecordGenericRank(const Model& model, const Constraints& constraints, const
   ws->generic_rank = -1;
   LeastNormStep(ws->phi, ws);
   ws->generic_rank = ws->rank;
+  ws->reference_pivot = ws->generic_rank > 0 ? std::abs(ws->G_ldlt.vectorD()(ws->generic_rank - 1)) : 0.0;
 }
 
 std::string SingularPositionNote(const Model& model, const Constraints& constraints,
                                  const ConstraintWorkspace& ws) {
-  if (ws.generic_rank < 0 || ws.rank >= ws.generic_rank || ws.weakest_row < 0) return {};
+  if (ws.generic_rank <= 0 || ws.weakest_row < 0) return {};
+  const bool lost_rank = ws.rank < ws.generic_rank;
+  // sigma ratio: the pivots are squares of singular values
+  const double weakness = std::sqrt(ws.weakest_pivot / ws.reference_pivot);
+  if (!lost_rank && !(weakness < 0.2)) return {};
   std::string joint;
   for (int k = 0; k < static_cast<int>(constraints.cut_joints().size()); ++k)
     if (ws.weakest_row >= constraints.row(k) && ws.weakest_row < constraints.row(k) + constraints.rows(k))
       joint = model.joints()[constraints.cut_joints()[k]].name;
   std::ostringstream out;
-  out << "the loops are at a singular position: their constraints have rank " << ws.rank << " here, "
-      << ws.generic_rank << " at the start, and the constraint of joint '" << joint
-      << "' became dependent on the others (links aligned, a dead centre: the mechanism has momentarily more "
-         "degrees of freedom)";
+  out.precision(2);
+  out << (lost_rank ? "the loops are at a singular position" : "the loops are close to a singular position")
+      << ": the constraint of joint '" << joint << "' became " << (lost_rank ? "" : "nearly ")
+      << "dependent on the others (rank " << ws.rank << " of " << ws.generic_rank << ", weakest direction "
+      << weakness << " of its strength at the start; links aligned, a dead centre, where the mechanism has "
+         "momentarily more degrees of freedom)";
   return out.str();
 }
 

@@ -3,7 +3,8 @@
 // accelerations and multipliers, projections of positions and velocities
 // onto the constraints, and assembly.
 //
-// The constraint Jacobian J may be rank deficient for good (a planar loop's
+// Rows of J that are exactly zero (a planar loop's out-of-plane ones) are
+// left out of the solves. The constraint Jacobian J may be rank deficient for good (a planar loop's
 // out-of-plane rows, Bricard's linkage, Convel1) or for a moment (a
 // parallelogram passing its collinear position, where it has one more
 // degree of freedom). Every solve therefore factors a Gram matrix of the
@@ -36,9 +37,10 @@ struct ConstraintWorkspace {
   ConstraintWorkspace(const Model& model, const Constraints& constraints);
 
   Eigen::MatrixXd M, J;
-  Eigen::MatrixXd JtJ;     // J^T J (nv x nv)
-  Eigen::MatrixXd MinvJt;  // M~^-1 J^T (nv x m), M~ = M + alpha J^T J
-  Eigen::MatrixXd G;       // the Gram matrix of the last solve (m x m)
+  std::vector<int> rows;   // the rows of J that are not exactly zero
+  Eigen::MatrixXd Jc;      // those rows (mc x nv)
+  Eigen::MatrixXd X;       // L^-1 Jc^T with M~ = L L^T = M + alpha J^T J (nv x mc)
+  Eigen::MatrixXd G;       // the Gram matrix of the last solve (mc x mc, lower half)
   Eigen::LLT<Eigen::MatrixXd> M_llt;
   Eigen::LDLT<Eigen::MatrixXd> G_ldlt;
   Eigen::VectorXd phi, psi, bias, lambda, step, rhs, pivoted, vfree;
@@ -53,7 +55,9 @@ struct ConstraintWorkspace {
   int rank = 0;
   int generic_rank = -1;
   int weakest_row = -1;
-  std::vector<int> order;  // pivot order of the last factorisation
+  // the weakest generic pivot of J J^T at assembly and at the last projection
+  double reference_pivot = 0.0, weakest_pivot = 0.0;
+  std::vector<int> order;  // pivot order of the last factorisation (into rows)
 };
 
 // Constrained accelerations: M v' = f + J^T lambda with J v' + bias = 0,
@@ -74,6 +78,11 @@ double ProjectPositions(const Model& model, const Constraints& constraints, doub
 double AssembleCutCoordinates(const Model& model, const Constraints& constraints, std::span<double> q,
                               std::span<const double> v, Kinematics* kin, ConstraintWorkspace* ws);
 
+// Assembly of velocities, first phase: the loop-closing joints' own rates
+// take up what they can, so consistent user velocities are kept exactly.
+void AssembleCutVelocities(const Model& model, const Constraints& constraints, std::span<const double> q,
+                           std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws);
+
 void ProjectVelocities(const Model& model, const Constraints& constraints, double t, std::span<const double> q,
                        std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws);
 
@@ -82,8 +91,10 @@ void ProjectVelocities(const Model& model, const Constraints& constraints, doubl
 void RecordGenericRank(const Model& model, const Constraints& constraints, const Kinematics& kin,
                        ConstraintWorkspace* ws);
 
-// When the last solve found the loops below their generic rank: a sentence
-// naming the joint whose constraint became dependent; empty otherwise.
+// When the last solves found the loops below their generic rank, or their
+// weakest direction below a fifth of its strength at the start: a sentence
+// naming the joint whose constraint became (nearly) dependent; empty
+// otherwise.
 std::string SingularPositionNote(const Model& model, const Constraints& constraints,
                                  const ConstraintWorkspace& ws);
 

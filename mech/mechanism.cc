@@ -233,6 +233,7 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
           << " after 50 Newton steps): check the dimensions and the initial coordinates";
       throw InputError(out.str());
     }
+    AssembleCutVelocities(model, constraints, q, v, &ws->kin, &ws->constraint);
     ProjectVelocities(model, constraints, 0.0, q, v, &ws->kin, &ws->constraint);
     CheckLoopsLeaveMotion(mechanism, ws);
     RecordGenericRank(model, constraints, ws->kin, &ws->constraint);
