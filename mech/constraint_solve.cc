@@ -18,27 +18,20 @@ constexpr double kNoise = 1e-13;
 constexpr double kDamping = 1e-10;
 // Position residuals below this are in Newton's quadratic regime.
 constexpr double kQuadraticRegime = 1e-8;
-// Projections damp by a tenth of the weakest pivot found at assembly: a
-// direction that a singular position opens (sigma below ~0.3 of the
-// weakest one at the start) is corrected over a few steps instead of at
-// once. Correcting it at once amplifies the residual's round-off by
-// 1/sigma in the positions and again in the velocities that follow them;
-// at rtol 1e-11 the coupling rods then moved states by 2.5e-10 per step and
-// the step size collapsed at a dead centre.
-constexpr double kProjectionDamping = 0.1;
 // Pivots above kRank * (largest) count towards the numerical rank.
 constexpr double kRank = 1e-8;
 
 // Factors ws->G and solves G x = b (b in ws->rhs, x written there) with the
 // damped pivots; records the rank and the weakest counted pivot's row.
-void DampedGramSolve(ConstraintWorkspace* ws, double damping = kDamping, double reference = 0.0) {
+void DampedGramSolve(ConstraintWorkspace* ws) {
   const int m = static_cast<int>(ws->G.rows());
   ws->G_ldlt.compute(ws->G);
   const auto d = ws->G_ldlt.vectorD();
   const double largest = m > 0 ? d.cwiseAbs().maxCoeff() : 0.0;
+  const int generic = std::min(ws->generic_rank, m);
   ws->pivoted.noalias() = ws->G_ldlt.transpositionsP() * ws->rhs;
   ws->G_ldlt.matrixL().solveInPlace(ws->pivoted);
-  const double mu = std::max(damping * largest, reference);
+  const double mu = kDamping * largest;
   ws->rank = 0;
   for (int i = 0; i < m; ++i) {
     const double di = d(i);
@@ -51,7 +44,7 @@ void DampedGramSolve(ConstraintWorkspace* ws, double damping = kDamping, double 
   }
   // the pivots come largest first (symmetric pivoting): within the generic
   // rank, the last one is the weakest
-  const int weakest = std::min(ws->generic_rank, m) - 1;
+  const int weakest = generic - 1;
   ws->G_ldlt.matrixU().solveInPlace(ws->pivoted);
   ws->rhs.noalias() = ws->G_ldlt.transpositionsP().transpose() * ws->pivoted;
   ws->weakest_row = -1;
@@ -97,7 +90,7 @@ void LeastNormStep(const Eigen::VectorXd& e, ConstraintWorkspace* ws) {
   ws->G.setZero();
   ws->G.selfadjointView<Eigen::Lower>().rankUpdate(ws->Jc);  // the solve reads the lower half
   for (std::size_t k = 0; k < ws->rows.size(); ++k) ws->rhs(k) = e(ws->rows[k]);
-  DampedGramSolve(ws, kDamping, kProjectionDamping * ws->reference_pivot);
+  DampedGramSolve(ws);
   const int weakest = std::min(ws->generic_rank, static_cast<int>(ws->rows.size())) - 1;
   ws->weakest_pivot = weakest >= 0 ? std::abs(ws->G_ldlt.vectorD()(weakest)) : 0.0;
   ws->step.noalias() = ws->Jc.transpose() * ws->rhs;

@@ -15,6 +15,16 @@
 //   - redundant directions (pivots at round-off) contribute nothing;
 //   - a direction that goes singular fades out smoothly instead of blowing
 //     up (damped least squares), so the right-hand side stays continuous.
+// The damping is kept tiny on purpose. Near a dead centre the equations
+// are ill-conditioned: a velocity error along the opened direction makes
+// constraint forces that grow like 1/sigma, so a step landing very close to
+// the singular position can fail at tight tolerances (the failure names the
+// joint, SingularPositionNote). Damping those directions more, relative to
+// the weakest one at the start, let such runs pass -- by releasing the
+// constraint there: across 70 runs of coupled parallelograms the energy,
+// which must stay constant, then changed by up to 1600% in runs that
+// finished. A clear failure is better than that; undamped, none of the 70
+// gave a wrong answer, 48 finished, 22 failed with the position named.
 // Why not select the independent rows once, at the start: a row set that is
 // independent there can become dependent later while J keeps its rank. In
 // Bricard's linkage at t = 0.894 s the rows chosen at t = 0 had a least

@@ -1,3 +1,5 @@
+#include <cstdio>
+#include <cstdlib>
 #include "blocks/library/mechanism_block.h"
 
 #include <algorithm>
@@ -195,6 +197,9 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
                             std::to_string(ctx.time()));
     mech::ProjectVelocities(model, mechanism_->constraints(), ctx.time(), q, v, &ws_.kin, &ws_.constraint);
   }
+  if (getenv("MF_DEBUG")) { double cq=0, cv=0; for (int i=0;i<model.nq();++i) cq=std::max(cq,std::abs(scratch_[i]-x[i]));
+    for (int i=model.nq();i<(int)x.size();++i) cv=std::max(cv,std::abs(scratch_[i]-x[i]));
+    fprintf(stderr,"proj t=%.17g q0=%.15g corrq=%.3g corrv=%.3g weak=%.3g spread=%.3g\n", ctx.time(), x[0], cq, cv, std::sqrt(ws_.constraint.weakest_pivot/ws_.constraint.reference_pivot), x[0]-x[2]);}
   for (std::size_t i = 0; i < x.size(); ++i) {
     correction[i] = scratch_[i] - x[i];
     if (!std::isfinite(correction[i]))

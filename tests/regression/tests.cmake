@@ -13,3 +13,4 @@ mechflow_test(algebraic_loop_example_test regression tests/regression/algebraic_
 mechflow_test(friction_stick_test regression tests/regression/friction_stick_test.cc)
 mechflow_test(control_examples_test regression tests/regression/control_examples_test.cc)
 mechflow_test(closed_loop_tolerance_test regression tests/regression/closed_loop_tolerance_test.cc)
+mechflow_test(singular_position_test regression tests/regression/singular_position_test.cc)
