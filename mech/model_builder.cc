@@ -5,7 +5,9 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "mech/dynamics.h"
 #include "mech/errors.h"
+#include "mech/kinematics.h"
 
 namespace mechflow::mech {
 namespace {
@@ -27,14 +29,49 @@ void CheckBody(const BodySpec& b) {
     throw InputError(where + "inertia tensor must be symmetric (Ixy = Iyx, Ixz = Izx, Iyz = Izy)");
   Eigen::SelfAdjointEigenSolver<Mat3> eig(I);
   const Vec3 p = eig.eigenvalues();  // ascending
-  if (!(p(0) > 0.0))
-    throw InputError(where + "inertia tensor must be positive definite (smallest principal moment " + Num(p(0)) +
+  // zero is a point mass (or a thin rod's axis), accepted where no rotation
+  // about its centre of mass needs it (CheckRotationsCarryInertia)
+  if (!(p(0) >= -1e-12 * p(2)))
+    throw InputError(where + "inertia tensor must be positive semi-definite (smallest principal moment " + Num(p(0)) +
                      " kg m^2)");
   // A rigid body's principal moments obey I1 + I2 >= I3 (rounding allowed).
   if (p(0) + p(1) < p(2) * (1.0 - 1e-9))
     throw InputError(where + "principal moments " + Num(p(0)) + ", " + Num(p(1)) + ", " + Num(p(2)) +
                      " violate the triangle inequality I1 + I2 >= I3: no rigid body has them");
   if (!b.com.allFinite()) throw InputError(where + "centre of mass must be finite");
+}
+
+// Every degree of freedom must move some mass: with point masses (zero
+// inertia) a rotation about an axis through them alone would make the mass
+// matrix singular. Checked on the mass matrix at the initial coordinates:
+// each coordinate's own entry (ghost coordinates of cut joints are massless
+// by design and fixed by their loops).
+void CheckRotationsCarryInertia(const Model& m) {
+  Kinematics kin(m);
+  const std::vector<double> v(m.nv(), 0.0);
+  UpdateKinematics(m, 0.0, m.initial_q(), v, &kin);
+  DynamicsWorkspace dyn(m);
+  Eigen::MatrixXd M;
+  MassMatrix(m, kin, &M, &dyn);
+  const double scale = M.rows() > 0 ? M.diagonal().cwiseAbs().maxCoeff() : 0.0;
+  static const char* const kFreeNames[6] = {"wx", "wy", "wz", "vx", "vy", "vz"};
+  for (const Segment& seg : m.segments()) {
+    if (seg.drive != SegmentDrive::kDof || seg.ghost) continue;
+    const bool free = seg.motion == SegmentMotion::kFree;
+    for (int c = 0; c < (free ? 6 : 1); ++c) {
+      const int column = seg.v_index + c;
+      if (M(column, column) > 1e-12 * scale) continue;
+      const Joint& joint = m.joints()[seg.joint];
+      std::string coordinate = joint.name + "." + kFreeNames[c];
+      for (const Dof& dof : m.dofs())
+        if (!free && dof.v_index == column) coordinate = dof.name;
+      throw InputError(Where(joint.origin) + "joint '" + joint.name + "': coordinate '" + coordinate +
+                       "' turns body '" + m.bodies()[joint.body2].name +
+                       "' (and what it carries) about an axis through their centre of mass, and none of them has "
+                       "rotational inertia about it (a point mass, or a thin rod about its own axis): the mass "
+                       "matrix is singular. Give the body inertia, or move its centre of mass off that axis");
+    }
+  }
 }
 
 bool IsVariable(TransformType t) { return t == TransformType::kTv || t == TransformType::kRv; }
@@ -292,6 +329,7 @@ std::shared_ptr<const Model> ModelBuilder::Build() {
     m.segments_[body.segment].inertia +=
         SpatialInertia(body.mass, P * body.com, P.R * body.inertia * P.R.transpose());
   }
+  CheckRotationsCarryInertia(m);
   return std::shared_ptr<const Model>(model_.release());
 }
 
