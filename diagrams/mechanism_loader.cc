@@ -505,7 +505,8 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
 
 const std::vector<std::string> kSensorKinds = {"coordinate", "velocity",       "acceleration",       "reaction_force",
                                                "reaction_torque", "element",   "position",           "point_velocity",
-                                               "point_acceleration", "angles", "angular_velocity"};
+                                               "point_acceleration", "angles", "angular_velocity",
+                                               "kinetic_energy",     "potential_energy"};
 
 mech::SensorSpec ReadSensor(const MechanismReader& r, const ElementDesc& e, const mech::Mechanism& mech) {
   const mech::Model& model = mech.model();
@@ -549,6 +550,10 @@ mech::SensorSpec ReadSensor(const MechanismReader& r, const ElementDesc& e, cons
                          "'; it has " + blocks::JoinNames(mech.element(s.index).sensor_names()));
       break;
     }
+    case mech::SensorKind::kKineticEnergy:
+    case mech::SensorKind::kPotentialEnergy:
+      s.index = r.Has(e, "body") ? BodyIndex(model, e, "body") : -1;  // default: the whole mechanism
+      break;
     default:
       s.index = BodyIndex(model, e, "body");
       s.point = BodyPoint(r, model, e, "point", s.index);

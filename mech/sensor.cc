@@ -32,6 +32,21 @@ Vec3 CardanAngles(const Mat3& R) {
   return {a, b, c};
 }
 
+// 1/2 m |v_c|^2 + 1/2 w . (R I R^T) w of body b.
+double KineticEnergy(const Model& model, const Kinematics& kin, int b) {
+  const Body& body = model.bodies()[b];
+  const Vec3 v = PointVelocity(kin, b, body.com);
+  const Vec3& w = kin.body_omega[b];
+  const Mat3& R = kin.body_pose[b].R;
+  return 0.5 * body.mass * v.squaredNorm() + 0.5 * w.dot(R * body.inertia * R.transpose() * w);
+}
+
+// -m g . r_c of body b: zero at the global origin.
+double PotentialEnergy(const Model& model, const Kinematics& kin, int b) {
+  const Body& body = model.bodies()[b];
+  return -body.mass * model.gravity().dot(PointPosition(kin, b, body.com));
+}
+
 }  // namespace
 
 int SensorWidth(const SensorSpec& spec) { return IsVector(spec.kind) && spec.component < 0 ? 3 : 1; }
@@ -82,6 +97,11 @@ void CheckSensor(const Mechanism& mechanism, const SensorSpec& spec) {
         throw InputError(where + ": element '" + mechanism.element(spec.index).name() + "' has no output " +
                          std::to_string(spec.element_sensor));
       break;
+    case SensorKind::kKineticEnergy:
+    case SensorKind::kPotentialEnergy:
+      ok = spec.index == -1 || in_range(spec.index, model.bodies().size());
+      what = "body";
+      break;
     default:
       ok = in_range(spec.index, model.bodies().size());
       what = "body";
@@ -129,6 +149,16 @@ void EvaluateSensor(const Mechanism& mechanism, const MechanismWorkspace& ws, st
     case SensorKind::kBodyAngularVelocity:
       value = ws.kin.body_omega[spec.index];
       break;
+    case SensorKind::kKineticEnergy:
+    case SensorKind::kPotentialEnergy: {
+      const int first = spec.index < 0 ? 1 : spec.index, last = spec.index < 0 ? model.num_bodies() : spec.index + 1;
+      double energy = 0.0;
+      for (int b = first; b < last; ++b) energy += spec.kind == SensorKind::kKineticEnergy
+                                                       ? KineticEnergy(model, ws.kin, b)
+                                                       : PotentialEnergy(model, ws.kin, b);
+      out[0] = energy;
+      return;
+    }
   }
   if (spec.component >= 0) {
     out[0] = value(spec.component);

@@ -28,7 +28,9 @@ enum class SensorKind {
   kPointVelocity,
   kPointAcceleration,
   kBodyAngles,          // Cardan 1-2-3 angles of the body frame in the global frame [rad]
-  kBodyAngularVelocity  // global components
+  kBodyAngularVelocity, // global components
+  kKineticEnergy,       // of a body (index), or of the whole mechanism (index -1) [J]
+  kPotentialEnergy      // gravitational, -m g . r_com, zero at the global origin; body or mechanism [J]
 };
 
 struct SensorSpec {

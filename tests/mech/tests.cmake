@@ -10,6 +10,7 @@ endif()
 mechflow_test(force_elements_test unit tests/mech/force_elements_test.cc)
 mechflow_test(friction_hysteresis_test unit tests/mech/friction_hysteresis_test.cc)
 mechflow_test(gear_pitch_test unit tests/mech/gear_pitch_test.cc)
+mechflow_test(energy_sensor_test unit tests/mech/energy_sensor_test.cc)
 
 # the P4 reference (bench/pendulum_chain_direct.*) checked against closed forms; its library is
 # defined in bench/, which is added here, excluded from all, when the benchmarks are off
