@@ -370,6 +370,22 @@ int DofIndex(const mech::Model& model, const ElementDesc& e, const std::string& 
                    name + "'" + blocks::DidYouMean(name, names) + "; coordinates: " + blocks::JoinNames(names));
 }
 
+// The frictional element's parameters, on a line between points or on a
+// joint coordinate (a friction moment there).
+mech::FrictionalParameters ReadFrictional(const MechanismReader& r, const ElementDesc& e) {
+  mech::FrictionalParameters p;
+  p.friction = r.Param(e, "friction", 0.0);
+  p.ratio = r.Param(e, "ratio", 1.2);
+  p.stiffness = r.Param(e, "c", 0.0);
+  p.damping = r.Param(e, "d", 0.0);
+  RequireAtLeast(r, e, "friction", p.friction, 0.0, "the friction force must not be negative");
+  RequireAtLeast(r, e, "ratio", p.ratio, 1.0,
+                 "the ratio of static to dynamic friction must be at least 1 (static below dynamic friction)");
+  RequireAtLeast(r, e, "c", p.stiffness, 0.0, "the stiffness c must not be negative");
+  RequireAtLeast(r, e, "d", p.damping, 0.0, "the damping d must not be negative");
+  return p;
+}
+
 std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const ElementDesc& e,
                                                 const mech::Model& model, const mech::Kinematics& kin0) {
   const std::string name = e.Text("name");
@@ -377,16 +393,7 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
     const int b1 = BodyIndex(model, e, "body1"), b2 = BodyIndex(model, e, "body2");
     const Vec3 p1 = BodyPoint(r, model, e, "point1", b1), p2 = BodyPoint(r, model, e, "point2", b2);
     if (e.Text("type") == "frictional" || e.Text("type") == "elastic_friction") {
-      mech::FrictionalParameters p;
-      p.friction = r.Param(e, "friction", 0.0);
-      p.ratio = r.Param(e, "ratio", 1.2);
-      p.stiffness = r.Param(e, "c", 0.0);
-      p.damping = r.Param(e, "d", 0.0);
-      RequireAtLeast(r, e, "friction", p.friction, 0.0, "the friction force must not be negative");
-      RequireAtLeast(r, e, "ratio", p.ratio, 1.0,
-                     "the ratio of static to dynamic friction must be at least 1 (static below dynamic friction)");
-      RequireAtLeast(r, e, "c", p.stiffness, 0.0, "the stiffness c must not be negative");
-      RequireAtLeast(r, e, "d", p.damping, 0.0, "the damping d must not be negative");
+      const mech::FrictionalParameters p = ReadFrictional(r, e);
       if (e.Text("type") == "elastic_friction")
         return std::make_unique<mech::ElasticFrictionForce>(name, e.loc.str(), b1, p1, b2, p2, p);
       return std::make_unique<mech::FrictionalForce>(name, e.loc.str(), b1, p1, b2, p2, p);
@@ -416,6 +423,12 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
   }
   if (e.tag == "joint_force") {
     const mech::Dof& dof = model.dofs()[DofIndex(model, e, "dof")];
+    if (e.Text("type") == "frictional")
+      return std::make_unique<mech::FrictionalForce>(name, e.loc.str(), dof, ReadFrictional(r, e));
+    if (e.Text("type") == "elastic_friction" || e.Text("type") == "elastic_friction2")
+      throw InputError(r.What(e, "type") + ": '" + e.Text("type") +
+                       "' acts between two body points (<force>); on a joint coordinate use type=\"frictional\" "
+                       "(friction, ratio, and the stick stiffness c and damping d)");
     return std::make_unique<mech::JointForce>(name, e.loc.str(), dof, ReadLaw(r, e, model.initial_q()[dof.q_index]));
   }
   if (e.tag == "bushing") {

@@ -58,7 +58,7 @@ const std::vector<ElementSchema>& Schema() {
         "friction", "ratio", "c1", "c2", "mu", "mu0", "l0", "limit", "normal_force"},
        {}},
       {"joint_force", {"name", "type", "dof"},
-       {"c", "x0", "d", "f0", "points", "interpolation", "extrapolation", "expression"}, {}},
+       {"c", "x0", "d", "f0", "points", "interpolation", "extrapolation", "expression", "friction", "ratio"}, {}},
       {"bushing", {"name", "body1", "body2"}, {"point1", "point2", "c", "d", "ca", "da", "preload", "preload_moment"}, {}},
       {"applied_force", {"name", "body"}, {"point", "force", "torque", "axes"}, {}},
       {"sensor", {"name", "kind"}, {"dof", "joint", "element", "quantity", "body", "point", "component"}, {}},

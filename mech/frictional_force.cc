@@ -19,6 +19,17 @@ FrictionalForce::FrictionalForce(std::string name, std::string origin, int body1
       point2_(point2),
       p_(parameters) {
   DeclareBodies({body1_, body2_});
+  DeclareInterface();
+}
+
+FrictionalForce::FrictionalForce(std::string name, std::string origin, const Dof& dof,
+                                 FrictionalParameters parameters)
+    : ForceElement(std::move(name), std::move(origin)), q_index_(dof.q_index), v_index_(dof.v_index), p_(parameters) {
+  DeclareCoordinates({v_index_});
+  DeclareInterface();
+}
+
+void FrictionalForce::DeclareInterface() {
   DeclareDependsOnInputs(p_.friction.uses_inputs || p_.ratio.uses_inputs || p_.stiffness.uses_inputs ||
                          p_.damping.uses_inputs);
   DeclareSensor("force");
@@ -33,24 +44,37 @@ FrictionalForce::FrictionalForce(std::string name, std::string origin, int body1
   DeclareCrossing(mech::Crossing::kRising);   // kBreaksBackward: -holding - ratio F
 }
 
-BipolarGeometry FrictionalForce::Measure(const ElementContext& ctx) const {
-  return MeasureBipolar(*ctx.kin, body1_, point1_, body2_, point2_);
+FrictionalForce::Slide FrictionalForce::Measure(const ElementContext& ctx) const {
+  Slide s;
+  if (q_index_ >= 0) {
+    s.x = ctx.q[q_index_];
+    s.v = ctx.v[v_index_];
+    return s;
+  }
+  s.line = MeasureBipolar(*ctx.kin, body1_, point1_, body2_, point2_);
+  s.x = s.line.x;
+  s.v = s.line.v;
+  return s;
 }
 
 void FrictionalForce::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
-  const BipolarGeometry g = Measure(ctx);
+  const Slide g = Measure(ctx);
   modes[0] = g.v > 0 ? kSlipPlus : g.v < 0 ? kSlipMinus : kStick;
   modes[1] = g.x;
 }
 
 void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
                                std::span<double> sensors) const {
-  const BipolarGeometry g = Measure(ctx);
+  const Slide g = Measure(ctx);
   const double mode = ctx.modes[0];
   const double f = mode == kStick ? -p_.stiffness.Get(ctx) * (g.x - ctx.modes[1]) - p_.damping.Get(ctx) * g.v
                                   : -mode * p_.friction.Get(ctx);
-  loads->AddForce(*ctx.kin, body2_, g.pb, f * g.u);
-  loads->AddForce(*ctx.kin, body1_, g.pa, -f * g.u);
+  if (q_index_ >= 0) {
+    loads->AddGeneralizedForce(v_index_, f);
+  } else {
+    loads->AddForce(*ctx.kin, body2_, g.line.pb, f * g.line.u);
+    loads->AddForce(*ctx.kin, body1_, g.line.pa, -f * g.line.u);
+  }
   sensors[0] = f;
   sensors[1] = g.x;
   sensors[2] = g.v;
@@ -59,7 +83,7 @@ void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::spa
 }
 
 void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
-  const BipolarGeometry g = Measure(ctx);
+  const Slide g = Measure(ctx);
   const double mode = ctx.modes[0];
   // Inactive functions sit at a constant away from zero, on the side that
   // cannot trigger.

@@ -1,7 +1,9 @@
 #pragma once
 // Frictional element (ELEMENTS.md 3.6): dry friction between point A on body
 // 1 and point B on body 2, along the line between them, with a stiffness and
-// damping that hold it while it sticks.
+// damping that hold it while it sticks -- or on one joint coordinate (x = q,
+// v = q'; a friction moment on a rotation, a force on a translation; issue
+// 12, item 4), where the force below acts as a generalized force.
 //
 //   modes: STICK (0), SLIP+ (+1, lengthening), SLIP- (-1); the anchor x_s is
 //          the length when sticking began (second discrete value)
@@ -38,6 +40,7 @@ class FrictionalForce final : public ForceElement {
  public:
   FrictionalForce(std::string name, std::string origin, int body1, Vec3 point1, int body2, Vec3 point2,
                   FrictionalParameters parameters);
+  FrictionalForce(std::string name, std::string origin, const Dof& dof, FrictionalParameters parameters);
   void Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
   void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                 std::span<double> sensors) const override;
@@ -46,10 +49,16 @@ class FrictionalForce final : public ForceElement {
                   std::span<double> modes) const override;
 
  private:
-  BipolarGeometry Measure(const ElementContext& ctx) const;
+  struct Slide {
+    double x = 0.0, v = 0.0;
+    BipolarGeometry line;  // between the points (not for a joint coordinate)
+  };
+  Slide Measure(const ElementContext& ctx) const;
+  void DeclareInterface();
 
-  int body1_, body2_;
-  Vec3 point1_, point2_;
+  int body1_ = -1, body2_ = -1;
+  Vec3 point1_ = Vec3::Zero(), point2_ = Vec3::Zero();
+  int q_index_ = -1, v_index_ = -1;  // a joint coordinate, or -1
   FrictionalParameters p_;
 };
 
