@@ -79,7 +79,9 @@ void CompactRows(ConstraintWorkspace* ws) {
     ws->rhs.resize(count);
     ws->pivoted.resize(count);
     ws->order.assign(count, 0);
-    ws->G_ldlt = Eigen::LDLT<Eigen::MatrixXd>(count);
+    // sized by a factorisation: a constructed LDLT leaves its status
+    // uninitialised, and UBSan reports the copy
+    ws->G_ldlt.compute(Eigen::MatrixXd::Identity(count, count));
   }
   for (int k = 0; k < count; ++k) ws->Jc.row(k) = ws->J.row(ws->rows[k]);
 }
