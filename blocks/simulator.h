@@ -38,7 +38,10 @@
 // Modes (stick/slip, saturation, limits) change only at those event points, so
 // the right-hand side is smooth inside every step.
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
