@@ -42,7 +42,8 @@ TEST_P(ConservativeExample, KineticPlusPotentialEnergyStaysConstant) {
   ASSERT_GT(largest, 1e-6) << "the example should move";
   double drift = 0.0;
   for (std::size_t i = 0; i < T.size(); ++i) drift = std::max(drift, std::abs(T[i] + V[i] - T[0] - V[0]));
-  // rtol 1e-8 or 1e-9 in these examples; measured drifts 2.0e-7 .. 5.6e-7 of the largest kinetic energy
+  // rtol 1e-8 or 1e-9 in these examples; measured drifts 2.0e-7 .. 5.6e-7 of the largest kinetic
+  // energy, 3.1e-6 for four_bar_train
   EXPECT_LT(drift, 1e-5 * largest) << GetParam();
   RecordProperty("relative_drift", std::to_string(drift / largest));
   std::cout << GetParam() << ": energy drift " << drift / largest << " of the largest kinetic energy\n";
@@ -50,7 +51,8 @@ TEST_P(ConservativeExample, KineticPlusPotentialEnergyStaysConstant) {
 
 INSTANTIATE_TEST_SUITE_P(Examples, ConservativeExample,
                          ::testing::Values("pendulum.xml", "pendulum_inclined.xml", "pendulum_chain.xml",
-                                           "four_bar.xml", "bricard.xml", "coupling_rods.xml"));
+                                           "four_bar.xml", "four_bar_train.xml", "bricard.xml",
+                                           "coupling_rods.xml"));
 
 }  // namespace
 }  // namespace mechflow
