@@ -37,7 +37,12 @@ void FrictionalForce::DeclareInterface() {
   DeclareSensor("rate");
   DeclareSensor("mode");
   DeclareSensor("deflection");  // of the stick spring; 0 while sliding
-  DeclareModes(2);  // mode, anchor
+  DeclareModes(2);  // mode, anchor (the length or coordinate where sticking began)
+  // The stick spring's deflection, integrated from the rate while stuck:
+  // formed as x - anchor from absolute lengths, its round-off (1e-16 x)
+  // times a stiff spring made noise that a tight atol chased (a held block,
+  // c = 1e7, atol 1e-14: 135956 steps for 10 s instead of a few hundred).
+  DeclareStates(1);
   DeclareCrossing(mech::Crossing::kFalling);  // kSlipPlusStops: v
   DeclareCrossing(mech::Crossing::kRising);   // kSlipMinusStops: v
   DeclareCrossing(mech::Crossing::kRising);   // kBreaksForward: holding - ratio F
@@ -57,18 +62,21 @@ FrictionalForce::Slide FrictionalForce::Measure(const ElementContext& ctx) const
   return s;
 }
 
-void FrictionalForce::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+void FrictionalForce::Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
   const Slide g = Measure(ctx);
   modes[0] = g.v > 0 ? kSlipPlus : g.v < 0 ? kSlipMinus : kStick;
   modes[1] = g.x;
+  state[0] = 0.0;
 }
 
-void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
+void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                                std::span<double> sensors) const {
   const Slide g = Measure(ctx);
   const double mode = ctx.modes[0];
-  const double f = mode == kStick ? -p_.stiffness.Get(ctx) * (g.x - ctx.modes[1]) - p_.damping.Get(ctx) * g.v
+  const double deflection = ctx.state[0];
+  const double f = mode == kStick ? -p_.stiffness.Get(ctx) * deflection - p_.damping.Get(ctx) * g.v
                                   : -mode * p_.friction.Get(ctx);
+  state_rate[0] = mode == kStick ? g.v : 0.0;
   if (q_index_ >= 0) {
     loads->AddGeneralizedForce(v_index_, f);
   } else {
@@ -79,7 +87,7 @@ void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::spa
   sensors[1] = g.x;
   sensors[2] = g.v;
   sensors[3] = mode;
-  sensors[4] = mode == kStick ? g.x - ctx.modes[1] : 0.0;
+  sensors[4] = mode == kStick ? deflection : 0.0;
 }
 
 void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
@@ -90,18 +98,19 @@ void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double>
   values[kSlipPlusStops] = mode == kSlipPlus ? g.v : 1.0;
   values[kSlipMinusStops] = mode == kSlipMinus ? g.v : -1.0;
   const double limit = BreakawayLimit(p_.ratio.Get(ctx) * p_.friction.Get(ctx));
-  const double holding = p_.stiffness.Get(ctx) * (g.x - ctx.modes[1]) + p_.damping.Get(ctx) * g.v;
+  const double holding = p_.stiffness.Get(ctx) * ctx.state[0] + p_.damping.Get(ctx) * g.v;
   values[kBreaksForward] = mode == kStick ? holding - limit : -1.0;
   values[kBreaksBackward] = mode == kStick ? -holding - limit : -1.0;
 }
 
-void FrictionalForce::OnCrossing(int index, int, const ElementContext& ctx, std::span<double>,
+void FrictionalForce::OnCrossing(int index, int, const ElementContext& ctx, std::span<double> state,
                                  std::span<double> modes) const {
   switch (index) {
     case kSlipPlusStops:
     case kSlipMinusStops:
       modes[0] = kStick;
       modes[1] = Measure(ctx).x;
+      state[0] = 0.0;
       break;
     case kBreaksForward:
       modes[0] = kSlipPlus;

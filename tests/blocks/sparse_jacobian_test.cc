@@ -258,13 +258,14 @@ TEST(SparsityPatternTest, FrictionChainIsBanded) {
   const diagrams::LoadedDiagram loaded = testing::LoadXml(ChainXml(n));
   const blocks::Diagram& d = *loaded.diagram;
   EXPECT_GT(ExpectPatternCovers(d, 1e-3), 3 * n);
-  // each acceleration reads its own and its neighbours' coordinates: at most
-  // 6 entries per v column's rows plus the q' row
+  // each acceleration reads its own and its neighbours' coordinates and the
+  // stick deflections of the two elements at its body; each deflection reads
+  // the rates of its element's two bodies; the q' rows read v
   const SparsityPattern p = blocks::DiagramSparsity(d);
-  EXPECT_LE(p.nonzeros(), 2 * n + 6 * n + n);
+  EXPECT_LE(p.nonzeros(), 2 * n + 6 * n + n + 2 * n + 2 * n);
   int colours = 0;
   blocks::ColourColumns(p, &colours);
-  EXPECT_LE(colours, 6);
+  EXPECT_LE(colours, 7);
 }
 
 TEST(SparsityPatternTest, ClosedLoopIsCoupledAndTheFreeSliderIsNot) {
@@ -349,7 +350,7 @@ TEST(ColouredJacobianTest, EqualsDenseQuotientOnFrictionChain) {
   ExpectColouredEqualsDense(*loaded.diagram, 1e-3);
   int colours = 0;
   blocks::ColourColumns(blocks::DiagramSparsity(*loaded.diagram), &colours);
-  EXPECT_LE(colours, 6);  // 24 states, banded
+  EXPECT_LE(colours, 7);  // 36 states (q, v, stick deflection), banded
 }
 
 TEST(ColouredJacobianTest, EqualsDenseQuotientOnLoop) {
@@ -418,8 +419,8 @@ TEST(SparseSolverTest, AutoPicksDenseForSmallAndSparseForLargeChains) {
   const diagrams::LoadedDiagram large = testing::LoadXml(ChainXml(100));
   const blocks::Simulator large_sim(*large.diagram, large.solver, large.logged);
   ASSERT_NE(large_sim.sparse_jacobian(), nullptr);
-  EXPECT_LE(large_sim.sparse_jacobian()->num_colours(), 6);
-  EXPECT_EQ(large_sim.sparse_jacobian()->pattern().n, 200);
+  EXPECT_LE(large_sim.sparse_jacobian()->num_colours(), 7);
+  EXPECT_EQ(large_sim.sparse_jacobian()->pattern().n, 300);  // q, v, stick deflection
 }
 
 TEST(SparseSolverTest, DenseSettingWinsOverAuto) {
