@@ -90,6 +90,7 @@ struct SolverStats {
   long events = 0;           // zero crossings handled
   long sample_hits = 0;
   long reinits = 0;
+  long restarts = 0;         // after repeated error-test or convergence failures (a re-initialisation too)
   long projections = 0;          // projection calls (0 unless a block declares one)
   long projection_failures = 0;  // failed projections (each retries its step smaller)
   bool sparse = false;           // sparse Jacobian and KLU (otherwise dense)
@@ -202,6 +203,10 @@ class Simulator {
   std::vector<double> frozen_y_, frozen_before_, frozen_slope_;  // CVODE's state at the last row, scratch
   double frozen_tn_ = 0.0;                       // and its time
   bool frozen_valid_ = false;
+  // A restart after repeated solver failures needs this fraction of the run
+  // done since the last one; otherwise the run fails there.
+  static constexpr double kRestartProgress = 1e-3;
+  double restarted_at_ = -std::numeric_limits<double>::infinity();
   std::vector<int> crossing_owner_;      // crossing index -> block
   std::vector<int> roots_found_;
   std::vector<long> next_hit_;           // per periodic block: next k

@@ -81,6 +81,8 @@ void PrintStats(const blocks::SolverStats& s, std::ostream& out) {
       << s.error_test_failures << " error-test failures\n"
       << "        " << s.events << " events, " << s.sample_hits << " sample hits, " << s.reinits
       << " re-initialisations, " << s.root_evals << " zero-crossing evaluations\n";
+  if (s.restarts > 0)
+    out << "        " << s.restarts << " restarts after repeated error-test or convergence failures\n";
   if (s.sparse)
     out << "        sparse Jacobian (KLU): " << s.colours << " colours, " << s.nonzeros << " nonzeros\n";
   else
