@@ -533,7 +533,6 @@ double Simulator::NextStop() const {
 
 RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   const double t0 = options_.t_start, t_end = options_.t_end;
-  restarted_at_ = -std::numeric_limits<double>::infinity();
   const sunindextype n = std::max(1, diagram_.num_states());
   const FlushDenormals flush_denormals;  // for the whole run (see the header)
   solver_ = std::make_unique<Solver>(n, jacobian_.get());
@@ -649,16 +648,15 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       if (flag == CV_ERR_FAILURE || flag == CV_CONV_FAILURE) {
         // Repeated error-test or convergence failures at one step: restart
         // the method from the last accepted point (order 1, a fresh history)
-        // once the run has made progress since the last restart. A
+        // when it took kRestartSteps steps since it last started. A
         // regularised friction law's near-kinks pollute the multistep history
         // now and then (stick_slip_blocks failed at t = 50.2 s, mid-stick,
         // after 2061 error-test failures); error control stays as it was.
         double t_last = t;
         CVodeGetCurrentTime(mem, &t_last);
-        const double progress_needed = kRestartProgress * (t_end - t0);
-        if (callback_failure_.empty() && t_last - restarted_at_ > progress_needed &&
-            CVodeGetDky(mem, t_last, 0, yout) == CV_SUCCESS) {
-          restarted_at_ = t_last;
+        long steps = 0;  // since CVODE last started (CVodeReInit resets the count)
+        CVodeGetNumSteps(mem, &steps);
+        if (callback_failure_.empty() && steps >= kRestartSteps && CVodeGetDky(mem, t_last, 0, yout) == CV_SUCCESS) {
           std::copy(interpolated.begin(), interpolated.end(), y);
           ctx_.x = y;
           t = std::max(t, t_last);

@@ -203,10 +203,9 @@ class Simulator {
   std::vector<double> frozen_y_, frozen_before_, frozen_slope_;  // CVODE's state at the last row, scratch
   double frozen_tn_ = 0.0;                       // and its time
   bool frozen_valid_ = false;
-  // A restart after repeated solver failures needs this fraction of the run
-  // done since the last one; otherwise the run fails there.
-  static constexpr double kRestartProgress = 1e-3;
-  double restarted_at_ = -std::numeric_limits<double>::infinity();
+  // A restart after repeated solver failures needs this many steps since
+  // CVODE last started; a dead end fails again sooner and ends the run.
+  static constexpr long kRestartSteps = 50;
   std::vector<int> crossing_owner_;      // crossing index -> block
   std::vector<int> roots_found_;
   std::vector<long> next_hit_;           // per periodic block: next k
