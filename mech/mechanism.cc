@@ -114,6 +114,7 @@ Mechanism::Mechanism(std::shared_ptr<const Model> model, std::vector<std::unique
       elements_(std::move(elements)),
       input_names_(std::move(input_names)),
       constraints_(*model_, model_->initial_q()) {
+  for (int i = 0; i < num_elements(); ++i) element_index_.emplace(elements_[i]->name(), i);  // the first of a name
   state_size_ = model_->nq() + model_->nv();
   for (const auto& e : elements_) {
     layout_.push_back({state_size_, mode_size_, crossing_size_, sensor_size_});
@@ -125,9 +126,8 @@ Mechanism::Mechanism(std::shared_ptr<const Model> model, std::vector<std::unique
 }
 
 int Mechanism::FindElement(const std::string& name) const {
-  for (int i = 0; i < num_elements(); ++i)
-    if (elements_[i]->name() == name) return i;
-  return -1;
+  const auto it = element_index_.find(name);
+  return it == element_index_.end() ? -1 : it->second;
 }
 
 int Mechanism::FindInput(const std::string& name) const {

@@ -17,6 +17,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -60,6 +61,7 @@ class Mechanism {
   };
   std::shared_ptr<const Model> model_;
   std::vector<std::unique_ptr<ForceElement>> elements_;
+  std::unordered_map<std::string, int> element_index_;  // name -> element (sensors of large models)
   std::vector<std::string> input_names_;
   std::vector<Slices> layout_;
   Constraints constraints_;
