@@ -37,9 +37,9 @@ void FrictionalForce::DeclareInterface() {
   DeclareSensor("rate");
   DeclareSensor("mode");
   DeclareSensor("deflection");  // of the stick spring; 0 while sliding
-  DeclareModes(2);  // mode, anchor (the length or coordinate where sticking began)
+  DeclareModes(1);
   // The stick spring's deflection, integrated from the rate while stuck:
-  // formed as x - anchor from absolute lengths, its round-off (1e-16 x)
+  // formed as x - x_s from absolute lengths, its round-off (1e-16 x)
   // times a stiff spring made noise that a tight atol chased (a held block,
   // c = 1e7, atol 1e-14: 135956 steps for 10 s instead of a few hundred).
   DeclareStates(1);
@@ -65,7 +65,6 @@ FrictionalForce::Slide FrictionalForce::Measure(const ElementContext& ctx) const
 void FrictionalForce::Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
   const Slide g = Measure(ctx);
   modes[0] = g.v > 0 ? kSlipPlus : g.v < 0 ? kSlipMinus : kStick;
-  modes[1] = g.x;
   state[0] = 0.0;
 }
 
@@ -103,13 +102,12 @@ void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double>
   values[kBreaksBackward] = mode == kStick ? -holding - limit : -1.0;
 }
 
-void FrictionalForce::OnCrossing(int index, int, const ElementContext& ctx, std::span<double> state,
+void FrictionalForce::OnCrossing(int index, int, const ElementContext&, std::span<double> state,
                                  std::span<double> modes) const {
   switch (index) {
     case kSlipPlusStops:
     case kSlipMinusStops:
       modes[0] = kStick;
-      modes[1] = Measure(ctx).x;
       state[0] = 0.0;
       break;
     case kBreaksForward:

@@ -5,14 +5,15 @@
 // v = q'; a friction moment on a rotation, a force on a translation; issue
 // 12, item 4), where the force below acts as a generalized force.
 //
-//   modes: STICK (0), SLIP+ (+1, lengthening), SLIP- (-1); the anchor x_s is
-//          the length when sticking began (second discrete value)
+//   modes: STICK (0), SLIP+ (+1, lengthening), SLIP- (-1)
+//   state: the stick deflection delta, integrated from v while stuck (the
+//          length's change since sticking began)
 //   force on body 2 (positive pushes apart):
-//     STICK: -c (x - x_s) - d v      SLIP+: -F      SLIP-: +F
+//     STICK: -c delta - d v      SLIP+: -F      SLIP-: +F
 //   switches are events (zero crossings), never `if`s inside a step:
 //     SLIP+ -> STICK when v falls through 0, SLIP- -> STICK when v rises
-//     through 0 (x_s := x); STICK -> SLIP+/- when the holding force
-//     +-(c (x - x_s) + d v) rises through ratio * F.
+//     through 0 (delta := 0); STICK -> SLIP+/- when the holding force
+//     +-(c delta + d v) rises through ratio * F.
 // Entering STICK at v = 0 starts with no spring force, so the element does
 // not ring. F = c = d = 0 makes it inactive. Parameters may follow inputs
 // (LeafSpring feeds F from a normal force).
