@@ -374,6 +374,16 @@ int DofIndex(const mech::Model& model, const ElementDesc& e, const std::string& 
 // joint coordinate (a friction moment there).
 mech::FrictionalParameters ReadFrictional(const MechanismReader& r, const ElementDesc& e) {
   mech::FrictionalParameters p;
+  const std::string stick = e.Text("stick", "spring");
+  if (stick != "spring" && stick != "exact")
+    throw InputError(r.What(e, "stick") + ": unknown stick model '" + stick +
+                     "'; expected spring (held by the stiffness c and damping d) or exact (held by a constraint "
+                     "force)");
+  p.exact_stick = stick == "exact";
+  if (p.exact_stick && (r.Has(e, "c") || r.Has(e, "d")))
+    throw InputError(r.What(e, r.Has(e, "c") ? "c" : "d") +
+                     ": with stick=\"exact\" the element is held by a constraint force, so a stick stiffness c "
+                     "and damping d would have no effect; remove them, or use stick=\"spring\"");
   p.friction = r.Param(e, "friction", 0.0);
   p.ratio = r.Param(e, "ratio", 1.2);
   p.stiffness = r.Param(e, "c", 0.0);
@@ -389,6 +399,12 @@ mech::FrictionalParameters ReadFrictional(const MechanismReader& r, const Elemen
 std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const ElementDesc& e,
                                                 const mech::Model& model, const mech::Kinematics& kin0) {
   const std::string name = e.Text("name");
+  if (r.Has(e, "stick") && e.Text("type") != "frictional")
+    throw InputError(r.What(e, "stick") + ": only type=\"frictional\" has a stick model" +
+                     (e.Text("type") == "elastic_friction" || e.Text("type") == "elastic_friction2"
+                          ? std::string("; the slider of '") + e.Text("type") +
+                                "' already sticks exactly (its stiffness is the elastic link in series)"
+                          : std::string()));
   if (e.tag == "force") {
     const int b1 = BodyIndex(model, e, "body1"), b2 = BodyIndex(model, e, "body2");
     const Vec3 p1 = BodyPoint(r, model, e, "point1", b1), p2 = BodyPoint(r, model, e, "point2", b2);

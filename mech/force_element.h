@@ -36,7 +36,12 @@ struct ElementContext {
   std::span<const double> parameter_args;
   std::span<const double> state;  // this element's continuous states
   std::span<const double> modes;  // this element's discrete modes
+  // An exact-stick element's holding force while it sticks (see
+  // ForceElement::StuckExactly); 0 otherwise.
+  double stick_force = 0.0;
 };
+
+class DynamicsWorkspace;
 
 // A numeric element parameter: a constant, or a function of (t, inputs...)
 // when it is an expression of identifiers that are mechanism inputs.
@@ -77,7 +82,7 @@ class ForceElement {
   // not declared, read as "every body and coordinate".
   const std::vector<int>& bodies() const { return bodies_; }
   const std::vector<int>& coordinates() const { return coordinates_; }
-  bool declares_footprint() const { return !bodies_.empty() || !coordinates_.empty(); }
+  bool declares_footprint() const { return !exact_stick_ && (!bodies_.empty() || !coordinates_.empty()); }
   int num_states() const { return num_states_; }
   int num_modes() const { return num_modes_; }
   int num_crossings() const { return static_cast<int>(crossings_.size()); }
@@ -100,6 +105,23 @@ class ForceElement {
   virtual bool UpdateModes(const ElementContext&, std::span<double> /*state*/, std::span<double> /*modes*/) const {
     return false;
   }
+  // Exact stick (issue 12, item 3). An element that declared it
+  // (DeclareExactStick) and reports StuckExactly holds its relative motion
+  // by a constraint force: the mechanism finds the force f that keeps the
+  // element's relative acceleration at zero -- StickAcceleration, affine in
+  // f -- and passes it in ElementContext::stick_force; Evaluate applies it
+  // through ApplyStickForce and the element's crossings compare it with the
+  // static limit. The modes decide whether it sticks, nothing else.
+  bool exact_stick() const { return exact_stick_; }
+  virtual bool StuckExactly(const ElementContext&) const { return false; }
+  // Adds the loads of holding force f (the element's own sign convention).
+  virtual void ApplyStickForce(const ElementContext&, double /*f*/, Loads*) const {}
+  // The element's relative acceleration after a dynamics pass (accelerations
+  // in `dyn`, generalized ones in `vdot`).
+  virtual double StickAcceleration(const ElementContext&, const DynamicsWorkspace& /*dyn*/,
+                                   std::span<const double> /*vdot*/) const {
+    return 0.0;
+  }
   // Crossing `index` fired in `direction`: a warning for the user when the
   // event means "check the model" (e.g. a contact sinking deeper than its
   // bound), else empty. Called after a run, not at run time.
@@ -109,6 +131,13 @@ class ForceElement {
   void DeclareSensor(std::string sensor) { sensors_.push_back(std::move(sensor)); }
   void DeclareStates(int n) { num_states_ += n; }
   void DeclareDependsOnInputs(bool depends) { depends_on_inputs_ = depends_on_inputs_ || depends; }
+  // Its holding force follows from the whole mechanism's balance: its
+  // sensors then depend on the inputs, and it touches every body (the
+  // Jacobian's pattern is dense).
+  void DeclareExactStick() {
+    exact_stick_ = true;
+    depends_on_inputs_ = true;
+  }
   void DeclareModes(int n) { num_modes_ += n; }
   void DeclareBodies(std::vector<int> bodies) { bodies_ = std::move(bodies); }
   void DeclareCoordinates(std::vector<int> v_indices) { coordinates_ = std::move(v_indices); }
@@ -122,6 +151,7 @@ class ForceElement {
   std::vector<std::string> sensors_;
   int num_states_ = 0, num_modes_ = 0;
   bool depends_on_inputs_ = false;
+  bool exact_stick_ = false;
   std::vector<Crossing> crossings_;
   std::vector<int> bodies_, coordinates_;
 };

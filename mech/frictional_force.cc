@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "mech/dynamics.h"
+
 namespace mechflow::mech {
 namespace {
 
@@ -36,13 +38,17 @@ void FrictionalForce::DeclareInterface() {
   DeclareSensor("length");
   DeclareSensor("rate");
   DeclareSensor("mode");
-  DeclareSensor("deflection");  // of the stick spring; 0 while sliding
   DeclareModes(1);
-  // The stick spring's deflection, integrated from the rate while stuck:
-  // formed as x - x_s from absolute lengths, its round-off (1e-16 x)
-  // times a stiff spring made noise that a tight atol chased (a held block,
-  // c = 1e7, atol 1e-14: 135956 steps for 10 s instead of a few hundred).
-  DeclareStates(1);
+  if (p_.exact_stick) {
+    DeclareExactStick();
+  } else {
+    DeclareSensor("deflection");  // of the stick spring; 0 while sliding
+    // The stick spring's deflection, integrated from the rate while stuck:
+    // formed as x - x_s from absolute lengths, its round-off (1e-16 x)
+    // times a stiff spring made noise that a tight atol chased (a held block,
+    // c = 1e7, atol 1e-14: 135956 steps for 10 s instead of a few hundred).
+    DeclareStates(1);
+  }
   DeclareCrossing(mech::Crossing::kFalling);  // kSlipPlusStops: v
   DeclareCrossing(mech::Crossing::kRising);   // kSlipMinusStops: v
   DeclareCrossing(mech::Crossing::kRising);   // kBreaksForward: holding - ratio F
@@ -65,28 +71,66 @@ FrictionalForce::Slide FrictionalForce::Measure(const ElementContext& ctx) const
 void FrictionalForce::Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
   const Slide g = Measure(ctx);
   modes[0] = g.v > 0 ? kSlipPlus : g.v < 0 ? kSlipMinus : kStick;
-  state[0] = 0.0;
+  if (!p_.exact_stick) state[0] = 0.0;
 }
 
-void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
-                               std::span<double> sensors) const {
-  const Slide g = Measure(ctx);
-  const double mode = ctx.modes[0];
-  const double deflection = ctx.state[0];
-  const double f = mode == kStick ? -p_.stiffness.Get(ctx) * deflection - p_.damping.Get(ctx) * g.v
-                                  : -mode * p_.friction.Get(ctx);
-  state_rate[0] = mode == kStick ? g.v : 0.0;
+void FrictionalForce::Apply(const Slide& g, double f, Loads* loads, const ElementContext& ctx) const {
   if (q_index_ >= 0) {
     loads->AddGeneralizedForce(v_index_, f);
   } else {
     loads->AddForce(*ctx.kin, body2_, g.line.pb, f * g.line.u);
     loads->AddForce(*ctx.kin, body1_, g.line.pa, -f * g.line.u);
   }
+}
+
+double FrictionalForce::Holding(const ElementContext& ctx, const Slide& g) const {
+  if (p_.exact_stick) return -ctx.stick_force;
+  return p_.stiffness.Get(ctx) * ctx.state[0] + p_.damping.Get(ctx) * g.v;
+}
+
+void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
+                               std::span<double> sensors) const {
+  const Slide g = Measure(ctx);
+  const double mode = ctx.modes[0];
+  const double f = mode == kStick ? -Holding(ctx, g) : -mode * p_.friction.Get(ctx);
+  Apply(g, f, loads, ctx);
   sensors[0] = f;
   sensors[1] = g.x;
   sensors[2] = g.v;
   sensors[3] = mode;
-  sensors[4] = mode == kStick ? deflection : 0.0;
+  if (p_.exact_stick) return;
+  state_rate[0] = mode == kStick ? g.v : 0.0;
+  sensors[4] = mode == kStick ? ctx.state[0] : 0.0;
+}
+
+bool FrictionalForce::StuckExactly(const ElementContext& ctx) const {
+  return p_.exact_stick && ctx.modes[0] == kStick;
+}
+
+void FrictionalForce::ApplyStickForce(const ElementContext& ctx, double f, Loads* loads) const {
+  Apply(Measure(ctx), f, loads, ctx);
+}
+
+double FrictionalForce::StickAcceleration(const ElementContext& ctx, const DynamicsWorkspace& dyn,
+                                          std::span<const double> vdot) const {
+  if (q_index_ >= 0) return vdot[v_index_];
+  // x'' = u . (a_B - a_A) + (|w|^2 - (u . w)^2) / x, w the points' relative velocity
+  const Kinematics& kin = *ctx.kin;
+  const Slide g = Measure(ctx);
+  if (!(g.x > 0.0)) return 0.0;
+  const Vec3 w = PointVelocity(kin, body2_, point2_) - PointVelocity(kin, body1_, point1_);
+  const Vec3 a = PointAcceleration(*ctx.model, kin, dyn, body2_, point2_) -
+                 PointAcceleration(*ctx.model, kin, dyn, body1_, point1_);
+  return g.line.u.dot(a) + (w.squaredNorm() - g.v * g.v) / g.x;
+}
+
+bool FrictionalForce::UpdateModes(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+  if (!StuckExactly(ctx)) return false;
+  const double holding = Holding(ctx, Measure(ctx));
+  const double limit = BreakawayLimit(p_.ratio.Get(ctx) * p_.friction.Get(ctx));
+  if (std::abs(holding) <= limit) return false;
+  modes[0] = holding > 0 ? kSlipPlus : kSlipMinus;
+  return true;
 }
 
 void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
@@ -97,7 +141,7 @@ void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double>
   values[kSlipPlusStops] = mode == kSlipPlus ? g.v : 1.0;
   values[kSlipMinusStops] = mode == kSlipMinus ? g.v : -1.0;
   const double limit = BreakawayLimit(p_.ratio.Get(ctx) * p_.friction.Get(ctx));
-  const double holding = p_.stiffness.Get(ctx) * ctx.state[0] + p_.damping.Get(ctx) * g.v;
+  const double holding = mode == kStick ? Holding(ctx, g) : 0.0;
   values[kBreaksForward] = mode == kStick ? holding - limit : -1.0;
   values[kBreaksBackward] = mode == kStick ? -holding - limit : -1.0;
 }
@@ -108,7 +152,7 @@ void FrictionalForce::OnCrossing(int index, int, const ElementContext&, std::spa
     case kSlipPlusStops:
     case kSlipMinusStops:
       modes[0] = kStick;
-      state[0] = 0.0;
+      if (!p_.exact_stick) state[0] = 0.0;
       break;
     case kBreaksForward:
       modes[0] = kSlipPlus;

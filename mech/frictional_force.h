@@ -17,7 +17,16 @@
 // Entering STICK at v = 0 starts with no spring force, so the element does
 // not ring. F = c = d = 0 makes it inactive. Parameters may follow inputs
 // (LeafSpring feeds F from a normal force).
-// Sensors: force, length, rate, mode.
+//
+// Exact stick (issue 12, item 3; `exact_stick`, no c and d): while stuck,
+// the relative motion is held by a constraint force -- the holding force H =
+// -force, found from the whole mechanism's balance (mech/exact_stick.h) --
+// instead of a spring that must first deflect to carry a load. STICK ->
+// SLIP+/- when +-H rises through ratio * F; on entering STICK (and at the
+// start) an H already beyond the limit slips at once in its direction, so a
+// reversal costs no stick phase and a load applied at once is held or not
+// exactly. It has no state and no deflection sensor.
+// Sensors: force, length, rate, mode, deflection (spring stick only).
 
 #include "mech/bipolar_force.h"
 #include "mech/force_element.h"
@@ -35,6 +44,7 @@ struct FrictionalParameters {
   Parameter ratio = 1.2;  // static / dynamic
   Parameter stiffness;    // c at sticking [N/m]
   Parameter damping;      // d at sticking [N s/m]
+  bool exact_stick = false;  // hold by a constraint force; c and d unused
 };
 
 class FrictionalForce final : public ForceElement {
@@ -48,6 +58,12 @@ class FrictionalForce final : public ForceElement {
   void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
   void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
                   std::span<double> modes) const override;
+  // Exact stick: a hold beyond the static limit slips in its direction.
+  bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+  bool StuckExactly(const ElementContext& ctx) const override;
+  void ApplyStickForce(const ElementContext& ctx, double f, Loads* loads) const override;
+  double StickAcceleration(const ElementContext& ctx, const DynamicsWorkspace& dyn,
+                           std::span<const double> vdot) const override;
 
  private:
   struct Slide {
@@ -56,6 +72,10 @@ class FrictionalForce final : public ForceElement {
   };
   Slide Measure(const ElementContext& ctx) const;
   void DeclareInterface();
+  void Apply(const Slide& g, double f, Loads* loads, const ElementContext& ctx) const;
+  // The force the stuck element exerts against the motion it stops
+  // (positive resists lengthening).
+  double Holding(const ElementContext& ctx, const Slide& g) const;
 
   int body1_ = -1, body2_ = -1;
   Vec3 point1_ = Vec3::Zero(), point2_ = Vec3::Zero();

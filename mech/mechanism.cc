@@ -22,6 +22,7 @@ ElementContext MakeContext(const Mechanism& mechanism, double t, std::span<const
   ctx.parameter_args = ws.parameter_args;
   ctx.state = x.subspan(mechanism.state_offset(e), element.num_states());
   ctx.modes = modes.empty() ? modes : modes.subspan(mechanism.mode_offset(e), element.num_modes());
+  ctx.stick_force = ws.stick.force[e];
   return ctx;
 }
 
@@ -62,6 +63,73 @@ void SolveConstrained(const Mechanism& mechanism, MechanismWorkspace* ws) {
   mechanism.constraints().Jacobian(model, ws->kin, &c.J);
   mechanism.constraints().AccelerationBias(model, ws->kin, &c.scratch, &c.bias);
   SolveConstrainedAccelerations(c.h, ws->vdot, &c);
+}
+
+// Accelerations for the current loads: ws->vdot, and the segments' in ws->dyn
+// (which PointAcceleration reads). `final`: also the transmitted forces that
+// reaction sensors read.
+void SolveDynamics(const Mechanism& mechanism, MechanismWorkspace* ws, bool final) {
+  const Model& model = mechanism.model();
+  if (mechanism.constraints().empty()) {
+    ForwardDynamics(model, ws->kin, ws->loads.generalized(), ws->loads.segment_loads(), ws->vdot, &ws->dyn);
+    if (final && ws->want_reactions)
+      InverseDynamics(model, ws->kin, ws->vdot, ws->loads.segment_loads(), ws->constraint.h, &ws->dyn);
+  } else {
+    SolveConstrained(mechanism, ws);
+    // Reactions and point accelerations need the segment forces of the
+    // actual motion.
+    AddConstraintLoads(mechanism, ws);
+    InverseDynamics(model, ws->kin, ws->vdot, ws->constraint.loads, ws->constraint.h, &ws->dyn);
+  }
+}
+
+// The exact-stick elements whose modes say they stick, into ws->stick.stuck;
+// their holding forces start at zero (the first pass measures without them).
+void FindStuck(const Mechanism& mechanism, double t, std::span<const double> x, std::span<const double> modes,
+               MechanismWorkspace* ws) {
+  StickWorkspace& s = ws->stick;
+  s.stuck.clear();
+  for (int e : mechanism.exact_stick_elements()) {
+    if (!modes.empty() && mechanism.element(e).StuckExactly(MakeContext(mechanism, t, x, modes, *ws, e))) {
+      s.stuck.push_back(e);
+      // the probe's size: the last holding force's, so that the differences
+      // below lose no digits to a large load
+      s.probe[e] = std::max(1.0, std::abs(s.force[e]));
+    }
+    s.force[e] = 0.0;
+  }
+}
+
+// After EvaluateElements with the holding forces at zero: measures a0 and S
+// (mech/exact_stick.h), solves for the holding forces and lets the stuck
+// elements apply them (their sensors and rates are written again).
+void HoldStuckElements(const Mechanism& mechanism, double t, std::span<const double> x,
+                       std::span<const double> modes, MechanismWorkspace* ws, std::span<double> all_rates) {
+  StickWorkspace& s = ws->stick;
+  const int k = static_cast<int>(s.stuck.size());
+  auto relative_acceleration = [&](int i) {
+    const int e = s.stuck[i];
+    return mechanism.element(e).StickAcceleration(MakeContext(mechanism, t, x, modes, *ws, e), ws->dyn, ws->vdot);
+  };
+  ws->loads_without_holds = ws->loads;
+  SolveDynamics(mechanism, ws, false);
+  for (int i = 0; i < k; ++i) s.a0(i) = relative_acceleration(i);
+  for (int j = 0; j < k; ++j) {
+    const int e = s.stuck[j];
+    ws->loads = ws->loads_without_holds;
+    mechanism.element(e).ApplyStickForce(MakeContext(mechanism, t, x, modes, *ws, e), s.probe[e], &ws->loads);
+    SolveDynamics(mechanism, ws, false);
+    for (int i = 0; i < k; ++i) s.S(i, j) = (relative_acceleration(i) - s.a0(i)) / s.probe[e];
+  }
+  SolveHoldingForces(&s);
+  for (int i = 0; i < k; ++i) s.force[s.stuck[i]] = s.f(i);
+  ws->loads = ws->loads_without_holds;
+  for (int e : s.stuck) {
+    const ForceElement& element = mechanism.element(e);
+    element.Evaluate(MakeContext(mechanism, t, x, modes, *ws, e), &ws->loads,
+                     all_rates.subspan(mechanism.state_offset(e), element.num_states()),
+                     std::span<double>(ws->sensors).subspan(mechanism.sensor_offset(e), element.num_sensors()));
+  }
 }
 
 // A loop whose own coordinates are all fixed by its constraint (and that no
@@ -117,6 +185,7 @@ Mechanism::Mechanism(std::shared_ptr<const Model> model, std::vector<std::unique
   for (int i = 0; i < num_elements(); ++i) element_index_.emplace(elements_[i]->name(), i);  // the first of a name
   state_size_ = model_->nq() + model_->nv();
   for (const auto& e : elements_) {
+    if (e->exact_stick()) exact_stick_.push_back(static_cast<int>(layout_.size()));
     layout_.push_back({state_size_, mode_size_, crossing_size_, sensor_size_});
     state_size_ += e->num_states();
     mode_size_ += e->num_modes();
@@ -140,7 +209,9 @@ MechanismWorkspace::MechanismWorkspace(const Mechanism& mechanism)
     : kin(mechanism.model()),
       dyn(mechanism.model()),
       loads(mechanism.model()),
+      loads_without_holds(mechanism.model()),
       constraint(mechanism.model(), mechanism.constraints()),
+      stick(mechanism.num_elements(), static_cast<int>(mechanism.exact_stick_elements().size())),
       vdot(mechanism.model().nv(), 0.0),
       sensors(mechanism.num_sensor_values(), 0.0),
       rates(mechanism.num_states(), 0.0),
@@ -173,17 +244,11 @@ void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const dou
                        std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
                        std::span<double> xdot) {
   const Model& model = mechanism.model();
+  FindStuck(mechanism, t, x, modes, ws);
   EvaluateElements(mechanism, t, x, inputs, modes, ws, xdot);
-  if (mechanism.constraints().empty()) {
-    ForwardDynamics(model, ws->kin, ws->loads.generalized(), ws->loads.segment_loads(), ws->vdot, &ws->dyn);
-    if (ws->want_reactions)
-      InverseDynamics(model, ws->kin, ws->vdot, ws->loads.segment_loads(), ws->constraint.h, &ws->dyn);
-  } else {
-    SolveConstrained(mechanism, ws);
-    // Reactions need the segment forces of the actual motion.
-    AddConstraintLoads(mechanism, ws);
-    InverseDynamics(model, ws->kin, ws->vdot, ws->constraint.loads, ws->constraint.h, &ws->dyn);
-  }
+  if (!ws->stick.stuck.empty())
+    HoldStuckElements(mechanism, t, x, modes, ws, xdot.empty() ? std::span<double>(ws->rates) : xdot);
+  SolveDynamics(mechanism, ws, true);
   ws->accelerations_valid = true;
   if (xdot.empty()) return;
   CoordinateRates(model, x.subspan(0, model.nq()), x.subspan(model.nq(), model.nv()), xdot.subspan(0, model.nq()));
@@ -250,16 +315,29 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
 
 bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
                         std::span<double> modes, MechanismWorkspace* ws) {
-  EvaluatePositions(mechanism, t, x, ws);
-  SetParameterArgs(t, inputs, ws);
+  const bool holds = !mechanism.exact_stick_elements().empty();
   bool changed = false;
-  for (int e = 0; e < mechanism.num_elements(); ++e) {
-    const ForceElement& element = mechanism.element(e);
-    if (element.num_modes() == 0) continue;
-    const ElementContext ctx = MakeContext(mechanism, t, x, modes, *ws, e);
-    changed |= element.UpdateModes(ctx, x.subspan(mechanism.state_offset(e), element.num_states()),
-                                   modes.subspan(mechanism.mode_offset(e), element.num_modes()));
+  // Every pass that changes something releases a hold or settles a slip, so
+  // the passes are bounded; the cap is a guard.
+  for (int pass = 0; pass <= 2 * mechanism.num_elements(); ++pass) {
+    if (holds) {
+      EvaluateMechanism(mechanism, t, x, inputs, modes, ws, {});
+    } else {
+      EvaluatePositions(mechanism, t, x, ws);
+      SetParameterArgs(t, inputs, ws);
+    }
+    bool changed_now = false;
+    for (int e = 0; e < mechanism.num_elements(); ++e) {
+      const ForceElement& element = mechanism.element(e);
+      if (element.num_modes() == 0) continue;
+      const ElementContext ctx = MakeContext(mechanism, t, x, modes, *ws, e);
+      changed_now |= element.UpdateModes(ctx, x.subspan(mechanism.state_offset(e), element.num_states()),
+                                         modes.subspan(mechanism.mode_offset(e), element.num_modes()));
+    }
+    changed |= changed_now;
+    if (!changed_now || !holds) break;
   }
+  ws->accelerations_valid = false;
   return changed;
 }
 

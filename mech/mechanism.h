@@ -26,6 +26,7 @@
 #include "mech/constraint_solve.h"
 #include "mech/constraints.h"
 #include "mech/dynamics.h"
+#include "mech/exact_stick.h"
 #include "mech/force_element.h"
 
 namespace mechflow::mech {
@@ -54,6 +55,9 @@ class Mechanism {
   int crossing_offset(int i) const { return layout_.at(i).crossing; }
   int sensor_offset(int i) const { return layout_.at(i).sensor; }
   const Constraints& constraints() const { return constraints_; }
+  // The elements that can stick exactly (ForceElement::exact_stick): their
+  // holding forces, and so their crossings, need the dynamics.
+  const std::vector<int>& exact_stick_elements() const { return exact_stick_; }
 
  private:
   struct Slices {
@@ -64,6 +68,7 @@ class Mechanism {
   std::unordered_map<std::string, int> element_index_;  // name -> element (sensors of large models)
   std::vector<std::string> input_names_;
   std::vector<Slices> layout_;
+  std::vector<int> exact_stick_;
   Constraints constraints_;
   int state_size_ = 0, mode_size_ = 0, crossing_size_ = 0, sensor_size_ = 0;
 };
@@ -75,7 +80,9 @@ struct MechanismWorkspace {
   Kinematics kin;
   DynamicsWorkspace dyn;
   Loads loads;
+  Loads loads_without_holds;  // the loads before the holding forces of exact stick
   ConstraintWorkspace constraint;
+  StickWorkspace stick;
   std::vector<double> vdot;            // nv, after Evaluate
   std::vector<double> sensors;         // element sensor values, after Evaluate
   std::vector<double> rates;           // scratch x' when the caller wants none
@@ -103,7 +110,8 @@ void EvaluateElements(const Mechanism& mechanism, double t, std::span<const doub
                       std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
                       std::span<double> xdot);
 
-// Full evaluation: kinematics, element loads and sensors, accelerations,
+// Full evaluation: kinematics, element loads and sensors, the holding forces
+// of the elements that stick exactly (mech/exact_stick.h), accelerations,
 // constraint multipliers. Writes x' into `xdot` (may be empty to skip).
 void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const double> x,
                        std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
@@ -118,7 +126,10 @@ void ApplyCrossing(const Mechanism& mechanism, int crossing, int direction, std:
                    std::span<double> modes, MechanismWorkspace* ws);
 
 // Lets every element reconcile its modes with the state (after an event or
-// at the start); returns true when any mode changed.
+// at the start); returns true when any mode changed. With exact-stick
+// elements the mechanism is evaluated first (their holding forces decide
+// whether they stay stuck), and again after every change until the modes
+// agree.
 bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
                         std::span<double> modes, MechanismWorkspace* ws);
 

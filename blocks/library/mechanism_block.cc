@@ -143,9 +143,12 @@ void MechanismBlock::DoCalcDerivatives(const BlockContext& ctx) const {
 void MechanismBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
   // The crossings read positions, velocities, element states and parameters
   // (of t and the inputs, all computed by now), not accelerations: evaluating
-  // the elements is enough when no solve of this evaluation is at hand.
+  // the elements is enough when no solve of this evaluation is at hand --
+  // unless an element sticks exactly, whose holding force is a solve's.
   const std::uint64_t now = ctx.evaluation();
-  if (full_at_ != now) {
+  if (!mechanism_->exact_stick_elements().empty()) {
+    EnsureEvaluated(ctx, true);
+  } else if (full_at_ != now) {
     mech::EvaluateElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
     elements_at_ = positions_at_ = now;
   }
@@ -197,9 +200,6 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
                             std::to_string(ctx.time()));
     mech::ProjectVelocities(model, mechanism_->constraints(), ctx.time(), q, v, &ws_.kin, &ws_.constraint);
   }
-  if (getenv("MF_DEBUG")) { double cq=0, cv=0; for (int i=0;i<model.nq();++i) cq=std::max(cq,std::abs(scratch_[i]-x[i]));
-    for (int i=model.nq();i<(int)x.size();++i) cv=std::max(cv,std::abs(scratch_[i]-x[i]));
-    fprintf(stderr,"proj t=%.17g q0=%.15g corrq=%.3g corrv=%.3g weak=%.3g spread=%.3g\n", ctx.time(), x[0], cq, cv, std::sqrt(ws_.constraint.weakest_pivot/ws_.constraint.reference_pivot), x[0]-x[2]);}
   for (std::size_t i = 0; i < x.size(); ++i) {
     correction[i] = scratch_[i] - x[i];
     if (!std::isfinite(correction[i]))

@@ -121,6 +121,32 @@ TEST(MechanismLoaderTest, BadElementsAndSensors) {
               StartsWith("test.xml:6: input 'Fz' must name an identifier"));
 }
 
+TEST(MechanismLoaderTest, StickModels) {
+  // exact stick has no spring: a c or d there would do nothing
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge +
+                              "<joint_force name=\"f\" dof=\"j\" type=\"frictional\" friction=\"1\" stick=\"exact\" "
+                              "c=\"1e6\"/>")),
+              AllOf(StartsWith("test.xml:6: joint_force 'f' attribute 'c'"), HasSubstr("would have no effect")));
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge +
+                              "<force name=\"f\" type=\"frictional\" body1=\"Base0\" point1=\"0 0 1\" body2=\"Box\" "
+                              "friction=\"1\" stick=\"glue\"/>")),
+              AllOf(StartsWith("test.xml:6: force 'f' attribute 'stick': unknown stick model 'glue'"),
+                    HasSubstr("spring"), HasSubstr("exact")));
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge +
+                              "<force name=\"f\" type=\"elastic_friction\" body1=\"Base0\" point1=\"0 0 1\" "
+                              "body2=\"Box\" friction=\"1\" c=\"100\" stick=\"exact\"/>")),
+              AllOf(StartsWith("test.xml:6: force 'f' attribute 'stick': only type=\"frictional\""),
+                    HasSubstr("already sticks exactly")));
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge + "<joint_force name=\"f\" dof=\"j\" type=\"linear\" c=\"1\" "
+                                              "stick=\"exact\"/>")),
+              StartsWith("test.xml:6: joint_force 'f' attribute 'stick': only type=\"frictional\""));
+  // and it has no deflection to sense
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge +
+                              "<joint_force name=\"f\" dof=\"j\" type=\"frictional\" friction=\"1\" stick=\"exact\"/>"
+                              "<sensor name=\"s\" kind=\"element\" element=\"f\" quantity=\"deflection\"/>")),
+              AllOf(HasSubstr("deflection"), HasSubstr("force")));
+}
+
 TEST(MechanismLoaderTest, MechanismFromItsOwnFileAndAnInputDrivenForce) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(::testing::TempDir()) / ("mech_src_" + std::to_string(::getpid()));

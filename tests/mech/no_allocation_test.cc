@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "mech/frictional_force.h"
 #include "mech/mechanism.h"
 #include "tests/malloc_counter.h"
 #include "tests/mech/mech_test_util.h"
@@ -16,15 +17,15 @@ using T = TransformType;
 
 long CountEvaluations(const Mechanism& mech) {
   MechanismWorkspace ws(mech);
-  std::vector<double> x(mech.num_states()), xdot(mech.num_states());
-  InitialState(mech, {}, x, {}, &ws);
+  std::vector<double> x(mech.num_states()), xdot(mech.num_states()), modes(mech.num_modes());
+  InitialState(mech, {}, x, modes, &ws);
   ws.want_reactions = true;
-  EvaluateMechanism(mech, 0.0, x, {}, {}, &ws, xdot);  // warm
+  EvaluateMechanism(mech, 0.0, x, {}, modes, &ws, xdot);  // warm
   g_calls = 0;
   g_counting = true;
   for (int i = 0; i < 100; ++i) {
     x[0] += 1e-3;
-    EvaluateMechanism(mech, 0.01 * i, x, {}, {}, &ws, xdot);
+    EvaluateMechanism(mech, 0.01 * i, x, {}, modes, &ws, xdot);
     if (!mech.constraints().empty()) {
       std::span<double> q(x.data(), mech.model().nq()), v(x.data() + mech.model().nq(), mech.model().nv());
       ProjectPositions(mech.model(), mech.constraints(), 0.0, q, v, 1e-12, 5, &ws.kin, &ws.constraint);
@@ -62,6 +63,28 @@ TEST(MechNoAllocationTest, LoopEvaluationAndProjectionAllocateNothing) {
   close.frame2 = Pose::Translation(Vec3(0, 0.6, 0));
   m.AddJoint(close);
   Mechanism mech(m.Build(), {}, {});
+  EXPECT_EQ(CountEvaluations(mech), 0);
+}
+
+TEST(MechNoAllocationTest, ExactStickHoldsAllocateNothing) {
+  // two exact holds, stuck (the tree starts at rest): their probe passes and
+  // the solve for the holding forces run in every evaluation
+  auto model = testing::MixedTree();
+  ASSERT_GE(model->dofs().size(), 2u);
+  FrictionalParameters p;
+  p.friction = 1e6;  // never lets go
+  p.exact_stick = true;
+  std::vector<std::unique_ptr<ForceElement>> elements;
+  elements.push_back(std::make_unique<FrictionalForce>("hold0", "", model->dofs()[0], p));
+  elements.push_back(std::make_unique<FrictionalForce>("hold1", "", model->dofs()[1], p));
+  Mechanism mech(model, std::move(elements), {});
+  {
+    MechanismWorkspace ws(mech);
+    std::vector<double> x(mech.num_states()), modes(mech.num_modes());
+    InitialState(mech, {}, x, modes, &ws);
+    EvaluateMechanism(mech, 0.0, x, {}, modes, &ws, {});
+    ASSERT_EQ(ws.stick.stuck.size(), 2u) << "the holds must be stuck for this test to mean anything";
+  }
   EXPECT_EQ(CountEvaluations(mech), 0);
 }
 

@@ -16,4 +16,5 @@ mechflow_test(closed_loop_tolerance_test regression tests/regression/closed_loop
 mechflow_test(singular_position_test regression tests/regression/singular_position_test.cc)
 mechflow_test(energy_examples_test regression tests/regression/energy_examples_test.cc)
 mechflow_test(joint_friction_test regression tests/regression/joint_friction_test.cc)
+mechflow_test(exact_stick_test regression tests/regression/exact_stick_test.cc)
 mechflow_test(long_run_test regression tests/regression/long_run_test.cc)
