@@ -535,7 +535,7 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
 const std::vector<std::string> kSensorKinds = {"coordinate", "velocity",       "acceleration",       "reaction_force",
                                                "reaction_torque", "element",   "position",           "point_velocity",
                                                "point_acceleration", "angles", "angular_velocity",
-                                               "kinetic_energy",     "potential_energy"};
+                                               "kinetic_energy",     "potential_energy", "energy_balance"};
 
 mech::SensorSpec ReadSensor(const MechanismReader& r, const ElementDesc& e, const mech::Mechanism& mech) {
   const mech::Model& model = mech.model();
@@ -576,12 +576,18 @@ mech::SensorSpec ReadSensor(const MechanismReader& r, const ElementDesc& e, cons
       s.element_sensor = mech.element(s.index).FindSensor(quantity);
       if (s.element_sensor < 0)
         throw InputError(r.What(e, "quantity") + ": element '" + e.Text("element") + "' has no output '" + quantity +
-                         "'; it has " + blocks::JoinNames(mech.element(s.index).sensor_names()));
+                         "'; it has " + blocks::JoinNames(mech.element(s.index).sensor_names()) +
+                         (quantity == "dissipated" || quantity == "energy"
+                              ? " (its stored energy is known only for linear laws and friction springs whose "
+                                "stiffness, free length and preload are constants; use work)"
+                              : ""));
       break;
     }
     case mech::SensorKind::kKineticEnergy:
     case mech::SensorKind::kPotentialEnergy:
       s.index = r.Has(e, "body") ? BodyIndex(model, e, "body") : -1;  // default: the whole mechanism
+      break;
+    case mech::SensorKind::kEnergyBalance:
       break;
     default:
       s.index = BodyIndex(model, e, "body");
@@ -623,10 +629,25 @@ std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const E
     if (!element_names.insert(e.Text("name")).second) r.Fail(e, "a second element with this name");
     elements.push_back(ReadElement(r, e, *model, kin0));
   }
+  // Work and dissipation sensors need a state in their element, an energy
+  // balance in every element.
+  for (const ElementDesc& e : m.children) {
+    if (e.tag != "sensor") continue;
+    const std::string quantity = e.Text("quantity", "force");
+    for (auto& element : elements)
+      if (e.Text("kind") == "energy_balance" ||
+          (e.Text("kind") == "element" && element->name() == e.Text("element") &&
+           (quantity == "work" || quantity == "dissipated")))
+        element->TrackWork();
+  }
   std::vector<std::string> input_names;
   for (const ElementDesc& e : m.children)
     if (e.tag == "input") input_names.push_back(e.Text("name"));
   auto mechanism = std::make_shared<mech::Mechanism>(model, std::move(elements), input_names);
+  const bool prescribed = std::any_of(model->segments().begin(), model->segments().end(),
+                                      [](const mech::Segment& s) { return s.drive == mech::SegmentDrive::kTime; });
+  for (const ElementDesc& e : m.children)
+    if (e.tag == "sensor" && e.Text("kind") == "energy_balance" && prescribed) mechanism->TrackDriveWork();
   std::vector<mech::SensorSpec> sensors;
   for (const ElementDesc& e : m.children)
     if (e.tag == "sensor") sensors.push_back(ReadSensor(r, e, *mechanism));

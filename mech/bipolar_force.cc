@@ -19,6 +19,7 @@ BipolarForce::BipolarForce(std::string name, std::string origin, int body1, Vec3
   DeclareSensor("force");
   DeclareSensor("length");
   DeclareSensor("rate");
+  if (law_->has_energy()) DeclareSensor("energy");  // stored in its spring
 }
 
 double BipolarLength(const Kinematics& kin, int body1, const Vec3& point1, int body2, const Vec3& point2) {
@@ -52,6 +53,7 @@ void BipolarForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<d
   sensors[0] = f;
   sensors[1] = x;
   sensors[2] = v;
+  if (law_->has_energy()) sensors[3] = law_->Energy(x, ctx);
 }
 
 }  // namespace mechflow::mech

@@ -48,6 +48,7 @@ ElasticFriction2Force::ElasticFriction2Force(std::string name, std::string origi
     fail_if(p_.normal_force, p_.normal_force.value < 0.0, "the normal force must not be negative");
   DeclareBodies({body1_, body2_});  // its footprint in the sparse Jacobian
   for (const char* s : {"force", "length", "rate", "mode", "deflection"}) DeclareSensor(s);
+  if (c1.is_constant() && c2.is_constant()) DeclareSensor("energy");  // of both springs
   DeclareStates(1);  // x2
   DeclareModes(1);
   DeclareCrossing(mech::Crossing::kRising);   // kBreaksForward: T_s - mu0 N
@@ -118,6 +119,10 @@ void ElasticFriction2Force::Evaluate(const ElementContext& ctx, Loads* loads, st
   sensors[2] = r.v;
   sensors[3] = ctx.modes[0];
   sensors[4] = r.x2;
+  if (stores_energy()) {
+    const double c1 = p_.series_stiffness.value, c2 = p_.parallel_stiffness.value;
+    sensors[5] = 0.5 * r.tension * r.tension / c1 + 0.5 * c2 * r.x2 * r.x2;
+  }
 }
 
 void ElasticFriction2Force::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {

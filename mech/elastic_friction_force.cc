@@ -32,6 +32,7 @@ ElasticFrictionForce::ElasticFrictionForce(std::string name, std::string origin,
     throw InputError(what + " needs a positive stiffness c when d = 0 (the deflection while sliding is F/c)");
   DeclareBodies({body1_, body2_});  // its footprint in the sparse Jacobian
   for (const char* s : {"force", "length", "rate", "mode", "deflection"}) DeclareSensor(s);
+  if (p_.stiffness.is_constant()) DeclareSensor("energy");  // of the elastic link
   DeclareStates(1);
   DeclareModes(1);
   DeclareCrossing(mech::Crossing::kRising);   // kBreaksForward: T - ratio F
@@ -77,6 +78,7 @@ void ElasticFrictionForce::Evaluate(const ElementContext& ctx, Loads* loads, std
   sensors[2] = r.v;
   sensors[3] = ctx.modes[0];
   sensors[4] = ctx.state[0];
+  if (p_.stiffness.is_constant()) sensors[5] = 0.5 * p_.stiffness.value * ctx.state[0] * ctx.state[0];
 }
 
 void ElasticFrictionForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {

@@ -122,13 +122,36 @@ class ForceElement {
                                    std::span<const double> /*vdot*/) const {
     return 0.0;
   }
+  // Work accounting (issue 12, item 5), switched on before the mechanism is
+  // built when a sensor asks for it: one more state, the work W the element
+  // has done on the bodies (the mechanism integrates the power of its
+  // loads), and the sensors "work" and -- for an element whose sensor
+  // "energy" gives its stored elastic energy U -- "dissipated" = U(0) - U - W.
+  void TrackWork() {
+    if (tracks_work()) return;
+    work_state_ = num_states_;
+    DeclareStates(1);
+    work_sensor_ = num_sensors();
+    DeclareSensor("work");
+    if (stores_energy()) DeclareSensor("dissipated");
+  }
+  bool tracks_work() const { return work_state_ >= 0; }
+  int work_state() const { return work_state_; }    // among the element's states
+  int work_sensor() const { return work_sensor_; }  // "dissipated" follows when stores_energy()
+  bool stores_energy() const { return energy_sensor_ >= 0; }
+  int energy_sensor() const { return energy_sensor_; }
+
   // Crossing `index` fired in `direction`: a warning for the user when the
   // event means "check the model" (e.g. a contact sinking deeper than its
   // bound), else empty. Called after a run, not at run time.
   virtual std::string CrossingWarning(int /*index*/, int /*direction*/) const { return ""; }
 
  protected:
-  void DeclareSensor(std::string sensor) { sensors_.push_back(std::move(sensor)); }
+  // "energy" is the stored elastic energy (see TrackWork).
+  void DeclareSensor(std::string sensor) {
+    if (sensor == "energy") energy_sensor_ = num_sensors();
+    sensors_.push_back(std::move(sensor));
+  }
   void DeclareStates(int n) { num_states_ += n; }
   void DeclareDependsOnInputs(bool depends) { depends_on_inputs_ = depends_on_inputs_ || depends; }
   // Its holding force follows from the whole mechanism's balance: its
@@ -152,6 +175,7 @@ class ForceElement {
   int num_states_ = 0, num_modes_ = 0;
   bool depends_on_inputs_ = false;
   bool exact_stick_ = false;
+  int work_state_ = -1, work_sensor_ = -1, energy_sensor_ = -1;
   std::vector<Crossing> crossings_;
   std::vector<int> bodies_, coordinates_;
 };

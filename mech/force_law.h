@@ -37,6 +37,10 @@ class ForceLaw {
   virtual ~ForceLaw() = default;
   virtual double Force(double x, double v, const ElementContext& ctx) const = 0;
   virtual bool depends_on_inputs() const = 0;
+  // A potential U(x) with F = -dU/dx - (the damping part), when the law has
+  // one that does not change in time (issue 12, item 5: stored energy).
+  virtual bool has_energy() const { return false; }
+  virtual double Energy(double /*x*/, const ElementContext&) const { return 0.0; }
 };
 
 class LinearLaw final : public ForceLaw {
@@ -47,6 +51,12 @@ class LinearLaw final : public ForceLaw {
   }
   bool depends_on_inputs() const override {
     return c_.uses_inputs || x0_.uses_inputs || d_.uses_inputs || f0_.uses_inputs;
+  }
+  // U = c/2 (x - x0)^2 - F0 (x - x0), when c, x0 and F0 are constants.
+  bool has_energy() const override { return c_.is_constant() && x0_.is_constant() && f0_.is_constant(); }
+  double Energy(double x, const ElementContext&) const override {
+    const double s = x - x0_.value;
+    return 0.5 * c_.value * s * s - f0_.value * s;
   }
 
  private:

@@ -39,6 +39,8 @@ void FrictionalForce::DeclareInterface() {
   DeclareSensor("rate");
   DeclareSensor("mode");
   DeclareModes(1);
+  // stored energy: none when the hold is exact, the stick spring's otherwise
+  if (p_.exact_stick || p_.stiffness.is_constant()) DeclareSensor("energy");
   if (p_.exact_stick) {
     DeclareExactStick();
   } else {
@@ -98,9 +100,18 @@ void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::spa
   sensors[1] = g.x;
   sensors[2] = g.v;
   sensors[3] = mode;
-  if (p_.exact_stick) return;
+  if (p_.exact_stick) {
+    sensors[4] = 0.0;
+    return;
+  }
+  const double deflection = mode == kStick ? ctx.state[0] : 0.0;
   state_rate[0] = mode == kStick ? g.v : 0.0;
-  sensors[4] = mode == kStick ? ctx.state[0] : 0.0;
+  if (p_.stiffness.is_constant()) {
+    sensors[4] = 0.5 * p_.stiffness.value * deflection * deflection;
+    sensors[5] = deflection;
+  } else {
+    sensors[4] = deflection;
+  }
 }
 
 bool FrictionalForce::StuckExactly(const ElementContext& ctx) const {

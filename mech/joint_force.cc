@@ -10,6 +10,7 @@ JointForce::JointForce(std::string name, std::string origin, const Dof& dof, std
   DeclareSensor("force");
   DeclareSensor("length");
   DeclareSensor("rate");
+  if (law_->has_energy()) DeclareSensor("energy");  // stored in its spring
 }
 
 void JointForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
@@ -20,6 +21,7 @@ void JointForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<dou
   sensors[0] = f;
   sensors[1] = x;
   sensors[2] = v;
+  if (law_->has_energy()) sensors[3] = law_->Energy(x, ctx);
 }
 
 }  // namespace mechflow::mech

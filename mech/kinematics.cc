@@ -109,4 +109,19 @@ void CoordinateRates(const Model& model, std::span<const double> q, std::span<co
   }
 }
 
+// 1/2 m |v_c|^2 + 1/2 w . (R I R^T) w of body b.
+double KineticEnergy(const Model& model, const Kinematics& kin, int b) {
+  const Body& body = model.bodies()[b];
+  const Vec3 v = PointVelocity(kin, b, body.com);
+  const Vec3& w = kin.body_omega[b];
+  const Mat3& R = kin.body_pose[b].R;
+  return 0.5 * body.mass * v.squaredNorm() + 0.5 * w.dot(R * body.inertia * R.transpose() * w);
+}
+
+// -m g . r_c of body b: zero at the global origin.
+double PotentialEnergy(const Model& model, const Kinematics& kin, int b) {
+  const Body& body = model.bodies()[b];
+  return -body.mass * model.gravity().dot(PointPosition(kin, b, body.com));
+}
+
 }  // namespace mechflow::mech

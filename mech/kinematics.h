@@ -52,4 +52,9 @@ inline Vec3 MaterialVelocityAt(const Kinematics& kin, int body, const Vec3& x) {
 void CoordinateRates(const Model& model, std::span<const double> q, std::span<const double> v,
                      std::span<double> qdot);
 
+// Kinetic energy 1/2 m |v_c|^2 + 1/2 w . I w of body b [J].
+double KineticEnergy(const Model& model, const Kinematics& kin, int b);
+// Gravitational potential energy -m g . r_c of body b, zero at the global origin [J].
+double PotentialEnergy(const Model& model, const Kinematics& kin, int b);
+
 }  // namespace mechflow::mech

@@ -3,6 +3,11 @@
 // and inputs, in the form the dynamics consumes (a spatial force per segment,
 // a generalized force per velocity coordinate). Allocated once; Clear() and
 // the Add* calls do not allocate.
+//
+// When asked (TrackPower), it also sums the power of every load it takes --
+// force . velocity of its point, moment . angular velocity, generalized force
+// times rate -- so the mechanism can integrate each element's work on the
+// bodies (issue 12, item 5) from the difference before and after it.
 
 #include <span>
 #include <vector>
@@ -19,7 +24,13 @@ class Loads {
   void Clear() {
     for (Vec6& f : segment_) f.setZero();
     for (double& t : tau_) t = 0.0;
+    power_ = 0.0;
   }
+  // Sums the loads' power from now on (segment velocities from the
+  // kinematics the Add* calls get, generalized ones from v); an empty v
+  // stops it.
+  void TrackPower(std::span<const double> v) { v_ = v; }
+  double power() const { return power_; }
   // A force (global components) acting on `body` at the global point x.
   // Loads on Base0 (or bodies welded to it) are taken by the ground.
   void AddForce(const Kinematics& kin, int body, const Vec3& x, const Vec3& force) {
@@ -30,15 +41,24 @@ class Loads {
     const Vec3 r = pose.R.transpose() * (x - pose.p);
     segment_[s].head<3>() += r.cross(f);
     segment_[s].tail<3>() += f;
+    if (!v_.empty()) {
+      const Vec6& velocity = kin.velocity[s];
+      power_ += f.dot(velocity.tail<3>() + velocity.head<3>().cross(r));
+    }
   }
   // A pure moment (global components) on `body`.
   void AddTorque(const Kinematics& kin, int body, const Vec3& torque) {
     const int s = model_->bodies()[body].segment;
     if (s == kGround) return;
-    segment_[s].head<3>() += kin.pose[s].R.transpose() * torque;
+    const Vec3 moment = kin.pose[s].R.transpose() * torque;
+    segment_[s].head<3>() += moment;
+    if (!v_.empty()) power_ += moment.dot(kin.velocity[s].head<3>());
   }
   // A generalized force on velocity coordinate `v_index` (a joint force).
-  void AddGeneralizedForce(int v_index, double value) { tau_[v_index] += value; }
+  void AddGeneralizedForce(int v_index, double value) {
+    tau_[v_index] += value;
+    if (!v_.empty()) power_ += value * v_[v_index];
+  }
 
   std::span<const Vec6> segment_loads() const { return segment_; }
   std::span<const double> generalized() const { return tau_; }
@@ -47,6 +67,8 @@ class Loads {
   const Model* model_;
   std::vector<Vec6> segment_;
   std::vector<double> tau_;
+  std::span<const double> v_;  // empty: no power sums
+  double power_ = 0.0;
 };
 
 }  // namespace mechflow::mech

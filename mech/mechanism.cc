@@ -26,6 +26,26 @@ ElementContext MakeContext(const Mechanism& mechanism, double t, std::span<const
   return ctx;
 }
 
+// Element e's loads, state rates and sensors; with its work tracked, also the
+// work's rate (the power of its loads) and its work sensors.
+void EvaluateElement(const Mechanism& mechanism, int e, double t, std::span<const double> x,
+                     std::span<const double> modes, MechanismWorkspace* ws, std::span<double> all_rates) {
+  const ForceElement& element = mechanism.element(e);
+  const ElementContext ctx = MakeContext(mechanism, t, x, modes, *ws, e);
+  const std::span<double> rates = all_rates.subspan(mechanism.state_offset(e), element.num_states());
+  const std::span<double> sensors =
+      std::span<double>(ws->sensors).subspan(mechanism.sensor_offset(e), element.num_sensors());
+  const double before = ws->loads.power();
+  element.Evaluate(ctx, &ws->loads, rates, sensors);
+  if (!element.tracks_work()) return;
+  const double work = ctx.state[element.work_state()];
+  rates[element.work_state()] = ws->loads.power() - before;
+  sensors[element.work_sensor()] = work;
+  if (element.stores_energy())
+    sensors[element.work_sensor() + 1] =
+        ws->initial_stored_energy[e] - sensors[element.energy_sensor()] - work;
+}
+
 void SetParameterArgs(double t, std::span<const double> inputs, MechanismWorkspace* ws) {
   ws->parameter_args[0] = t;
   for (std::size_t i = 0; i < inputs.size() && i + 1 < ws->parameter_args.size(); ++i)
@@ -72,7 +92,7 @@ void SolveDynamics(const Mechanism& mechanism, MechanismWorkspace* ws, bool fina
   const Model& model = mechanism.model();
   if (mechanism.constraints().empty()) {
     ForwardDynamics(model, ws->kin, ws->loads.generalized(), ws->loads.segment_loads(), ws->vdot, &ws->dyn);
-    if (final && ws->want_reactions)
+    if (final && (ws->want_reactions || mechanism.drive_work_state() >= 0))
       InverseDynamics(model, ws->kin, ws->vdot, ws->loads.segment_loads(), ws->constraint.h, &ws->dyn);
   } else {
     SolveConstrained(mechanism, ws);
@@ -81,6 +101,21 @@ void SolveDynamics(const Mechanism& mechanism, MechanismWorkspace* ws, bool fina
     AddConstraintLoads(mechanism, ws);
     InverseDynamics(model, ws->kin, ws->vdot, ws->constraint.loads, ws->constraint.h, &ws->dyn);
   }
+}
+
+// The power the joints of time-driven segments transmit along their motion:
+// the force across the joint (Newton-Euler's, after the final pass) times
+// the segment's velocity relative to its parent.
+double DrivePower(const Model& model, const MechanismWorkspace& ws) {
+  double power = 0.0;
+  for (int i = 0; i < static_cast<int>(model.segments().size()); ++i) {
+    const Segment& seg = model.segments()[i];
+    if (seg.drive != SegmentDrive::kTime) continue;
+    Vec6 relative = ws.kin.velocity[i];
+    if (seg.parent != kGround) relative -= ws.kin.X[i].Motion(ws.kin.velocity[seg.parent]);
+    power += ws.dyn.force[i].dot(relative);
+  }
+  return power;
 }
 
 // The exact-stick elements whose modes say they stick, into ws->stick.stuck;
@@ -124,12 +159,7 @@ void HoldStuckElements(const Mechanism& mechanism, double t, std::span<const dou
   SolveHoldingForces(&s);
   for (int i = 0; i < k; ++i) s.force[s.stuck[i]] = s.f(i);
   ws->loads = ws->loads_without_holds;
-  for (int e : s.stuck) {
-    const ForceElement& element = mechanism.element(e);
-    element.Evaluate(MakeContext(mechanism, t, x, modes, *ws, e), &ws->loads,
-                     all_rates.subspan(mechanism.state_offset(e), element.num_states()),
-                     std::span<double>(ws->sensors).subspan(mechanism.sensor_offset(e), element.num_sensors()));
-  }
+  for (int e : s.stuck) EvaluateElement(mechanism, e, t, x, modes, ws, all_rates);
 }
 
 // A loop whose own coordinates are all fixed by its constraint (and that no
@@ -186,12 +216,17 @@ Mechanism::Mechanism(std::shared_ptr<const Model> model, std::vector<std::unique
   state_size_ = model_->nq() + model_->nv();
   for (const auto& e : elements_) {
     if (e->exact_stick()) exact_stick_.push_back(static_cast<int>(layout_.size()));
+    tracks_work_ = tracks_work_ || e->tracks_work();
     layout_.push_back({state_size_, mode_size_, crossing_size_, sensor_size_});
     state_size_ += e->num_states();
     mode_size_ += e->num_modes();
     crossing_size_ += e->num_crossings();
     sensor_size_ += e->num_sensors();
   }
+}
+
+void Mechanism::TrackDriveWork() {
+  if (drive_work_state_ < 0) drive_work_state_ = state_size_++;
 }
 
 int Mechanism::FindElement(const std::string& name) const {
@@ -215,7 +250,8 @@ MechanismWorkspace::MechanismWorkspace(const Mechanism& mechanism)
       vdot(mechanism.model().nv(), 0.0),
       sensors(mechanism.num_sensor_values(), 0.0),
       rates(mechanism.num_states(), 0.0),
-      parameter_args(1 + mechanism.num_inputs(), 0.0) {}
+      parameter_args(1 + mechanism.num_inputs(), 0.0),
+      initial_stored_energy(mechanism.num_elements(), 0.0) {}
 
 void EvaluatePositions(const Mechanism& mechanism, double t, std::span<const double> x, MechanismWorkspace* ws) {
   const Model& model = mechanism.model();
@@ -229,15 +265,10 @@ void EvaluateElements(const Mechanism& mechanism, double t, std::span<const doub
   EvaluatePositions(mechanism, t, x, ws);
   SetParameterArgs(t, inputs, ws);
   ws->loads.Clear();
+  if (mechanism.tracks_work()) ws->loads.TrackPower(x.subspan(mechanism.model().nq(), mechanism.model().nv()));
   // Elements always get somewhere to write their state rates.
   std::span<double> all_rates = xdot.empty() ? std::span<double>(ws->rates) : xdot;
-  for (int e = 0; e < mechanism.num_elements(); ++e) {
-    const ForceElement& element = mechanism.element(e);
-    const ElementContext ctx = MakeContext(mechanism, t, x, modes, *ws, e);
-    std::span<double> rates = all_rates.subspan(mechanism.state_offset(e), element.num_states());
-    element.Evaluate(ctx, &ws->loads,  rates,
-                     std::span<double>(ws->sensors).subspan(mechanism.sensor_offset(e), element.num_sensors()));
-  }
+  for (int e = 0; e < mechanism.num_elements(); ++e) EvaluateElement(mechanism, e, t, x, modes, ws, all_rates);
 }
 
 void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const double> x,
@@ -253,6 +284,7 @@ void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const dou
   if (xdot.empty()) return;
   CoordinateRates(model, x.subspan(0, model.nq()), x.subspan(model.nq(), model.nv()), xdot.subspan(0, model.nq()));
   for (int i = 0; i < model.nv(); ++i) xdot[model.nq() + i] = ws->vdot[i];
+  if (mechanism.drive_work_state() >= 0) xdot[mechanism.drive_work_state()] = DrivePower(model, *ws);
 }
 
 void EvaluateCrossings(const Mechanism& mechanism, std::span<const double> x, std::span<const double> modes,
@@ -310,6 +342,16 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
     const ElementContext ctx = MakeContext(mechanism, 0.0, x, modes, *ws, e);
     element.Initialize(ctx, x.subspan(mechanism.state_offset(e), element.num_states()),
                        modes.subspan(mechanism.mode_offset(e), element.num_modes()));
+    if (element.tracks_work()) x[mechanism.state_offset(e) + element.work_state()] = 0.0;
+  }
+  // The references of the energy sensors: what is stored at the start.
+  EvaluateElements(mechanism, 0.0, x, inputs, modes, ws, {});
+  ws->initial_mechanical_energy = 0.0;
+  for (int b = 1; b < model.num_bodies(); ++b)
+    ws->initial_mechanical_energy += KineticEnergy(model, ws->kin, b) + PotentialEnergy(model, ws->kin, b);
+  for (int e = 0; e < mechanism.num_elements(); ++e) {
+    const int energy = mechanism.element(e).energy_sensor();
+    ws->initial_stored_energy[e] = energy < 0 ? 0.0 : ws->sensors[mechanism.sensor_offset(e) + energy];
   }
 }
 

@@ -58,6 +58,13 @@ class Mechanism {
   // The elements that can stick exactly (ForceElement::exact_stick): their
   // holding forces, and so their crossings, need the dynamics.
   const std::vector<int>& exact_stick_elements() const { return exact_stick_; }
+  // True when some element integrates its work (ForceElement::TrackWork).
+  bool tracks_work() const { return tracks_work_; }
+  // Integrates the work that drives the prescribed (time-driven) motions,
+  // the power the joints transmit along them, as one more state at the end
+  // (for the energy balance). Call before any workspace or state exists.
+  void TrackDriveWork();
+  int drive_work_state() const { return drive_work_state_; }  // -1: not tracked
 
  private:
   struct Slices {
@@ -69,6 +76,8 @@ class Mechanism {
   std::vector<std::string> input_names_;
   std::vector<Slices> layout_;
   std::vector<int> exact_stick_;
+  bool tracks_work_ = false;
+  int drive_work_state_ = -1;
   Constraints constraints_;
   int state_size_ = 0, mode_size_ = 0, crossing_size_ = 0, sensor_size_ = 0;
 };
@@ -87,6 +96,11 @@ struct MechanismWorkspace {
   std::vector<double> sensors;         // element sensor values, after Evaluate
   std::vector<double> rates;           // scratch x' when the caller wants none
   std::vector<double> parameter_args;  // [t, inputs...]
+  // At the initial state: each element's stored energy (0 where it has
+  // none) and the bodies' kinetic plus gravitational energy, the references
+  // of the "dissipated" and energy_balance sensors.
+  std::vector<double> initial_stored_energy;
+  double initial_mechanical_energy = 0.0;
   bool accelerations_valid = false;
   // Set when reaction sensors are read: trees then also run Newton-Euler
   // after the articulated-body pass to get the transmitted forces.

@@ -32,21 +32,6 @@ Vec3 CardanAngles(const Mat3& R) {
   return {a, b, c};
 }
 
-// 1/2 m |v_c|^2 + 1/2 w . (R I R^T) w of body b.
-double KineticEnergy(const Model& model, const Kinematics& kin, int b) {
-  const Body& body = model.bodies()[b];
-  const Vec3 v = PointVelocity(kin, b, body.com);
-  const Vec3& w = kin.body_omega[b];
-  const Mat3& R = kin.body_pose[b].R;
-  return 0.5 * body.mass * v.squaredNorm() + 0.5 * w.dot(R * body.inertia * R.transpose() * w);
-}
-
-// -m g . r_c of body b: zero at the global origin.
-double PotentialEnergy(const Model& model, const Kinematics& kin, int b) {
-  const Body& body = model.bodies()[b];
-  return -body.mass * model.gravity().dot(PointPosition(kin, b, body.com));
-}
-
 }  // namespace
 
 int SensorWidth(const SensorSpec& spec) { return IsVector(spec.kind) && spec.component < 0 ? 3 : 1; }
@@ -102,6 +87,11 @@ void CheckSensor(const Mechanism& mechanism, const SensorSpec& spec) {
       ok = spec.index == -1 || in_range(spec.index, model.bodies().size());
       what = "body";
       break;
+    case SensorKind::kEnergyBalance:
+      for (int e = 0; e < mechanism.num_elements(); ++e)
+        if (!mechanism.element(e).tracks_work())
+          throw InputError(where + ": element '" + mechanism.element(e).name() + "' does not integrate its work");
+      return;
     default:
       ok = in_range(spec.index, model.bodies().size());
       what = "body";
@@ -157,6 +147,16 @@ void EvaluateSensor(const Mechanism& mechanism, const MechanismWorkspace& ws, st
                                                        ? KineticEnergy(model, ws.kin, b)
                                                        : PotentialEnergy(model, ws.kin, b);
       out[0] = energy;
+      return;
+    }
+    case SensorKind::kEnergyBalance: {
+      double balance = -ws.initial_mechanical_energy;
+      for (int b = 1; b < model.num_bodies(); ++b)
+        balance += KineticEnergy(model, ws.kin, b) + PotentialEnergy(model, ws.kin, b);
+      for (int e = 0; e < mechanism.num_elements(); ++e)
+        balance -= x[mechanism.state_offset(e) + mechanism.element(e).work_state()];
+      if (mechanism.drive_work_state() >= 0) balance -= x[mechanism.drive_work_state()];
+      out[0] = balance;
       return;
     }
   }

@@ -30,7 +30,12 @@ enum class SensorKind {
   kBodyAngles,          // Cardan 1-2-3 angles of the body frame in the global frame [rad]
   kBodyAngularVelocity, // global components
   kKineticEnergy,       // of a body (index), or of the whole mechanism (index -1) [J]
-  kPotentialEnergy      // gravitational, -m g . r_com, zero at the global origin; body or mechanism [J]
+  kPotentialEnergy,     // gravitational, -m g . r_com, zero at the global origin; body or mechanism [J]
+  // Kinetic plus gravitational energy gained since the start minus the work
+  // every element has done (each must TrackWork) and, with prescribed
+  // motions, the work that drives them (Mechanism::TrackDriveWork): zero but
+  // for the integration's error [J]
+  kEnergyBalance
 };
 
 struct SensorSpec {

@@ -34,6 +34,7 @@ std::optional<BlockSparsity> MechanismSparsity(const mech::Mechanism& m,
   const int nq = model.nq(), nv = model.nv(), num_segments = static_cast<int>(model.segments().size());
   for (int e = 0; e < m.num_elements(); ++e)
     if (!m.element(e).declares_footprint()) return std::nullopt;
+  if (m.drive_work_state() >= 0) return std::nullopt;  // its rate reads every acceleration
 
   // the root segment of every segment, then groups of roots joined by loops
   std::vector<int> root(num_segments);

@@ -17,4 +17,5 @@ mechflow_test(singular_position_test regression tests/regression/singular_positi
 mechflow_test(energy_examples_test regression tests/regression/energy_examples_test.cc)
 mechflow_test(joint_friction_test regression tests/regression/joint_friction_test.cc)
 mechflow_test(exact_stick_test regression tests/regression/exact_stick_test.cc)
+mechflow_test(energy_balance_test regression tests/regression/energy_balance_test.cc)
 mechflow_test(long_run_test regression tests/regression/long_run_test.cc)
