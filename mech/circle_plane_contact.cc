@@ -25,7 +25,7 @@ CirclePlaneContact::CirclePlaneContact(std::string name, std::string origin, int
   CheckContactLaw(law_, where);
   circle_normal_ = circle_normal.normalized();
   normal_ = normal.normalized();
-  for (const char* s : {"normal", "penetration", "slip", "friction"}) DeclareSensor(s);
+  for (const char* s : {"normal", "penetration", "slip", "friction", "energy"}) DeclareSensor(s);
   DeclareModes(1);
   DeclareCrossing(mech::Crossing::kEither);
   DeclareCrossing(mech::Crossing::kRising);  // max_penetration passed
@@ -68,6 +68,7 @@ void CirclePlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::
   sensors[1] = delta;
   sensors[2] = c.slip;
   sensors[3] = c.friction.norm();
+  sensors[4] = ctx.modes[0] != 0.0 ? ContactEnergy(law_, delta) : 0.0;
 }
 
 void CirclePlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {

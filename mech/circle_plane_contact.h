@@ -8,7 +8,8 @@
 // velocity at Q includes w1 x (Q - C), which is how a spinning roller drives
 // what it touches. A circle lying flat on the plane (N parallel to n_c) has
 // no single deepest point: the evaluation fails with a message.
-// Touch and release are events. Sensors: normal, penetration, slip, friction.
+// Touch and release are events. Sensors: normal, penetration, slip, friction,
+// energy (stored in the contact spring).
 
 #include "mech/points_plane_contact.h"
 

@@ -28,6 +28,10 @@ double ContactNormalForce(const ContactLaw& law, double delta, double rate) {
   return std::max(0.0, law.stiffness * std::pow(delta, law.exponent) + damping * rate);
 }
 
+double ContactEnergy(const ContactLaw& law, double delta) {
+  return delta > 0 ? law.stiffness * std::pow(delta, law.exponent + 1) / (law.exponent + 1) : 0.0;
+}
+
 void CheckContactLaw(const ContactLaw& law, const std::string& where) {
   auto require = [&](bool ok, const char* what, double value) {
     if (!ok) throw InputError(where + what + " (found " + FormatNumber(value) + ")");
@@ -79,7 +83,7 @@ PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int
   if (!(normal.norm() > 0)) throw InputError(where + "the plane normal must be non-zero");
   CheckContactLaw(law_, where);
   normal_ = normal.normalized();
-  for (const char* s : {"normal", "penetration", "slip", "friction"}) DeclareSensor(s);
+  for (const char* s : {"normal", "penetration", "slip", "friction", "energy"}) DeclareSensor(s);
   DeclareModes(static_cast<int>(points_.size()));
   for (std::size_t i = 0; i < points_.size(); ++i) DeclareCrossing(mech::Crossing::kEither);
   DeclareCrossing(mech::Crossing::kRising);  // the deepest point passes max_penetration
@@ -104,7 +108,7 @@ void PointsPlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::
                                   std::span<double> sensors) const {
   const Kinematics& kin = *ctx.kin;
   const Vec3 n = kin.body_pose[body2_].R * normal_;
-  double total_normal = 0, deepest = -1e300, slip = 0, loaded = -1;
+  double total_normal = 0, deepest = -1e300, slip = 0, loaded = -1, energy = 0;
   Vec3 friction = Vec3::Zero();
   for (std::size_t i = 0; i < points_.size(); ++i) {
     Vec3 p;
@@ -112,6 +116,7 @@ void PointsPlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::
     deepest = std::max(deepest, delta);
     if (ctx.modes[i] == 0.0) continue;
     const PointContactLoad c = ApplyPointContact(kin, law_, body1_, body2_, p, n, delta, loads);
+    energy += ContactEnergy(law_, delta);
     total_normal += c.normal;
     friction += c.friction;
     if (c.normal > loaded) loaded = c.normal, slip = c.slip;
@@ -120,6 +125,7 @@ void PointsPlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::
   sensors[1] = deepest;
   sensors[2] = slip;
   sensors[3] = friction.norm();
+  sensors[4] = energy;
 }
 
 void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {

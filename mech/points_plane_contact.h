@@ -17,7 +17,8 @@
 // contact or not) switched when its penetration crosses zero, so the force
 // (and a constant damping's jump) never switches inside a step.
 // Sensors: normal (sum of N_i), penetration (largest), slip (speed of the
-// most loaded point), friction (size of the summed friction force).
+// most loaded point), friction (size of the summed friction force), energy
+// (stored in the contact springs of the points in contact).
 
 #include <vector>
 
@@ -52,6 +53,8 @@ PointContactLoad ApplyPointContact(const Kinematics& kin, const ContactLaw& law,
                                    const Vec3& p, const Vec3& n, double delta, Loads* loads);
 // The normal force law alone: max(0, c delta^n + D(delta) rate), 0 when delta <= 0.
 double ContactNormalForce(const ContactLaw& law, double delta, double rate);
+// The energy stored in the contact spring, c delta^(n+1) / (n+1), 0 when delta <= 0.
+double ContactEnergy(const ContactLaw& law, double delta);
 // Checks a law's numbers; throws InputError starting with `where`.
 void CheckContactLaw(const ContactLaw& law, const std::string& where);
 // The warning of a contact whose penetration crossed its bound (rising).

@@ -169,5 +169,33 @@ TEST(EnergyAccountingTest, AVaryingStiffnessHasNoStoredEnergyToReport) {
   EXPECT_NE(message.find("work"), std::string::npos) << message;
 }
 
+TEST(EnergyAccountingTest, ContactsStoreAndDissipate) {
+  // Falling: a cube drops onto an incline and a floor (stiff contacts with
+  // damping and friction); nothing else acts but gravity.
+  const testing::XmlRun run = testing::RunXml(WithSensors(
+      ReadExample("falling.xml"),
+      {"T kind=\"kinetic_energy\"", "V kind=\"potential_energy\"",
+       "U1 kind=\"element\" element=\"incline\" quantity=\"energy\"",
+       "U2 kind=\"element\" element=\"floor\" quantity=\"energy\"",
+       "D1 kind=\"element\" element=\"incline\" quantity=\"dissipated\"",
+       "D2 kind=\"element\" element=\"floor\" quantity=\"dissipated\""}));
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto T = run.Column("T"), V = run.Column("V"), U1 = run.Column("U1"), U2 = run.Column("U2"),
+             D1 = run.Column("D1"), D2 = run.Column("D2");
+  const double e0 = T[0] + V[0] + U1[0] + U2[0];
+  double most_stored = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < T.size(); ++i) scale = std::max(scale, std::abs(T[i] + V[i] - T[0] - V[0]));
+  ASSERT_GT(scale, 1.0);
+  for (std::size_t i = 1; i < T.size(); ++i) {
+    most_stored = std::max(most_stored, U1[i] + U2[i]);
+    const double total = T[i] + V[i] + U1[i] + U2[i];
+    // rtol 1e-6 here: the accounts close to 2e-5 of the energy exchanged
+    EXPECT_NEAR(total + D1[i] + D2[i], e0, 2e-5 * scale) << "row " << i;
+    EXPECT_GE(D1[i] + D2[i], D1[i - 1] + D2[i - 1] - 2e-5 * scale) << "row " << i;
+  }
+  EXPECT_GT(most_stored, 1e-6) << "the contacts should take load";
+  EXPECT_GT(D1.back() + D2.back(), 0.1 * scale) << "impacts and sliding dissipate";
+}
+
 }  // namespace
 }  // namespace mechflow
