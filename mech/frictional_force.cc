@@ -42,7 +42,8 @@ void FrictionalForce::DeclareInterface() {
   // stored energy: none when the hold is exact, the stick spring's otherwise
   if (p_.exact_stick || p_.stiffness.is_constant()) DeclareSensor("energy");
   if (p_.exact_stick) {
-    DeclareExactStick();
+    // a friction that is zero for good holds nothing: no holding-force solve
+    if (!(p_.friction.is_constant() && p_.friction.value == 0.0)) DeclareExactStick();
   } else {
     DeclareSensor("deflection");  // of the stick spring; 0 while sliding
     // The stick spring's deflection, integrated from the rate while stuck:
@@ -115,7 +116,7 @@ void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::spa
 }
 
 bool FrictionalForce::StuckExactly(const ElementContext& ctx) const {
-  return p_.exact_stick && ctx.modes[0] == kStick;
+  return exact_stick() && ctx.modes[0] == kStick;
 }
 
 void FrictionalForce::ApplyStickForce(const ElementContext& ctx, double f, Loads* loads) const {

@@ -50,6 +50,26 @@ int Sign(lua_State* L) {
   lua_pushnumber(L, x > 0 ? 1.0 : x < 0 ? -1.0 : x == 0 ? 0.0 : x);  // NaN stays NaN
   return 1;
 }
+// STEP(x, x0, h0, x1, h1): h0 up to x0, h1 from x1 on, a cubic
+// h0 + (h1 - h0) D^2 (3 - 2 D), D = (x - x0)/(x1 - x0), between -- the smooth
+// step of ADAMS-type codes and of the tension-mechanism paper. x1 = x0 is a
+// jump at x0 (h0 there); x1 < x0 is an error.
+int Step(lua_State* L) {
+  const lua_Number x = luaL_checknumber(L, 1), x0 = luaL_checknumber(L, 2), h0 = luaL_checknumber(L, 3),
+                   x1 = luaL_checknumber(L, 4), h1 = luaL_checknumber(L, 5);
+  if (x1 < x0) return luaL_error(L, "STEP: x1 (%f) is below x0 (%f)", x1, x0);
+  if (!(x > x0)) {
+    lua_pushnumber(L, x == x0 || x < x0 ? h0 : x);  // NaN stays NaN
+    return 1;
+  }
+  if (x >= x1) {
+    lua_pushnumber(L, h1);
+    return 1;
+  }
+  const lua_Number d = (x - x0) / (x1 - x0);
+  lua_pushnumber(L, h0 + (h1 - h0) * d * d * (3 - 2 * d));
+  return 1;
+}
 int Sinh(lua_State* L) {
   lua_pushnumber(L, std::sinh(luaL_checknumber(L, 1)));
   return 1;
@@ -75,7 +95,7 @@ constexpr Alias kMathAliases[] = {
     {"max", "max"},     {"floor", "floor"}, {"ceil", "ceil"},   {"pi", "pi"},
 };
 constexpr luaL_Reg kExtraFunctions[] = {
-    {"sqr", Sqr}, {"sign", Sign}, {"sinh", Sinh}, {"cosh", Cosh}, {"tanh", Tanh},
+    {"sqr", Sqr}, {"sign", Sign}, {"STEP", Step}, {"sinh", Sinh}, {"cosh", Cosh}, {"tanh", Tanh},
 };
 
 // Sets up the sandbox and the expression names; run in protected mode.

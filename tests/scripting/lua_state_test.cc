@@ -110,7 +110,15 @@ TEST(LuaStateTest, ExpressionFunctionsOfTheIdentifierGrammar) {
   EXPECT_TRUE(LuaState::IsBuiltinName("arctan"));
   EXPECT_TRUE(LuaState::IsBuiltinName("pi"));
   EXPECT_FALSE(LuaState::IsBuiltinName("math"));
-  EXPECT_EQ(LuaState::BuiltinNames().size(), 24u);
+  // the smooth step of the tension-mechanism paper: h0 to x0, a cubic, h1 from x1
+  EXPECT_EQ(Number(lua, "STEP(-1, 0, 2, 1, 5)"), 2.0);
+  EXPECT_EQ(Number(lua, "STEP(0.5, 0, 2, 1, 5)"), 3.5);
+  EXPECT_EQ(Number(lua, "STEP(0.25, 0, 0, 1, 1)"), 0.25 * 0.25 * 2.5);
+  EXPECT_EQ(Number(lua, "STEP(3, 0, 2, 1, 5)"), 5.0);
+  EXPECT_EQ(Number(lua, "STEP(0, 0, 0, 0, 1) + STEP(1e-300, 0, 0, 0, 1)"), 1.0);  // x1 = x0: a jump, no NaN
+  EXPECT_TRUE(std::isnan(Number(lua, "STEP(0/0, 0, 0, 1, 1)")));
+  EXPECT_THAT(RunLua(lua, "return STEP(0, 1, 0, 0, 1)"), HasSubstr("STEP: x1 (0.0) is below x0 (1.0)"));
+  EXPECT_EQ(LuaState::BuiltinNames().size(), 25u);
 }
 
 TEST(LuaStateTest, MemoryLimitStopsRunawayAllocation) {
