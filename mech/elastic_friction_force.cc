@@ -46,7 +46,10 @@ ElasticFrictionForce::Values ElasticFrictionForce::Compute(const ElementContext&
   static_cast<BipolarGeometry&>(r) = MeasureBipolar(*ctx.kin, body1_, point1_, body2_, point2_);
   const double delta = ctx.state[0];
   const double c = p_.stiffness.Get(ctx), damping = p_.damping.Get(ctx), f = p_.friction.Get(ctx);
-  if (mode == 0.0) {
+  if (c <= 0.0 && damping <= 0.0) {  // switched off: no link, nothing deflects
+    r.delta_rate = 0.0;
+    r.tension = 0.0;
+  } else if (mode == 0.0) {
     r.delta_rate = r.v;
     r.tension = c * delta + damping * r.v;
   } else if (damping <= 0.0) {  // d = 0: delta = +-F/c, set when sliding began

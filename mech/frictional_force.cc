@@ -106,7 +106,9 @@ void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::spa
     return;
   }
   const double deflection = mode == kStick ? ctx.state[0] : 0.0;
-  state_rate[0] = mode == kStick ? g.v : 0.0;
+  // switched off (c = d = 0): no stick spring, nothing deflects
+  const bool spring = p_.stiffness.Get(ctx) != 0.0 || p_.damping.Get(ctx) != 0.0;
+  state_rate[0] = mode == kStick && spring ? g.v : 0.0;
   if (p_.stiffness.is_constant()) {
     sensors[4] = 0.5 * p_.stiffness.value * deflection * deflection;
     sensors[5] = deflection;

@@ -11,6 +11,7 @@
 
 #include "blocks/simulator.h"
 #include "diagrams/loader.h"
+#include "tests/test_util.h"
 
 namespace mechflow {
 namespace {
@@ -85,7 +86,8 @@ TEST(FrictionExamplesTest, SubThresholdPushDoesNotMoveTheBoxFR3) {
 }
 
 TEST(FrictionExamplesTest, ExcitationBelowTheStaticLimitKeepsTheBoxStuck) {
-  FrictionRun run({}, {"Excitation"});
+  // the Excitation variant with a 10 N, 5 Hz force, below the 12 N limit
+  FrictionRun run({{"q", 10}, {"freq", 5}}, {"Excitation"});
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
   const auto x = run.Column("m.x"), mode = run.Column("m.mode");
   const double c = 10 * 50.0 * 50.0 * 4 * M_PI * M_PI;
@@ -93,6 +95,47 @@ TEST(FrictionExamplesTest, ExcitationBelowTheStaticLimitKeepsTheBoxStuck) {
     ASSERT_EQ(mode[i], 0.0);
     ASSERT_LE(std::abs(x[i]), 12.0 / c);
   }
+}
+
+// The seed's Excitation and Vibration sections show the box slipping: so do
+// ours (20 N at 1 Hz; the base at 1.97 m/s^2), under both friction types.
+TEST(FrictionExamplesTest, ExcitationAndVibrationSlipUnderBothFrictionTypes) {
+  for (const std::string variant : {"Excitation", "Vibration"}) {
+    for (const std::string type : {"Standard", "Elastic"}) {
+      FrictionRun run({}, {type, variant});
+      ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+      const auto mode = run.Column(type == "Standard" ? "m.mode" : "m.elastic_mode");
+      int changes = 0;
+      for (std::size_t i = 1; i < mode.size(); ++i) changes += mode[i] != mode[i - 1];
+      EXPECT_GE(changes, 2) << variant << "/" << type;
+      EXPECT_GE(run.sim->events().size(), 2u) << variant << "/" << type;
+    }
+  }
+}
+
+// The element that FrictionMode switches off carries nothing and reports no
+// deflection, however the box moves.
+TEST(FrictionExamplesTest, TheSwitchedOffElementReportsNoDeflection) {
+  for (const std::string type : {"Standard", "Elastic"}) {
+    FrictionRun run({}, {type, "Excitation"});
+    ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+    const auto off_force = run.Column(type == "Standard" ? "m.elastic_force" : "m.force");
+    for (double f : off_force) ASSERT_EQ(f, 0.0) << type;
+    if (type == "Standard")
+      for (double d : run.Column("m.deflection")) ASSERT_EQ(d, 0.0);
+  }
+  // the frictional element's stick deflection, switched off in the same way
+  const auto run = testing::RunXml(
+      "<diagram><mechanism name='m' gravity='0 0 0'><body name='B' mass='1' inertia='1 1 1'/>"
+      "<joint name='j' type='translational' body1='Base0' body2='B' axis='1 0 0' v0='1'/>"
+      "<force name='f' type='frictional' body1='Base0' point1='-1 0 0' body2='B' friction='0' c='0' d='0'/>"
+      "<sensor name='x' kind='coordinate' dof='j'/>"
+      "<sensor name='deflection' kind='element' element='f' quantity='deflection'/></mechanism>"
+      "<solver t_end='1'/><output interval='0.1'><log signal='m.x'/><log signal='m.deflection'/></output>"
+      "</diagram>");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  EXPECT_NEAR(run.Column("m.x").back(), 1.0, 1e-6);
+  for (double d : run.Column("m.deflection")) EXPECT_EQ(d, 0.0);
 }
 
 TEST(FrictionExamplesTest, ElasticFrictionStopsRingsAndReleasesItsPreloadEF1) {
