@@ -90,12 +90,14 @@ struct EnergyHistory {
 EnergyHistory ElastFrictionEnergy(const std::string& variant, const std::string& type, const std::string& friction) {
   diagrams::LoadOptions options;
   options.variants = {variant, type};
-  // without its time-varying load (zero in these variants), the spring's
-  // energy is known
+  // the spring as the linear law it is without its excitation (q = 0 in
+  // these variants), whose energy is known
   std::string xml = ReadExample("elast_friction.xml");
-  const std::string load = " f0=\"push*(1-exp(-t/0.2))+q*sin(2*pi*freq*t)\"";
-  EXPECT_NE(xml.find(load), std::string::npos);
-  xml.erase(xml.find(load), load.size());
+  const std::string expression = "type=\"expression\" body1=\"Base\" point1=\"0 0 0\" body2=\"Box\"\n"
+                                 "           expression=\"-cspring*(x-1)+q*sin(2*pi*freq*t)\"";
+  EXPECT_NE(xml.find(expression), std::string::npos);
+  xml.replace(xml.find(expression), expression.size(),
+              "type=\"linear\" body1=\"Base\" point1=\"0 0 0\" body2=\"Box\" c=\"cspring\" x0=\"1\"");
   const testing::XmlRun run = testing::RunXml(
       WithSensors(xml,
                   {"T kind=\"kinetic_energy\"", "V kind=\"potential_energy\"",
