@@ -219,6 +219,13 @@ TEST(FrictionExamplesTest, LeafSpringSettlesIntoStickingLS1) {
     EXPECT_GE(-z[last], m * g / (c * (1 + mu)));
     EXPECT_LE(-z[last], m * g / (c * (1 - mu)));
     EXPECT_NEAR(z[last], z[one_second_before], 1e-6) << "at rest for the last second";
+    // the plotted friction force (Fig. 7.46): the limit while sliding, what
+    // holds the body against gravity and the leaf once stuck
+    const auto force = r.Column(r.FindColumn("friction force")), limit = r.Column(r.FindColumn("limit Ffr"));
+    for (std::size_t i = 0; i < z.size(); ++i)
+      if (mode[i] != 0.0) ASSERT_NEAR(std::abs(force[i]), limit[i], 1e-9) << "row " << i;
+    EXPECT_NEAR(force[last], -(m * g + c * z[last]), 1e-6);
+    EXPECT_LT(std::abs(force[last]), limit[last]);
   }
   // mu = 0: undamped about m g / c, between 0 and 2 m g / c
   diagrams::LoadOptions options;
