@@ -246,6 +246,14 @@ TEST(MechanismExamplesTest, MathGamePursuerNeverCatchesTheTarget) {
   // ELEMENTS.md 9.13: 0.402 m at about 11.7 s (on the 0.01 s output grid).
   EXPECT_NEAR(*closest, 0.402, 1e-3);
   EXPECT_NEAR(t[closest - d.begin()], 11.7, 0.05);
+  // the logged paths: the target on its circle, the distance between the two
+  const auto ty = run.Column("g.target_y"), tz = run.Column("g.target_z"), py = run.Column("g.pursuer_y"),
+             pz = run.Column("g.pursuer_z");
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    ASSERT_NEAR(ty[i], 2 * std::cos(t[i]), 1e-12);
+    ASSERT_NEAR(tz[i], 2 * std::sin(t[i]), 1e-12);
+    ASSERT_NEAR(std::hypot(ty[i] - py[i], tz[i] - pz[i]), d[i], 1e-12);
+  }
 }
 
 TEST(MechanismExamplesTest, PendulumChainConservesEnergy) {
