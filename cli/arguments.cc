@@ -6,11 +6,19 @@
 #include <stdexcept>
 
 #include "blocks/suggest.h"
+#include "cli/force_analysis_command.h"
 
 namespace mechflow::cli {
 namespace {
 
-const std::vector<std::string> kCommands = {"run", "check", "graph", "modes", "sweep", "help"};
+const std::vector<std::string> kCommands = {"run", "check", "graph", "modes", "sweep", "force-analysis", "help"};
+
+// The options only `command` takes; their values are its to read.
+const std::vector<std::string>& CommandOptions(const std::string& command) {
+  static const std::vector<std::string> none;
+  if (command == "force-analysis") return kForceAnalysisOptions;
+  return none;
+}
 
 double ParseNumber(const std::string& text, const std::string& option) {
   double value = 0.0;
@@ -95,6 +103,7 @@ std::string HelpText(const std::string& command) {
            "\n"
            "Exit codes: 0 done, 1 no equilibrium found (or the rates are not finite),\n"
            "2 bad input.\n";
+  if (command == "force-analysis") return ForceAnalysisHelp();
   if (command == "sweep")
     return "usage: mechflow sweep FILE --vary NAME=V1,V2,... [--vary ...] [--variant NAME]...\n"
            "                      [--set NAME=VALUE]... [--t-end T] [--jobs N] [--out DIR] [--unsafe-lua]\n"
@@ -132,6 +141,7 @@ std::string HelpText(const std::string& command) {
          "  graph   print the diagram as Graphviz DOT\n"
          "  modes   natural frequencies, damping ratios and mode shapes\n"
          "  sweep   run every combination of identifier values, in parallel\n"
+         "  force-analysis  dynamic stiffness, phase and loops of one force element\n"
          "  help    help on a command: mechflow help run\n"
          "\n"
          "Options: --help (also after a command), --version.\n";
@@ -157,7 +167,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
   }
   if (std::find(kCommands.begin(), kCommands.end(), first) == kCommands.end())
     throw UsageError("unknown command '" + first + "'" + blocks::DidYouMean(first, kCommands) +
-                     "; commands: run, check, graph, modes, sweep, help");
+                     "; commands: " + blocks::JoinNames(kCommands));
   a.command = first;
   for (i = 1; i < args.size(); ++i) {
     const std::string& arg = args[i];
@@ -182,7 +192,9 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.equilibrium = true;
     } else if (arg == "--unsafe-lua") {
       a.unsafe_lua = true;
-    } else if (arg == "--vary" && a.command == "sweep") {
+    } else if (const auto& own = CommandOptions(a.command); std::find(own.begin(), own.end(), arg) != own.end()) {
+      a.command_options.emplace_back(arg, value(arg));
+    } else if (arg == "--vary" && (a.command == "sweep" || a.command == "force-analysis")) {
       a.vary.push_back(ParseVary(value(arg)));
     } else if (arg == "--jobs" && a.command == "sweep") {
       const std::string text = value(arg);
@@ -194,6 +206,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       std::vector<std::string> options = {"--set", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
       if (a.command == "modes") options.push_back("--equilibrium");
       if (a.command == "sweep") options.insert(options.end(), {"--vary", "--jobs"});
+      if (a.command == "force-analysis") options.push_back("--vary");
+      options.insert(options.end(), CommandOptions(a.command).begin(), CommandOptions(a.command).end());
       throw UsageError("unknown option '" + arg + "'" + blocks::DidYouMean(arg, options) + "; see mechflow help " +
                        a.command);
     } else if (a.file.empty()) {

@@ -20,6 +20,9 @@ struct Arguments {
   bool equilibrium = false;                               // modes --equilibrium
   std::vector<std::pair<std::string, std::vector<double>>> vary;  // sweep --vary NAME=V1,V2,...
   std::optional<int> jobs;                                // sweep --jobs N (>= 1)
+  // options of one command only (force-analysis ...), with their values, in
+  // order; that command reads them
+  std::vector<std::pair<std::string, std::string>> command_options;
   bool help = false;                                      // help for `command` (or general)
   bool version = false;
 };

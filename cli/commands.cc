@@ -12,6 +12,7 @@
 #include "cli/output_folder.h"
 #include "cli/report.h"
 #include "cli/run_outputs.h"
+#include "cli/force_analysis_command.h"
 #include "cli/sweep.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/linearization.h"
@@ -191,8 +192,12 @@ int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& 
     if (args.command == "graph") return GraphCommand(args, out, err);
     if (args.command == "modes") return ModesCommand(args, out, err);
     if (args.command == "sweep") return SweepCommand(args, out, err);
+    if (args.command == "force-analysis") return ForceAnalysisCommand(args, out, err);
   } catch (const InputError& e) {
     err << e.what() << "\n";
+    return 2;
+  } catch (const UsageError& e) {
+    err << "mechflow " << args.command << ": " << e.what() << "\n";
     return 2;
   } catch (const SimulationError& e) {
     err << "simulation failed: " << e.what() << "\n";

@@ -10,49 +10,32 @@
 #include <filesystem>
 #include <sstream>
 
+#include "cli/gnuplot_text.h"
+
 extern char** environ;
 
 namespace mechflow::cli {
-namespace {
-
-// A gnuplot single-quoted string, which gnuplot reads without backquote
-// substitution or escapes: the quote itself is doubled, and a control
-// character (a line break would end the string's line, and the next line
-// would be a gnuplot command) becomes '?'. Diagram texts hold none (the
-// loader refuses them); this keeps the script safe whatever it is given.
-std::string Quote(const std::string& s) {
-  std::string out = "'";
-  for (const char c : s) {
-    if (c == '\'') out += "''";
-    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) out += '?';
-    else out += c;
-  }
-  return out + "'";
-}
-
-}  // namespace
-
 std::string GnuplotScript(const blocks::Results& results, const std::vector<diagrams::PlotGroup>& groups,
                           const std::string& title, const std::string& csv_name, const std::string& plot_name) {
   const bool svg = std::filesystem::path(plot_name).extension() == ".svg";
   const int panels = std::max<int>(1, static_cast<int>(groups.size()));
   const int height = std::min(4000, 120 + 260 * panels);
   std::ostringstream s;
-  s << "# drawn by mechflow; edit and run again in this folder with: gnuplot " << Quote(plot_name + ".gp") << "\n";
+  s << "# drawn by mechflow; edit and run again in this folder with: gnuplot " << GnuplotQuote(plot_name + ".gp") << "\n";
   s << "set terminal " << (svg ? "svg" : "pngcairo") << " size 1000," << height
     << " noenhanced font 'sans,10'" << (svg ? " background rgb 'white'" : "") << "\n";
-  s << "set output " << Quote(plot_name) << "\n";
+  s << "set output " << GnuplotQuote(plot_name) << "\n";
   s << "set datafile separator ','\n";
   // fixed margins keep the time axes of all panels aligned
   s << "set grid\nset key outside right top\nset lmargin 12\nset rmargin 22\nset xlabel 'time [s]'\n";
-  s << "set multiplot layout " << panels << ",1 title " << Quote(title) << "\n";
+  s << "set multiplot layout " << panels << ",1 title " << GnuplotQuote(title) << "\n";
   for (const auto& g : groups) {
-    s << "set title " << Quote(g.name) << "\n";
+    s << "set title " << GnuplotQuote(g.name) << "\n";
     s << "plot ";
     for (size_t i = 0; i < g.columns.size(); ++i) {
       const int c = g.columns[i];
-      s << (i ? ", \\\n     " : "") << (i ? "''" : Quote(csv_name)) << " using 1:" << (c + 1)
-        << " every ::1 with lines lw 1.5 title " << Quote(results.columns()[c]);
+      s << (i ? ", \\\n     " : "") << (i ? "''" : GnuplotQuote(csv_name)) << " using 1:" << (c + 1)
+        << " every ::1 with lines lw 1.5 title " << GnuplotQuote(results.columns()[c]);
     }
     s << "\n";
   }

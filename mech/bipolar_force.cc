@@ -56,4 +56,15 @@ void BipolarForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<d
   if (law_->has_energy()) sensors[3] = law_->Energy(x, ctx);
 }
 
+ElementCoordinate BipolarForce::Coordinate(const std::string& component) const {
+  ElementCoordinate c;
+  if (!component.empty()) return c;
+  c.kind = ElementCoordinate::Kind::kLine;
+  c.body1 = body1_;
+  c.body2 = body2_;
+  c.point1 = point1_;
+  c.point2 = point2_;
+  return c;
+}
+
 }  // namespace mechflow::mech

@@ -18,6 +18,7 @@ class BipolarForce final : public ForceElement {
                std::unique_ptr<ForceLaw> law);
   void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                 std::span<double> sensors) const override;
+  ElementCoordinate Coordinate(const std::string& component) const override;
 
  private:
   int body1_, body2_;

@@ -47,4 +47,23 @@ void Bushing::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double
   }
 }
 
+ElementCoordinate Bushing::Coordinate(const std::string& component) const {
+  // dx dy dz: body 2 moved along body 1's axis; ax ay az: turned about it
+  ElementCoordinate c;
+  const std::string names = "xyz";
+  if (component.size() != 2 || (component[0] != 'd' && component[0] != 'a') ||
+      names.find(component[1]) == std::string::npos)
+    return c;
+  const int i = static_cast<int>(names.find(component[1]));
+  c.kind = component[0] == 'd' ? ElementCoordinate::Kind::kTranslation : ElementCoordinate::Kind::kRotation;
+  c.body1 = body1_;
+  c.body2 = body2_;
+  c.point1 = point1_;
+  c.point2 = point2_;
+  c.axis = Vec3::Unit(i);
+  c.force_sensor = component[0] == 'd' ? i : 3 + i;  // f or m on body 2, body 1's axes
+  c.coordinate_sensor = c.force_sensor + 6;          // delta or theta
+  return c;
+}
+
 }  // namespace mechflow::mech

@@ -42,6 +42,7 @@ class Bushing final : public ForceElement {
           BushingParameters parameters, const Kinematics& initial);
   void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                 std::span<double> sensors) const override;
+  ElementCoordinate Coordinate(const std::string& component) const override;
 
  private:
   int body1_, body2_;

@@ -83,4 +83,16 @@ void CirclePlaneContact::OnCrossing(int index, int direction, const ElementConte
   modes[0] = direction > 0 ? 1.0 : 0.0;
 }
 
+ElementCoordinate CirclePlaneContact::Coordinate(const std::string& component) const {
+  ElementCoordinate c;
+  if (!component.empty()) return c;
+  c.kind = ElementCoordinate::Kind::kPenetration;
+  c.body1 = body1_;
+  c.body2 = body2_;
+  c.axis = normal_;
+  c.force_sensor = 0;  // "normal": it pushes the penetration down
+  c.force_sign = -1.0;
+  return c;
+}
+
 }  // namespace mechflow::mech

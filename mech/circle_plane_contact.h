@@ -22,6 +22,7 @@ class CirclePlaneContact final : public ForceElement {
   void Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
   void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                 std::span<double> sensors) const override;
+  ElementCoordinate Coordinate(const std::string& component) const override;
   void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
   // Crossing 1 is the penetration passing max_penetration.
   std::string CrossingWarning(int index, int direction) const override;

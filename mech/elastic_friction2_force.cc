@@ -154,4 +154,15 @@ bool ElasticFriction2Force::UpdateModes(const ElementContext& ctx, std::span<dou
   return true;
 }
 
+ElementCoordinate ElasticFriction2Force::Coordinate(const std::string& component) const {
+  ElementCoordinate c;
+  if (!component.empty()) return c;
+  c.kind = ElementCoordinate::Kind::kLine;
+  c.body1 = body1_;
+  c.body2 = body2_;
+  c.point1 = point1_;
+  c.point2 = point2_;
+  return c;
+}
+
 }  // namespace mechflow::mech

@@ -109,4 +109,15 @@ double ElasticFrictionForce::SlidingDeflection(const ElementContext& ctx, double
   return mode * p_.friction.Get(ctx) / c;
 }
 
+ElementCoordinate ElasticFrictionForce::Coordinate(const std::string& component) const {
+  ElementCoordinate c;
+  if (!component.empty()) return c;
+  c.kind = ElementCoordinate::Kind::kLine;
+  c.body1 = body1_;
+  c.body2 = body2_;
+  c.point1 = point1_;
+  c.point2 = point2_;
+  return c;
+}
+
 }  // namespace mechflow::mech

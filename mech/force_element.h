@@ -43,6 +43,31 @@ struct ElementContext {
 
 class DynamicsWorkspace;
 
+// The scalar coordinate an element acts along, for driving the element alone
+// (force analysis, issue 14):
+//   kLine         the length between point1 on body 1 and point2 on body 2
+//   kJoint        a joint coordinate (q_index, v_index)
+//   kPenetration  of body 1's points into the plane on body 2 with normal
+//                 `axis` (body 2's frame): moving body 1 along -normal
+//                 deepens it
+//   kTranslation  of body 2's point2 from body 1's point1 along `axis`
+//                 (body 1's frame)
+//   kRotation     of body 2 about `axis` (body 1's frame) through point2
+// `force_sensor` times `force_sign` is the element's force (or moment) along
+// the coordinate: positive pushes the coordinate up; `coordinate_sensor`
+// reads the coordinate.
+struct ElementCoordinate {
+  enum class Kind { kNone, kLine, kJoint, kPenetration, kTranslation, kRotation };
+  Kind kind = Kind::kNone;
+  int body1 = -1, body2 = -1;
+  Vec3 point1 = Vec3::Zero(), point2 = Vec3::Zero();  // body frames
+  Vec3 axis = Vec3::Zero();
+  int q_index = -1, v_index = -1;
+  int force_sensor = 0;
+  double force_sign = 1.0;
+  int coordinate_sensor = 1;  // "length" of lines and joint forces, a contact's "penetration"
+};
+
 // A numeric element parameter: a constant, or a function of (t, inputs...)
 // when it is an expression of identifiers that are mechanism inputs.
 struct Parameter {
@@ -140,6 +165,11 @@ class ForceElement {
   int work_sensor() const { return work_sensor_; }  // "dissipated" follows when stores_energy()
   bool stores_energy() const { return energy_sensor_ >= 0; }
   int energy_sensor() const { return energy_sensor_; }
+
+  // The element's scalar coordinate (kind kNone: it has none, e.g. an
+  // applied force). `component` names one of several (a bushing's); empty
+  // for the element's own.
+  virtual ElementCoordinate Coordinate(const std::string& /*component*/) const { return {}; }
 
   // Crossing `index` fired in `direction`: a warning for the user when the
   // event means "check the model" (e.g. a contact sinking deeper than its

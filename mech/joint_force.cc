@@ -24,4 +24,13 @@ void JointForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<dou
   if (law_->has_energy()) sensors[3] = law_->Energy(x, ctx);
 }
 
+ElementCoordinate JointForce::Coordinate(const std::string& component) const {
+  ElementCoordinate c;
+  if (!component.empty()) return c;
+  c.kind = ElementCoordinate::Kind::kJoint;
+  c.q_index = q_index_;
+  c.v_index = v_index_;
+  return c;
+}
+
 }  // namespace mechflow::mech

@@ -14,6 +14,7 @@ class JointForce final : public ForceElement {
   JointForce(std::string name, std::string origin, const Dof& dof, std::unique_ptr<ForceLaw> law);
   void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                 std::span<double> sensors) const override;
+  ElementCoordinate Coordinate(const std::string& component) const override;
 
  private:
   int q_index_, v_index_;

@@ -158,4 +158,16 @@ void PointsPlaneContact::OnCrossing(int index, int direction, const ElementConte
   modes[index] = direction > 0 ? 1.0 : 0.0;
 }
 
+ElementCoordinate PointsPlaneContact::Coordinate(const std::string& component) const {
+  ElementCoordinate c;
+  if (!component.empty()) return c;
+  c.kind = ElementCoordinate::Kind::kPenetration;
+  c.body1 = body1_;
+  c.body2 = body2_;
+  c.axis = normal_;
+  c.force_sensor = 0;    // "normal": it pushes the penetration down
+  c.force_sign = -1.0;
+  return c;
+}
+
 }  // namespace mechflow::mech

@@ -1,0 +1,184 @@
+#include "analysis/element_drive_block.h"
+
+#include <cmath>
+
+#include "mech/errors.h"
+
+namespace mechflow::analysis {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+using Kind = mech::ElementCoordinate::Kind;
+
+enum Port { kX, kV, kForce, kReaction };
+
+}  // namespace
+
+ElementDriveBlock::ElementDriveBlock(std::string name, const mech::Mechanism& mechanism, int element,
+                                     const std::string& component, HarmonicDrive drive)
+    : Block("element_drive", std::move(name)),
+      mechanism_(mechanism),
+      element_(mechanism.element(element)),
+      coordinate_(element_.Coordinate(component)),
+      drive_(drive),
+      kin0_(mechanism.model()),
+      q0_(mechanism.model().initial_q()),
+      kin_(mechanism.model()),
+      q_(q0_),
+      v_(mechanism.model().nv(), 0.0),
+      args_(1 + mechanism.num_inputs(), 0.0),
+      sensors_(element_.num_sensors(), 0.0),
+      rates_(element_.num_states(), 0.0),
+      loads_(mechanism.model()) {
+  const std::string what = (element_.origin().empty() ? "" : element_.origin() + ": ") + "element '" +
+                           element_.name() + "'" + (component.empty() ? "" : " component '" + component + "'");
+  if (coordinate_.kind == Kind::kNone) {
+    const bool bushing = element_.FindSensor("dx") >= 0;
+    throw InputError(what + (bushing ? " needs a component to drive: dx, dy, dz, ax, ay or az (--component)"
+                                     : " has no scalar coordinate to drive" +
+                                           std::string(component.empty() ? "" : " (components are a bushing's)")));
+  }
+  if (element_.exact_stick())
+    throw InputError(what + " sticks exactly: while stuck it has no force of its own, only what the mechanism "
+                            "needs; give it a stick stiffness (stick=\"spring\", c, d) to analyse it");
+  if (element_.depends_on_inputs())
+    throw InputError(what + " has parameters that follow signal inputs, which force analysis does not drive; "
+                            "give them values through identifiers (--set)");
+  if (!(drive_.frequency > 0.0) || !std::isfinite(drive_.frequency))
+    throw InputError("force analysis: the frequency must be > 0 Hz");
+  if (!std::isfinite(drive_.amplitude)) throw InputError("force analysis: the amplitude must be a number");
+
+  const mech::Model& model = mechanism.model();
+  mech::UpdateKinematics(model, 0.0, q0_, v_, &kin0_);
+  auto is_ground = [&](int body) { return body < 0 || model.bodies()[body].segment == mech::kGround; };
+  switch (coordinate_.kind) {
+    case Kind::kLine: {
+      const mech::Vec3 d = mech::PointPosition(kin0_, coordinate_.body2, coordinate_.point2) -
+                     mech::PointPosition(kin0_, coordinate_.body1, coordinate_.point1);
+      if (!(d.norm() > 0.0))
+        throw InputError(what + " has zero length in the initial configuration: its line has no direction");
+      direction_ = d.normalized();
+      mover_ = coordinate_.body2;
+      break;
+    }
+    case Kind::kPenetration:  // deeper: body 1 against the plane's normal
+      direction_ = -(kin0_.body_pose[coordinate_.body2].R * coordinate_.axis);
+      mover_ = coordinate_.body1;
+      break;
+    case Kind::kTranslation:
+    case Kind::kRotation:
+      direction_ = kin0_.body_pose[coordinate_.body1].R * coordinate_.axis;
+      pivot_ = mech::PointPosition(kin0_, coordinate_.body2, coordinate_.point2);
+      mover_ = coordinate_.body2;
+      break;
+    case Kind::kJoint:
+    case Kind::kNone:
+      break;
+  }
+  // moving the other body the other way does the same to the coordinate
+  if (coordinate_.kind != Kind::kJoint && is_ground(mover_)) {
+    mover_ = mover_ == coordinate_.body1 ? coordinate_.body2 : coordinate_.body1;
+    direction_ = -direction_;
+    if (is_ground(mover_))
+      throw InputError(what + " acts between two bodies fixed to the ground: nothing can be driven");
+  }
+
+  DeclareOutputPort("x");
+  DeclareOutputPort("v");
+  DeclareOutputPort("force");
+  DeclareOutputPort("reaction");
+  DeclareNoFeedthrough();
+  if (element_.num_states() > 0) DeclareContinuousStates(element_.num_states(), "element");
+  DeclareDiscreteStates(element_.num_modes());
+  for (int i = 0; i < element_.num_crossings(); ++i) {
+    const mech::Crossing c = element_.crossing_direction(i);
+    DeclareZeroCrossing(c == mech::Crossing::kRising    ? blocks::CrossingDirection::kRising
+                        : c == mech::Crossing::kFalling ? blocks::CrossingDirection::kFalling
+                                                        : blocks::CrossingDirection::kEither);
+  }
+  // x0: the coordinate in the initial configuration, as the element measures
+  // it (a contact's deepest point, a bushing's deflection)
+  std::vector<double> state(element_.num_states(), 0.0), modes(element_.num_modes(), 0.0);
+  element_.Initialize(Context(0.0, state, modes), state, modes);
+  element_.Evaluate(Context(0.0, state, modes), &loads_, rates_, sensors_);
+  x0_ = sensors_[coordinate_.coordinate_sensor];
+}
+
+mech::ElementContext ElementDriveBlock::Context(double t, std::span<const double> state,
+                                                std::span<const double> modes) const {
+  const double w = kTwoPi * drive_.frequency, angle = w * t + drive_.phase;
+  const double s = drive_.amplitude * std::sin(angle), rate = drive_.amplitude * w * std::cos(angle);
+  kin_ = kin0_;
+  kin_.time = t;
+  if (coordinate_.kind == Kind::kJoint) {
+    q_[coordinate_.q_index] = q0_[coordinate_.q_index] + s;
+    v_[coordinate_.v_index] = rate;
+  } else if (coordinate_.kind == Kind::kRotation) {
+    mech::Pose& pose = kin_.body_pose[mover_];
+    const mech::Mat3 turn = mech::AxisRotation(direction_, s);
+    pose.R = turn * pose.R;
+    pose.p = pivot_ + turn * (pose.p - pivot_);
+    kin_.body_omega[mover_] = rate * direction_;
+    kin_.body_velocity[mover_] = kin_.body_omega[mover_].cross(pose.p - pivot_);
+  } else {
+    kin_.body_pose[mover_].p += s * direction_;
+    kin_.body_velocity[mover_] = rate * direction_;
+  }
+  args_[0] = t;
+  mech::ElementContext ctx;
+  ctx.t = t;
+  ctx.model = &mechanism_.model();
+  ctx.kin = &kin_;
+  ctx.q = q_;
+  ctx.v = v_;
+  ctx.parameter_args = args_;
+  ctx.state = state;
+  ctx.modes = modes;
+  return ctx;
+}
+
+void ElementDriveBlock::Evaluate(const blocks::BlockContext& ctx, std::span<double> rates) const {
+  loads_.Clear();
+  element_.Evaluate(Context(ctx.time(), ctx.state(), ctx.discrete()), &loads_, rates, sensors_);
+}
+
+void ElementDriveBlock::DoInitialize(const blocks::BlockContext& ctx) const {
+  for (double& m : ctx.discrete()) m = 0.0;
+  for (double& x : ctx.state()) x = 0.0;
+  element_.Initialize(Context(0.0, ctx.state(), ctx.discrete()), ctx.state(), ctx.discrete());
+}
+
+void ElementDriveBlock::DoCalcOutput(int port, const blocks::BlockContext& ctx) const {
+  const double w = kTwoPi * drive_.frequency, angle = w * ctx.time() + drive_.phase;
+  if (port == kX) {
+    ctx.output(port)[0] = drive_.amplitude * std::sin(angle);
+  } else if (port == kV) {
+    ctx.output(port)[0] = drive_.amplitude * w * std::cos(angle);
+  } else {
+    Evaluate(ctx, rates_);
+    const double force = coordinate_.force_sign * sensors_[coordinate_.force_sensor];
+    ctx.output(port)[0] = port == kForce ? force : -force;
+  }
+}
+
+void ElementDriveBlock::DoCalcDerivatives(const blocks::BlockContext& ctx) const {
+  if (element_.num_states() == 0) return;
+  Evaluate(ctx, ctx.derivative());
+}
+
+void ElementDriveBlock::DoCalcZeroCrossings(const blocks::BlockContext& ctx) const {
+  element_.ZeroCrossings(Context(ctx.time(), ctx.state(), ctx.discrete()), ctx.zero_crossings());
+}
+
+void ElementDriveBlock::DoZeroCrossing(int index, int direction, const blocks::BlockContext& ctx) const {
+  element_.OnCrossing(index, direction, Context(ctx.time(), ctx.state(), ctx.discrete()), ctx.state(),
+                      ctx.discrete());
+}
+
+bool ElementDriveBlock::DoUpdateModes(const blocks::BlockContext& ctx) const {
+  if (element_.num_modes() == 0) return false;
+  return element_.UpdateModes(Context(ctx.time(), ctx.state(), ctx.discrete()), ctx.state(), ctx.discrete());
+}
+
+}  // namespace mechflow::analysis

@@ -1,0 +1,160 @@
+#include "analysis/force_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "analysis/element_drive_block.h"
+#include "blocks/diagram_builder.h"
+#include "blocks/library/mechanism_block.h"
+#include "blocks/simulator.h"
+#include "blocks/suggest.h"
+#include "mech/errors.h"
+
+namespace mechflow::analysis {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+constexpr double kPeriodicTolerance = 1e-6;
+
+struct FoundElement {
+  const mech::Mechanism* mechanism = nullptr;
+  int index = -1;
+};
+
+FoundElement FindElement(const diagrams::LoadedDiagram& loaded, const std::string& name) {
+  std::vector<std::string> names;
+  for (int b = 0; b < loaded.diagram->num_blocks(); ++b) {
+    const auto* block = dynamic_cast<const blocks::MechanismBlock*>(&loaded.diagram->block(b));
+    if (!block) continue;
+    const mech::Mechanism& m = block->mechanism();
+    const int index = m.FindElement(name);
+    if (index >= 0) return {&m, index};
+    for (int e = 0; e < m.num_elements(); ++e) names.push_back(m.element(e).name());
+  }
+  throw InputError("force analysis: no force element '" + name + "'" + blocks::DidYouMean(name, names) +
+                   (names.empty() ? "; the diagram has none" : "; elements: " + blocks::JoinNames(names)));
+}
+
+// Rows [first, first + samples] of column `c`.
+std::vector<double> Period(const blocks::Results& r, int c, std::size_t first, int samples) {
+  const std::vector<double> column = r.Column(c);
+  return std::vector<double>(column.begin() + first, column.begin() + first + samples + 1);
+}
+
+ForceAnalysisCase RunCase(const diagrams::LoadedDiagram& loaded, const FoundElement& found,
+                          const ForceAnalysisRequest& request, double amplitude, double frequency) {
+  ForceAnalysisCase out;
+  out.amplitude = amplitude;
+  out.frequency = frequency;
+  blocks::DiagramBuilder builder;
+  // Half a row of phase: the turning points fall between rows, so a force
+  // that jumps there (dry friction) is never sampled on its jump.
+  const double phase = kTwoPi / (2.0 * request.samples);
+  auto block = std::make_unique<ElementDriveBlock>("drive", *found.mechanism, found.index, request.component,
+                                                   HarmonicDrive{amplitude, frequency, phase});
+  out.x0 = block->initial_coordinate();
+  builder.AddBlock(std::move(block));
+  const std::unique_ptr<blocks::Diagram> diagram = builder.Build();
+  blocks::SolverOptions solver;
+  solver.rtol = loaded.solver.rtol;
+  solver.atol = loaded.solver.atol;
+  solver.t_end = request.cycles / frequency;
+  solver.output_interval = 1.0 / (frequency * request.samples);
+  // a step never spans more than a tenth of a period: the drive is known
+  // ahead, the integrator must not step over its turns
+  solver.max_step = 0.1 / frequency;
+  std::vector<blocks::SignalRef> logged;
+  for (const char* port : {"drive.x", "drive.v", "drive.reaction"}) logged.push_back(diagram->ResolveSignal(port));
+  blocks::Simulator sim(*diagram, solver, logged);
+  const blocks::RunOutcome outcome = sim.Run();
+  if (!outcome.ok) {
+    out.failure = outcome.failure;
+    return out;
+  }
+  const blocks::Results& r = sim.results();
+  const int samples = request.samples;
+  const std::size_t rows = r.Column(0).size();
+  if (rows < static_cast<std::size_t>(2 * samples + 1)) {
+    out.failure = "too few rows for two periods";
+    return out;
+  }
+  const std::size_t last = rows - 1 - samples, before = last - samples;
+  out.x = Period(r, 1, last, samples);
+  out.v = Period(r, 2, last, samples);
+  out.reaction = Period(r, 3, last, samples);
+  const std::vector<double> previous = Period(r, 3, before, samples);
+  double largest = 0.0, difference = 0.0;
+  for (int k = 0; k <= samples; ++k) {
+    largest = std::max(largest, std::abs(out.reaction[k]));
+    difference = std::max(difference, std::abs(out.reaction[k] - previous[k]));
+  }
+  out.periodic_error = largest > 0.0 ? difference / largest : difference;
+  out.periodic = difference <= kPeriodicTolerance * largest + 1e-300;
+  const std::vector<double> one_period(out.reaction.begin(), out.reaction.end() - 1);
+  const auto [rs, rc] = FirstHarmonic(one_period, phase);
+  out.force_amplitude = std::hypot(rs, rc);
+  out.stiffness = amplitude != 0.0 ? out.force_amplitude / std::abs(amplitude) : 0.0;
+  out.phase = std::atan2(rc, rs);
+  double work = 0.0;
+  for (int k = 0; k < samples; ++k) work += out.reaction[k] * out.v[k];
+  out.loop_energy = work / (frequency * samples);
+  return out;
+}
+
+}  // namespace
+
+std::pair<double, double> FirstHarmonic(const std::vector<double>& values, double phase0) {
+  const int n = static_cast<int>(values.size());
+  double s = 0.0, c = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double phase = kTwoPi * k / n + phase0;
+    s += values[k] * std::sin(phase);
+    c += values[k] * std::cos(phase);
+  }
+  return {2.0 * s / n, 2.0 * c / n};
+}
+
+ForceAnalysis RunForceAnalysis(const ForceAnalysisRequest& request) {
+  if (request.amplitudes.empty()) throw InputError("force analysis: give at least one amplitude");
+  if (request.frequencies.empty()) throw InputError("force analysis: give at least one frequency");
+  for (double a : request.amplitudes)
+    if (!(a > 0.0) || !std::isfinite(a)) throw InputError("force analysis: an amplitude must be > 0");
+  for (double f : request.frequencies)
+    if (!(f > 0.0) || !std::isfinite(f)) throw InputError("force analysis: a frequency must be > 0 Hz");
+  if (request.cycles < 2) throw InputError("force analysis: --cycles must be at least 2 (two periods to compare)");
+  if (request.samples < 16) throw InputError("force analysis: at least 16 samples per period");
+
+  // every combination of the varied values, last one fastest
+  std::vector<std::vector<double>> combinations = {{}};
+  for (const auto& [names, values] : request.vary) {
+    if (values.empty()) throw InputError("force analysis: --vary " + names.front() + " has no values");
+    std::vector<std::vector<double>> next;
+    for (const auto& c : combinations)
+      for (double v : values) {
+        next.push_back(c);
+        next.back().push_back(v);
+      }
+    combinations = std::move(next);
+  }
+  ForceAnalysis analysis;
+  for (const auto& values : combinations) {
+    diagrams::LoadOptions options = request.options;
+    for (std::size_t i = 0; i < values.size(); ++i)
+      for (const std::string& name : request.vary[i].first) options.overrides.emplace_back(name, values[i]);
+    const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(request.file, options);
+    const FoundElement found = FindElement(loaded, request.element);
+    analysis.diagram = loaded.description.name;
+    analysis.element_what = "element '" + request.element + "'" +
+                            (request.component.empty() ? "" : " component " + request.component);
+    for (double a : request.amplitudes)
+      for (double f : request.frequencies) {
+        ForceAnalysisCase c = RunCase(loaded, found, request, a, f);
+        c.varied = values;
+        analysis.cases.push_back(std::move(c));
+      }
+  }
+  return analysis;
+}
+
+}  // namespace mechflow::analysis
