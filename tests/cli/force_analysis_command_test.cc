@@ -1,0 +1,87 @@
+// `mechflow force-analysis` as a user runs it (issue 14, item 1): the seed's
+// Fig. 7.10 run -- ElastFriction2's friction element, K and delta against
+// mu = mu0 at three amplitudes -- and its files; bad input exits 2.
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/cli/mechflow_command.h"
+
+namespace mechflow {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::ReadFile;
+using testing::RunMechflow;
+
+const std::string kExample = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/elast_friction2.xml";
+
+std::vector<std::vector<std::string>> ReadCsv(const std::filesystem::path& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::stringstream in(ReadFile(path));
+  for (std::string line; std::getline(in, line);) {
+    rows.emplace_back();
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) rows.back().push_back(cell);
+  }
+  return rows;
+}
+
+TEST(ForceAnalysisCommandTest, ElasticFriction2StiffnessAgainstFriction) {
+  const auto out = std::filesystem::path(::testing::TempDir()) / "force_analysis_command";
+  const auto outcome = RunMechflow("force-analysis " + kExample +
+                                   " --element friction --amplitude 0.001,0.003 --frequency 1"
+                                   " --vary ffr,ffr0=0,0.2,0.5 --samples 2000 --out " + out.string());
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.err;
+  EXPECT_THAT(outcome.out, HasSubstr("element 'friction'"));
+  const auto table = ReadCsv(out / "elast_friction2.force_analysis.csv");
+  ASSERT_EQ(table.size(), 7u);  // a header and 3 x 2 cases
+  EXPECT_EQ(table[0][0], "ffr(and others)");
+  EXPECT_EQ(table[0][4], "K");
+  const double K[] = {80.00, 86.83, 117.58};
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(std::stod(table[1 + i][4]), K[i / 2], 6e-3 * K[i / 2]) << "row " << i;
+    EXPECT_EQ(table[1 + i][8], "yes");
+  }
+  // the loops: x', v, R per case over the last period, 2001 rows
+  const auto loops = ReadCsv(out / "elast_friction2.force_analysis.loops.csv");
+  ASSERT_EQ(loops.size(), 2002u);
+  EXPECT_EQ(loops[0].size(), 18u);
+  EXPECT_EQ(loops[0][0], "x' ffr=0 a=0.001 f=1");
+  // K and delta against mu, one curve per amplitude
+  const auto curves = ReadCsv(out / "elast_friction2.force_analysis.curves.csv");
+  ASSERT_EQ(curves.size(), 4u);
+  EXPECT_EQ(curves[0][0], "ffr");
+  EXPECT_NEAR(std::stod(curves[3][1]), 117.58, 0.7);
+  EXPECT_NEAR(std::stod(curves[3][2]), 9.23, 0.02);
+  if (outcome.err.find("no plot") == std::string::npos) {  // gnuplot installed
+    EXPECT_TRUE(std::filesystem::file_size(out / "elast_friction2.force_analysis.loops.png") > 1000);
+    EXPECT_TRUE(std::filesystem::file_size(out / "elast_friction2.force_analysis.png") > 1000);
+  }
+}
+
+TEST(ForceAnalysisCommandTest, BadInputExits2) {
+  const std::string base = "force-analysis " + kExample + " --out " + ::testing::TempDir() + "/fa_bad";
+  EXPECT_THAT(RunMechflow(base + " --amplitude 0.001 --frequency 1").err, HasSubstr("needs --element"));
+  auto outcome = RunMechflow(base + " --element frction --amplitude 0.001 --frequency 1");
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.err, HasSubstr("did you mean 'friction'"));
+  outcome = RunMechflow(base + " --element constant --amplitude 0.001 --frequency 1");
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.err, HasSubstr("has no scalar coordinate"));
+  outcome = RunMechflow(base + " --element friction --amplitude 0.001 --frequency 0");
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.err, HasSubstr("frequency must be > 0"));
+  outcome = RunMechflow(base + " --element friction --amplitude 0.001 --frequencies 5:1:3");
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.err, HasSubstr("0 < F1 < F2"));
+  outcome = RunMechflow(base + " --element friction --amplitude 0.001 --frequency 1 --vary mu=1,2");
+  EXPECT_EQ(outcome.exit_code, 2);
+}
+
+}  // namespace
+}  // namespace mechflow
