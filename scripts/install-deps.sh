@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libsundials-dev libsuitesparse-dev libtinyxml2-dev liblua5.4-dev libgtest-dev
-  gnuplot-nox
+  gnuplot-nox libfftw3-dev
   libopenmpi-dev openmpi-bin
 )
 # more for one script (scripts/fuzz.sh: clang and its libFuzzer runtime)
