@@ -7,16 +7,19 @@
 
 #include "blocks/suggest.h"
 #include "cli/force_analysis_command.h"
+#include "cli/psd_command.h"
 
 namespace mechflow::cli {
 namespace {
 
-const std::vector<std::string> kCommands = {"run", "check", "graph", "modes", "sweep", "force-analysis", "help"};
+const std::vector<std::string> kCommands = {"run",   "check",          "graph", "modes",
+                                            "sweep", "force-analysis", "psd",   "help"};
 
 // The options only `command` takes; their values are its to read.
 const std::vector<std::string>& CommandOptions(const std::string& command) {
   static const std::vector<std::string> none;
   if (command == "force-analysis") return kForceAnalysisOptions;
+  if (command == "psd") return kPsdOptions;
   return none;
 }
 
@@ -104,6 +107,7 @@ std::string HelpText(const std::string& command) {
            "Exit codes: 0 done, 1 no equilibrium found (or the rates are not finite),\n"
            "2 bad input.\n";
   if (command == "force-analysis") return ForceAnalysisHelp();
+  if (command == "psd") return PsdHelp();
   if (command == "sweep")
     return "usage: mechflow sweep FILE --vary NAME=V1,V2,... [--vary ...] [--variant NAME]...\n"
            "                      [--set NAME=VALUE]... [--t-end T] [--jobs N] [--out DIR] [--unsafe-lua]\n"
@@ -142,6 +146,7 @@ std::string HelpText(const std::string& command) {
          "  modes   natural frequencies, damping ratios and mode shapes\n"
          "  sweep   run every combination of identifier values, in parallel\n"
          "  force-analysis  dynamic stiffness, phase and loops of one force element\n"
+         "  psd     power spectral density of logged signals in a results file\n"
          "  help    help on a command: mechflow help run\n"
          "\n"
          "Options: --help (also after a command), --version.\n";

@@ -13,6 +13,7 @@
 #include "cli/report.h"
 #include "cli/run_outputs.h"
 #include "cli/force_analysis_command.h"
+#include "cli/psd_command.h"
 #include "cli/sweep.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/linearization.h"
@@ -193,6 +194,7 @@ int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& 
     if (args.command == "modes") return ModesCommand(args, out, err);
     if (args.command == "sweep") return SweepCommand(args, out, err);
     if (args.command == "force-analysis") return ForceAnalysisCommand(args, out, err);
+    if (args.command == "psd") return PsdCommand(args, out, err);
   } catch (const InputError& e) {
     err << e.what() << "\n";
     return 2;

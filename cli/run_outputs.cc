@@ -7,6 +7,7 @@
 
 #include "blocks/suggest.h"
 #include "cli/plot.h"
+#include "cli/psd_output.h"
 #include "cli/report.h"
 
 namespace mechflow::cli {
@@ -53,6 +54,31 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
     } catch (const WriteError& e) {
       err << e.what() << "\n";
       failed.push_back(loaded.plot_file);
+    }
+  }
+  // <spectrum>s: STEM.COLUMN.psd.csv and .png
+  for (const diagrams::SpectrumRequest& s : loaded.spectra) {
+    const blocks::Results& r = sim.results();
+    PsdRequest request;
+    request.time = r.Column(0);
+    request.signals.push_back({s.column, r.Column(r.FindColumn(s.column))});
+    request.options = {s.segment, s.overlap,
+                       s.window == "hann" ? analysis::Window::kHann : analysis::Window::kRectangular};
+    request.from = s.from;
+    request.peaks = s.peaks;
+    request.max_frequency = s.max_frequency;
+    request.stem = stem + "." + s.column;
+    request.title = loaded.description.name + ": " + s.column;
+    try {
+      const std::string problem = WritePsd(request, folder, out);
+      if (!problem.empty()) err << "warning: no plot: " << problem << "\n";
+      written.push_back(request.stem + ".psd.csv");
+    } catch (const InputError& e) {
+      err << s.origin << ": <spectrum>: " << e.what() << "\n";
+      failed.push_back(request.stem + ".psd.csv");
+    } catch (const WriteError& e) {
+      err << e.what() << "\n";
+      failed.push_back(request.stem + ".psd.csv");
     }
   }
   if (failed.empty()) return true;

@@ -26,6 +26,8 @@ std::string XYPlotScript(const std::vector<XYPanel>& panels, const std::string& 
     s << "set title " << GnuplotQuote(p.title) << "\n";
     s << "set xlabel " << GnuplotQuote(p.x_label) << "\nset ylabel " << GnuplotQuote(p.y_label) << "\n";
     s << (p.log_x ? "set logscale x\n" : "unset logscale x\n") << (p.log_y ? "set logscale y\n" : "unset logscale y\n");
+    if (p.x_max > 0) s << "set xrange [:" << p.x_max << "]\n";
+    else s << "set xrange [*:*]\n";
     s << "plot ";
     for (std::size_t i = 0; i < p.curves.size(); ++i) {
       const XYCurve& c = p.curves[i];

@@ -19,6 +19,7 @@ struct XYPanel {
   std::string title, x_label, y_label;
   std::vector<XYCurve> curves;
   bool log_x = false, log_y = false;
+  double x_max = 0.0;  // > 0: the x axis ends there
 };
 
 // The script that draws `panels` from the CSV file `csv_name` (a header row

@@ -104,6 +104,7 @@ struct DiagramDescription {
   SourceLoc output_loc;
   std::vector<LogDesc> logs;
   std::vector<ReportDesc> reports;
+  std::vector<ReportDesc> spectra;  // <spectrum>: attributes as written
   ScriptDesc script;
 };
 

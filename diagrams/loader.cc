@@ -208,6 +208,47 @@ void CollectReports(const DiagramDescription& d, const Evaluator& eval, LoadedDi
   }
 }
 
+// <spectrum>s: a logged column (as the results name it) and the Welch
+// options, checked now so that a bad one is bad input before the run.
+void CollectSpectra(const DiagramDescription& d, const Evaluator& eval, LoadedDiagram* out) {
+  std::vector<std::string> columns;
+  for (const blocks::SignalRef& s : out->logged)
+    for (int i = 0; i < s.width; ++i) columns.push_back(s.width == 1 ? s.name : s.name + "[" + std::to_string(i) + "]");
+  for (const ReportDesc& r : d.spectra) {
+    SpectrumRequest request;
+    request.origin = r.loc.str();
+    const Attribute* signal = FindAttribute(r.attributes, "signal");
+    request.column = Trim(signal->value);
+    if (std::find(columns.begin(), columns.end(), request.column) == columns.end())
+      throw InputError(signal->loc.str() + ": <spectrum>: '" + request.column + "' is not a logged column" +
+                       blocks::DidYouMean(request.column, columns) + "; log it with <log signal=\"...\"/> (columns: " +
+                       blocks::JoinNames(columns) + ")");
+    const auto number = [&](const char* name, double fallback) {
+      const Attribute* a = FindAttribute(r.attributes, name);
+      return a ? eval.Number(a->value, a->loc.str() + ": <spectrum> attribute '" + name + "'") : fallback;
+    };
+    const double segment = number("segment", 0), peaks = number("peaks", 5);
+    request.overlap = number("overlap", 0.5);
+    request.from = number("from", -1e300);
+    request.max_frequency = number("max_frequency", 0.0);
+    if (!(segment == 0 || (segment >= 16 && segment <= 1 << 24 && segment == std::floor(segment))))
+      throw InputError(r.loc.str() + ": <spectrum>: segment must be a whole number of samples, at least 16");
+    if (!(request.overlap >= 0 && request.overlap < 1))
+      throw InputError(r.loc.str() + ": <spectrum>: overlap must be at least 0 and below 1");
+    if (!(peaks >= 0 && peaks <= 1000 && peaks == std::floor(peaks)))
+      throw InputError(r.loc.str() + ": <spectrum>: peaks must be a whole number from 0 to 1000");
+    request.segment = static_cast<int>(segment);
+    request.peaks = static_cast<int>(peaks);
+    if (const Attribute* w = FindAttribute(r.attributes, "window")) {
+      request.window = Trim(w->value);
+      if (request.window != "hann" && request.window != "rectangular")
+        throw InputError(w->loc.str() + ": <spectrum>: unknown window '" + request.window +
+                         "'; expected hann or rectangular");
+    }
+    out->spectra.push_back(std::move(request));
+  }
+}
+
 // --variant NAME: the named sets of identifier values, in the order given. A
 // name is the variant's own, or "group/variant" when two groups share it.
 void ApplyVariants(const DiagramDescription& d, const std::vector<std::string>& selected,
@@ -313,6 +354,7 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   BuildSolverOptions(d, eval, options, &out.solver);
   CollectLoggedSignals(d, &out);
   CollectReports(d, eval, &out);
+  CollectSpectra(d, eval, &out);
   const Attribute* csv = FindAttribute(d.output, "csv");
   out.csv_file = csv && !Trim(csv->value).empty() ? Trim(csv->value) : d.name + ".csv";
   if (const std::string problem = OutputNameProblem(out.csv_file); !problem.empty())

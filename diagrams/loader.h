@@ -37,6 +37,18 @@ struct PlotGroup {
   std::vector<int> columns;  // indices into the results' columns
 };
 
+// <spectrum>: the PSD of a logged column after the run (cli/psd_output.h).
+struct SpectrumRequest {
+  std::string column;      // a column of the results
+  int segment = 0;         // 0: the default
+  double overlap = 0.5;
+  std::string window = "hann";
+  double from = -1e300;    // [s]
+  int peaks = 5;
+  double max_frequency = 0.0;  // > 0: the plot ends there [Hz]
+  std::string origin;      // file:line
+};
+
 struct LoadedDiagram {
   DiagramDescription description;
   // declared before the diagram: blocks may hold compiled Lua, so Lua goes last
@@ -50,6 +62,7 @@ struct LoadedDiagram {
   std::vector<blocks::SignalRef> logged;  // in column order; name = column label
   std::vector<PlotGroup> groups;
   std::vector<blocks::ReportRequest> reports;  // <report>s, signals resolved
+  std::vector<SpectrumRequest> spectra;        // <spectrum>s, columns checked
   std::string csv_file;   // relative to the output folder; never empty
   std::string plot_file;  // relative to the output folder; empty: no plot
 };

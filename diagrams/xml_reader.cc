@@ -70,7 +70,8 @@ const std::vector<ElementSchema>& Schema() {
       {"connections", {}, {}, {"connect"}},
       {"connect", {"from", "to"}, {}, {}},
       {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps", "linear_solver"}, {}},
-      {"output", {}, {"interval", "csv", "plot"}, {"log", "report"}},
+      {"output", {}, {"interval", "csv", "plot"}, {"log", "report", "spectrum"}},
+      {"spectrum", {"signal"}, {"segment", "overlap", "window", "from", "peaks", "max_frequency"}, {}},
       {"report", {}, {"peak", "min", "peak_abs", "label", "unit", "index"}, {}},
       {"log", {"signal"}, {"group", "label"}, {}},
   };
@@ -240,6 +241,8 @@ class Reader {
         d.logs.push_back({Text(e, "signal"), Text(e, "group"), Text(e, "label"), Loc(e)});
       for (const XMLElement* e = o->FirstChildElement("report"); e; e = e->NextSiblingElement("report"))
         d.reports.push_back({Attributes(e), Loc(e)});
+      for (const XMLElement* e = o->FirstChildElement("spectrum"); e; e = e->NextSiblingElement("spectrum"))
+        d.spectra.push_back({Attributes(e), Loc(e)});
     } else {
       d.output_loc = Loc(root);
     }

@@ -18,6 +18,7 @@
 #include "blocks/results.h"
 #include "cli/output_folder.h"
 #include "cli/plot.h"
+#include "cli/xy_plot.h"
 #include "tests/cli/mechflow_command.h"
 
 namespace mechflow::cli {
@@ -56,9 +57,6 @@ class HostileDiagramTest : public ::testing::Test {
 // What a hostile text tries in the gnuplot script: end the string, end the
 // line, and call system().
 const std::string kMarker = "mechflow_hostile_marker";
-std::string Attack(const std::string& marker) {
-  return "a' \\\" \\\\ `touch " + marker + "` system('touch " + marker + "') '";
-}
 
 TEST_F(HostileDiagramTest, NoTextReachesGnuplotAsACommand) {
   const std::string marker = (dir_ / kMarker).string();
@@ -108,10 +106,18 @@ TEST_F(HostileDiagramTest, TheGnuplotScriptKeepsEveryTextOnItsLine) {
   EXPECT_FALSE(fs::exists(marker));
   // the CSV header stays one line: the label is quoted
   EXPECT_THAT(csv.str(), ::testing::StartsWith("time,\"x'\n!touch "));
+  // the x-y plots (force analysis, spectra) quote their texts alike
+  const std::string xy = XYPlotScript({{attack, attack, attack, {{0, 1, attack}}}}, attack, "r.csv", "r2.svg");
+  for (std::size_t at = xy.find("touch"); at != std::string::npos; at = xy.find("touch", at + 1)) {
+    const std::size_t line = xy.rfind('\n', at) + 1;
+    EXPECT_NE(xy[xy.find_first_not_of(' ', line)], '!') << xy;
+  }
+  EXPECT_EQ(DrawPlot(xy, folder, "r2.svg"), "");
+  EXPECT_FALSE(fs::exists(marker));
 }
 
 TEST_F(HostileDiagramTest, OutputNamesStayInsideTheOutputFolder) {
-  for (const std::string& output : {"csv=\"../escaped.csv\"", "csv=\"/tmp/escaped.csv\"", "plot=\"/tmp/escaped.png\"",
+  for (const char* output : {"csv=\"../escaped.csv\"", "csv=\"/tmp/escaped.csv\"", "plot=\"/tmp/escaped.png\"",
                                     "plot=\"sub/../../escaped.png\"", "csv=\"..\""}) {
     const auto run = RunMechflow("run " + Diagram("d", output) + " --out " + Out());
     EXPECT_EQ(run.exit_code, 2) << output;

@@ -193,7 +193,9 @@ TEST(ExactStickTest, HoldsOnEachOtherSolvedTogether) {
   for (std::size_t i = 0; i < t.size(); ++i) {
     EXPECT_LT(std::abs(x1[i]), 1e-12) << "t = " << t[i];
     EXPECT_NEAR(lower[i], -std::min(2 * t[i], 8.0), 1e-9) << "t = " << t[i];
-    if (t[i] < 4.0) EXPECT_NEAR(upper[i], -2 * t[i], 1e-9) << "t = " << t[i];
+    if (t[i] < 4.0) {
+      EXPECT_NEAR(upper[i], -2 * t[i], 1e-9) << "t = " << t[i];
+    }
   }
   // after the break: 2 x2'' = 2 t - 8 from rest at t = 4
   auto x_of = [](double s) { return (s * s * s / 3.0 - 4.0 * s * s) / 2.0; };

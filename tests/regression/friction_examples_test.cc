@@ -121,8 +121,9 @@ TEST(FrictionExamplesTest, TheSwitchedOffElementReportsNoDeflection) {
     ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
     const auto off_force = run.Column(type == "Standard" ? "m.elastic_force" : "m.force");
     for (double f : off_force) ASSERT_EQ(f, 0.0) << type;
-    if (type == "Standard")
+    if (type == "Standard") {
       for (double d : run.Column("m.deflection")) ASSERT_EQ(d, 0.0);
+    }
   }
   // the frictional element's stick deflection, switched off in the same way
   const auto run = testing::RunXml(
@@ -222,8 +223,11 @@ TEST(FrictionExamplesTest, LeafSpringSettlesIntoStickingLS1) {
     // the plotted friction force (Fig. 7.46): the limit while sliding, what
     // holds the body against gravity and the leaf once stuck
     const auto force = r.Column(r.FindColumn("friction force")), limit = r.Column(r.FindColumn("limit Ffr"));
-    for (std::size_t i = 0; i < z.size(); ++i)
-      if (mode[i] != 0.0) ASSERT_NEAR(std::abs(force[i]), limit[i], 1e-9) << "row " << i;
+    for (std::size_t i = 0; i < z.size(); ++i) {
+      if (mode[i] != 0.0) {
+        ASSERT_NEAR(std::abs(force[i]), limit[i], 1e-9) << "row " << i;
+      }
+    }
     EXPECT_NEAR(force[last], -(m * g + c * z[last]), 1e-6);
     EXPECT_LT(std::abs(force[last]), limit[last]);
   }

@@ -1,0 +1,132 @@
+#include "cli/psd_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "blocks/input_file.h"
+#include "blocks/suggest.h"
+#include "cli/psd_output.h"
+#include "mech/errors.h"
+
+namespace mechflow::cli {
+namespace {
+
+// The fields of one CSV line (RFC 4180: "..." may hold commas, "" a quote).
+std::vector<std::string> Fields(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') out.back() += '"', ++i;
+      else if (c == '"') quoted = false;
+      else out.back() += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.emplace_back();
+    } else if (c != '\r') {
+      out.back() += c;
+    }
+  }
+  return out;
+}
+
+double Value(const std::string& text, const std::string& option) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size()) return v;
+  } catch (const std::exception&) {
+  }
+  throw UsageError(option + ": '" + text + "' is not a number");
+}
+
+}  // namespace
+
+const std::vector<std::string> kPsdOptions = {"--signal", "--segment", "--overlap", "--window",
+                                              "--from",   "--peaks",   "--max-frequency"};
+
+std::string PsdHelp() {
+  return "usage: mechflow psd RESULTS.csv --signal NAME [--signal NAME]... [--segment N]\n"
+         "                  [--overlap F] [--window hann|rectangular] [--from T] [--peaks K]\n"
+         "                  [--max-frequency F] [--out DIR]\n"
+         "\n"
+         "Power spectral density of logged signals in a results file (as mechflow run\n"
+         "writes it: time first), by Welch's method: the mean removed, segments of N\n"
+         "samples (default: the largest power of two up to a quarter of the rows)\n"
+         "overlapping by F (default 0.5), each windowed (default Hann) and transformed by\n"
+         "FFTW, their squared magnitudes averaged; one-sided, in signal^2/Hz, so that its\n"
+         "integral over frequency is the signal's variance. Rows must be evenly spaced in\n"
+         "time (they are interpolated onto an even grid when not).\n"
+         "Writes STEM.psd.csv (frequency, a density per signal) and the plot STEM.psd.png\n"
+         "(log scale) into DIR, and prints the K largest peaks of each signal.\n"
+         "\n"
+         "  --signal NAME   a column of the results (repeatable)\n"
+         "  --segment N     samples per segment (at least 16)\n"
+         "  --overlap F     overlap of segments, 0 <= F < 1\n"
+         "  --window W      hann or rectangular\n"
+         "  --from T        leave out the rows before time T [s] (a start-up transient)\n"
+         "  --peaks K       peaks listed per signal (default 5)\n"
+         "  --max-frequency F  the plot's frequency axis ends at F [Hz] (the CSV goes on)\n"
+         "  --out DIR       output folder (created if missing; default: current folder)\n"
+         "\n"
+         "Example: mechflow run diagrams/examples/frequencies.xml --out results\n"
+         "         mechflow psd results/frequencies.csv --signal m.z3 --out results\n"
+         "\n"
+         "Exit codes: 0 written, 2 bad input (a signal not in the file, too few rows for a\n"
+         "segment, bad options).\n";
+}
+
+int PsdCommand(const Arguments& args, std::ostream& out, std::ostream&) {
+  PsdRequest request;
+  std::vector<std::string> wanted;
+  for (const auto& [option, value] : args.command_options) {
+    if (option == "--signal") wanted.push_back(value);
+    else if (option == "--segment") request.options.segment = static_cast<int>(Value(value, option));
+    else if (option == "--overlap") request.options.overlap = Value(value, option);
+    else if (option == "--window") request.options.window = analysis::ParseWindow(value, "--window");
+    else if (option == "--from") request.from = Value(value, option);
+    else if (option == "--peaks") request.peaks = static_cast<int>(Value(value, option));
+    else if (option == "--max-frequency") request.max_frequency = Value(value, option);
+  }
+  if (wanted.empty()) throw UsageError("needs --signal NAME (a column of " + args.file + ")");
+  const OutputFolder folder(args.out_dir);
+  std::stringstream text(blocks::ReadInputFile(args.file, "results file"));
+  std::string line;
+  if (!std::getline(text, line)) throw InputError(args.file + ": empty, no header");
+  const std::vector<std::string> header = Fields(line);
+  std::vector<int> columns;
+  for (const std::string& name : wanted) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    if (it == header.end() || it == header.begin())
+      throw InputError(args.file + ": no signal '" + name + "'" + blocks::DidYouMean(name, header) +
+                       "; columns: " + blocks::JoinNames(std::vector<std::string>(header.begin() + 1, header.end())));
+    columns.push_back(static_cast<int>(it - header.begin()));
+    request.signals.push_back({name, {}});
+  }
+  for (int row = 2; std::getline(text, line); ++row) {
+    if (line.empty()) continue;
+    const std::vector<std::string> f = Fields(line);
+    const auto number = [&](int c) {
+      if (c >= static_cast<int>(f.size()))
+        throw InputError(args.file + ":" + std::to_string(row) + ": fewer fields than the header");
+      try {
+        return std::stod(f[c]);
+      } catch (const std::exception&) {
+        throw InputError(args.file + ":" + std::to_string(row) + ": '" + f[c] + "' is not a number");
+      }
+    };
+    request.time.push_back(number(0));
+    for (std::size_t i = 0; i < columns.size(); ++i) request.signals[i].values.push_back(number(columns[i]));
+  }
+  request.stem = std::filesystem::path(args.file).stem().string();
+  request.title = request.stem;
+  const std::string warning = WritePsd(request, folder, out);
+  if (!warning.empty()) out << "warning: no plot: " << warning << "\n";
+  return 0;
+}
+
+}  // namespace mechflow::cli
