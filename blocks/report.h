@@ -16,6 +16,15 @@
 // not chosen: the block interface has no signal derivatives, and every root
 // would stop and restart CVODE at each local maximum of the signal.
 // A minimum is the maximum of -f, the largest magnitude that of |f|.
+//
+// The other figures (issue 14, item 4) watch the same steps
+// (SignalAccumulator): the integral by 3-point Gauss-Legendre on each step's
+// polynomial (exact for CVODE's interpolants up to degree 5), the mean and
+// rms from it over the time watched, the final value at the last step's
+// end, and the crossings of a level: a sign change of f - level over a step
+// is located by bisection on the polynomial to 1e-12 of the step; the first
+// is the crossing figure, and the mean spacing of the upward ones (at least
+// two) the period.
 
 #include <algorithm>
 #include <cmath>
@@ -28,14 +37,37 @@
 namespace mechflow::blocks {
 
 enum class ReportKind {
-  kPeak,     // largest value
-  kMin,      // smallest value
-  kPeakAbs,  // largest |value| (the figure is the magnitude)
+  kPeak,      // largest value
+  kMin,       // smallest value
+  kPeakAbs,   // largest |value| (the figure is the magnitude)
+  kMean,      // mean over the run (integral / duration)
+  kRms,       // root mean square over the run
+  kIntegral,  // integral over the run [signal s]
+  kFinal,     // the value at the end
+  kCrossing,  // the time the signal first reaches `level` (either way) [s]
+  kPeriod,    // mean time between upward crossings of `level` [s]
 };
+inline constexpr ReportKind kReportKinds[] = {ReportKind::kPeak,     ReportKind::kMin,   ReportKind::kPeakAbs,
+                                              ReportKind::kMean,     ReportKind::kRms,   ReportKind::kIntegral,
+                                              ReportKind::kFinal,    ReportKind::kCrossing, ReportKind::kPeriod};
 
-// "peak", "min", "peak_abs": the <report> attribute of each kind.
+// The <report> attribute of each kind.
 inline const char* ReportKindName(ReportKind kind) {
-  return kind == ReportKind::kPeak ? "peak" : kind == ReportKind::kMin ? "min" : "peak_abs";
+  switch (kind) {
+    case ReportKind::kPeak: return "peak";
+    case ReportKind::kMin: return "min";
+    case ReportKind::kPeakAbs: return "peak_abs";
+    case ReportKind::kMean: return "mean";
+    case ReportKind::kRms: return "rms";
+    case ReportKind::kIntegral: return "integral";
+    case ReportKind::kFinal: return "final";
+    case ReportKind::kCrossing: return "crossing";
+    case ReportKind::kPeriod: return "period";
+  }
+  return "";
+}
+inline bool IsExtremum(ReportKind kind) {
+  return kind == ReportKind::kPeak || kind == ReportKind::kMin || kind == ReportKind::kPeakAbs;
 }
 
 // One figure asked for; the signal is resolved once, before the run.
@@ -45,6 +77,7 @@ struct ReportRequest {
   ReportKind kind = ReportKind::kPeak;
   SignalRef signal;    // as logged; name = "block.port"
   int index = 0;       // element of a vector signal
+  double level = 0.0;  // crossing, period
 };
 
 // A figure found by a run (also by a failed run: up to its failure).
@@ -105,6 +138,66 @@ class ExtremumTracker {
 
   bool found_ = false;
   double value_ = 0.0, time_ = 0.0;
+};
+
+// Integral, mean, rms, final value and crossings of f(t) over the steps
+// shown to it (see the top of this file).
+class SignalAccumulator {
+ public:
+  explicit SignalAccumulator(double level = 0.0) : level_(level) {}
+  void Reset() { *this = SignalAccumulator(level_); }
+
+  template <class F>
+  void WatchStep(double ta, double tb, F&& f) {
+    // Gauss-Legendre, 3 points
+    constexpr double kNode = 0.7745966692414834, kOuter = 5.0 / 9.0, kMiddle = 8.0 / 9.0;
+    const double mid = 0.5 * (ta + tb), half = 0.5 * (tb - ta);
+    const double f1 = f(mid - kNode * half), f2 = f(mid), f3 = f(mid + kNode * half);
+    integral_ += half * (kOuter * (f1 + f3) + kMiddle * f2);
+    square_ += half * (kOuter * (f1 * f1 + f3 * f3) + kMiddle * f2 * f2);
+    const double fa = f(ta), fb = f(tb);
+    if (!started_) start_ = ta, started_ = true;
+    end_ = tb;
+    final_ = fb;
+    const double ga = fa - level_, gb = fb - level_;
+    if (ga == 0.0 || !(ga * gb < 0.0)) {
+      if (ga == 0.0 && (!first_found_)) first_found_ = true, first_ = ta;
+      return;
+    }
+    double a = ta, b = tb, g_a = ga;
+    for (int i = 0; i < 200 && b - a > 1e-12 * (tb - ta); ++i) {
+      const double c = 0.5 * (a + b), gc = f(c) - level_;
+      if ((gc < 0.0) == (g_a < 0.0)) a = c, g_a = gc;
+      else b = c;
+    }
+    const double t = 0.5 * (a + b);
+    if (!first_found_) first_found_ = true, first_ = t;
+    if (ga < 0.0) {  // upward
+      if (upward_ == 0) first_up_ = t;
+      last_up_ = t;
+      ++upward_;
+    }
+  }
+
+  bool started() const { return started_; }
+  double duration() const { return end_ - start_; }
+  double end() const { return end_; }
+  double integral() const { return integral_; }
+  double mean() const { return duration() > 0.0 ? integral_ / duration() : final_; }
+  double rms() const { return duration() > 0.0 ? std::sqrt(square_ / duration()) : std::abs(final_); }
+  double final_value() const { return final_; }
+  bool crossed() const { return first_found_; }
+  double first_crossing() const { return first_; }
+  bool has_period() const { return upward_ >= 2; }
+  double period() const { return (last_up_ - first_up_) / (upward_ - 1); }
+  double last_upward() const { return last_up_; }
+
+ private:
+  double level_ = 0.0;
+  bool started_ = false, first_found_ = false;
+  double start_ = 0.0, end_ = 0.0, integral_ = 0.0, square_ = 0.0, final_ = 0.0;
+  double first_ = 0.0, first_up_ = 0.0, last_up_ = 0.0;
+  int upward_ = 0;
 };
 
 }  // namespace mechflow::blocks

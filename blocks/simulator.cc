@@ -122,6 +122,8 @@ void Simulator::SetReports(std::vector<ReportRequest> reports) {
                        std::to_string(r.signal.width) + "; element " + std::to_string(r.index) + " does not exist");
   reports_ = std::move(reports);
   trackers_.assign(reports_.size(), ExtremumTracker());
+  accumulators_.clear();
+  for (const ReportRequest& r : reports_) accumulators_.emplace_back(r.level);
 }
 
 std::vector<ReportFigure> Simulator::figures() const {
@@ -129,10 +131,26 @@ std::vector<ReportFigure> Simulator::figures() const {
   for (std::size_t i = 0; i < reports_.size(); ++i) {
     const ReportRequest& r = reports_[i];
     ReportFigure f{r.label, r.unit, r.signal.name, r.kind, trackers_[i].found()};
-    if (f.found) {
+    const SignalAccumulator& a = accumulators_[i];
+    if (IsExtremum(r.kind) && f.found) {
       // the tracker maximised -f for a minimum
       f.value = r.kind == ReportKind::kMin ? -trackers_[i].value() : trackers_[i].value();
       f.time = trackers_[i].time();
+    } else if (!IsExtremum(r.kind)) {
+      f.found = r.kind == ReportKind::kCrossing ? a.crossed()
+                : r.kind == ReportKind::kPeriod ? a.has_period()
+                                                : a.started();
+      if (f.found) {
+        switch (r.kind) {
+          case ReportKind::kMean: f.value = a.mean(), f.time = a.end(); break;
+          case ReportKind::kRms: f.value = a.rms(), f.time = a.end(); break;
+          case ReportKind::kIntegral: f.value = a.integral(), f.time = a.end(); break;
+          case ReportKind::kFinal: f.value = a.final_value(), f.time = a.end(); break;
+          case ReportKind::kCrossing: f.value = f.time = a.first_crossing(); break;
+          case ReportKind::kPeriod: f.value = a.period(), f.time = a.last_upward(); break;
+          default: break;
+        }
+      }
     }
     out.push_back(std::move(f));
   }
@@ -144,12 +162,19 @@ void Simulator::WatchStep(double ta, double tb) {
   for (std::size_t i = 0; i < reports_.size(); ++i) {
     const ReportRequest& r = reports_[i];
     const int offset = r.signal.offset + r.index;
+    const auto value = [&](double t) {
+      Check(CVodeGetDky(mem, t, 0, watch_vector_), "CVodeGetDky");
+      EvaluateAt(t, watch_y_.data());
+      return ctx_.signals[offset];
+    };
+    if (!IsExtremum(r.kind)) {
+      accumulators_[i].WatchStep(ta, tb, value);
+      continue;
+    }
     const double sign = r.kind == ReportKind::kMin ? -1.0 : 1.0;
     const bool magnitude = r.kind == ReportKind::kPeakAbs;
     trackers_[i].WatchStep(ta, tb, [&](double t) {
-      Check(CVodeGetDky(mem, t, 0, watch_vector_), "CVodeGetDky");
-      EvaluateAt(t, watch_y_.data());
-      const double v = ctx_.signals[offset];
+      const double v = value(t);
       return magnitude ? std::abs(v) : sign * v;
     });
   }
@@ -557,6 +582,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   linear_solver_attached_ = false;
   projection_attached_ = false;
   for (auto& tracker : trackers_) tracker.Reset();
+  for (auto& accumulator : accumulators_) accumulator.Reset();
   root_pending_ = false;
   watched_to_ = t0;
   pending_root_y_.assign(n, 0.0);

@@ -224,7 +224,8 @@ class Simulator {
   std::vector<int> fired_in_a_row_;      // per crossing: firings in its current instant
   std::string solver_message_;           // last message from CVODE's error handler
   std::vector<ReportRequest> reports_;
-  std::vector<ExtremumTracker> trackers_;  // one per report
+  std::vector<ExtremumTracker> trackers_;       // one per report (its extremum kinds)
+  std::vector<SignalAccumulator> accumulators_;  // one per report (the other kinds)
   std::vector<double> watch_y_;          // the state on a watched step
   N_Vector watch_vector_ = nullptr;      // wraps watch_y_ for CVodeGetDky
   // a root that a step found beyond the output time it was asked for: the

@@ -112,12 +112,21 @@ void PrintSignalRanges(const blocks::Results& r, std::ostream& out) {
 void PrintFigures(const std::vector<blocks::ReportFigure>& figures, bool finished, std::ostream& out) {
   for (const blocks::ReportFigure& f : figures) {
     out << f.label << ": ";
+    const char* upto = finished ? "" : " (up to the failure)";
     if (!f.found) {
-      out << "not found (the run took no step)\n";
+      out << (f.kind == blocks::ReportKind::kCrossing ? "the level is never reached"
+              : f.kind == blocks::ReportKind::kPeriod ? "fewer than two upward crossings of the level"
+                                                     : "not found (the run took no step)")
+          << upto << "\n";
       continue;
     }
-    out << Format("%.6g", f.value) << (f.unit.empty() ? "" : " " + f.unit) << " at t = " << Format("%.6g", f.time)
-        << " s" << (finished ? "" : " (up to the failure)") << "\n";
+    if (f.kind == blocks::ReportKind::kCrossing) {
+      out << "reached at t = " << Format("%.9g", f.time) << " s" << upto << "\n";
+      continue;
+    }
+    const bool over_run = !blocks::IsExtremum(f.kind) && f.kind != blocks::ReportKind::kPeriod;
+    out << Format("%.6g", f.value) << (f.unit.empty() ? "" : " " + f.unit) << (over_run ? " over the run to t = " : " at t = ")
+        << Format("%.6g", f.time) << " s" << upto << "\n";
   }
 }
 

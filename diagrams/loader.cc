@@ -173,7 +173,7 @@ void CollectReports(const DiagramDescription& d, const Evaluator& eval, LoadedDi
   for (const ReportDesc& r : d.reports) {
     blocks::ReportRequest request;
     const Attribute* signal = nullptr;
-    for (const auto kind : {blocks::ReportKind::kPeak, blocks::ReportKind::kMin, blocks::ReportKind::kPeakAbs}) {
+    for (const auto kind : blocks::kReportKinds) {
       const Attribute* a = FindAttribute(r.attributes, blocks::ReportKindName(kind));
       if (!a) continue;
       if (signal)
@@ -183,7 +183,17 @@ void CollectReports(const DiagramDescription& d, const Evaluator& eval, LoadedDi
       request.kind = kind;
     }
     if (!signal)
-      throw InputError(r.loc.str() + ": <report> needs one of peak=\"signal\", min=\"signal\" or peak_abs=\"signal\"");
+      throw InputError(r.loc.str() + ": <report> needs one of peak, min, peak_abs, mean, rms, integral, final, "
+                                     "crossing or period =\"signal\"");
+    const Attribute* level = FindAttribute(r.attributes, "level");
+    const bool crossings = request.kind == blocks::ReportKind::kCrossing || request.kind == blocks::ReportKind::kPeriod;
+    if (level && !crossings)
+      throw InputError(level->loc.str() + ": <report>: level is for crossing and period, not " +
+                       blocks::ReportKindName(request.kind));
+    if (!level && request.kind == blocks::ReportKind::kCrossing)
+      throw InputError(r.loc.str() + ": <report crossing=...> needs level=\"...\" (the value whose first crossing "
+                                     "is timed)");
+    if (level) request.level = eval.Number(level->value, level->loc.str() + ": <report> attribute 'level'");
     try {
       request.signal = out->diagram->ResolveSignal(Trim(signal->value));
     } catch (const InputError& e) {

@@ -72,7 +72,8 @@ const std::vector<ElementSchema>& Schema() {
       {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps", "linear_solver"}, {}},
       {"output", {}, {"interval", "csv", "plot"}, {"log", "report", "spectrum"}},
       {"spectrum", {"signal"}, {"segment", "overlap", "window", "from", "peaks", "max_frequency"}, {}},
-      {"report", {}, {"peak", "min", "peak_abs", "label", "unit", "index"}, {}},
+      {"report", {}, {"peak", "min", "peak_abs", "mean", "rms", "integral", "final", "crossing", "period", "level",
+                      "label", "unit", "index"}, {}},
       {"log", {"signal"}, {"group", "label"}, {}},
   };
   return schema;

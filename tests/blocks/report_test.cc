@@ -130,5 +130,59 @@ TEST(ReportTest, AFailedRunReportsWhatItFoundUpToTheFailure) {
   EXPECT_GT(f[0].time, 0.999);  // x = 1/(1 - t) > 1e3
 }
 
+// The figures over a run (issue 14, item 4) against closed forms of
+// x = sin(w t) / w (undamped) and of the damped oscillator's zero crossings.
+TEST(ReportTest, MeanRmsIntegralFinalCrossingAndPeriodToClosedForms) {
+  const double w = 2 * M_PI * 1.3, T = 2.7;
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<DampedOscillator>("osc", w, 0.0));
+  auto diagram = builder.Build();
+  SolverOptions options;
+  options.t_end = T;
+  options.rtol = 1e-10;
+  options.atol = 1e-12;
+  options.output_interval = 0.1;  // far coarser than what the figures resolve
+  Simulator sim(*diagram, options, {diagram->ResolveSignal("osc.x")});
+  const SignalRef x = diagram->ResolveSignal("osc.x");
+  ReportRequest crossing{"half", "", ReportKind::kCrossing, x};
+  crossing.level = 0.5 / w;
+  sim.SetReports({{"mean", "", ReportKind::kMean, x}, {"rms", "", ReportKind::kRms, x},
+                  {"integral", "", ReportKind::kIntegral, x}, {"final", "", ReportKind::kFinal, x}, crossing,
+                  {"period", "", ReportKind::kPeriod, x}});
+  ASSERT_TRUE(sim.Run().ok);
+  const auto& f = sim.results().figures();
+  ASSERT_EQ(f.size(), 6u);
+  for (const auto& figure : f) EXPECT_TRUE(figure.found) << figure.label;
+  const double integral = (1 - std::cos(w * T)) / (w * w);
+  const double square = (T / 2 - std::sin(2 * w * T) / (4 * w)) / (w * w);
+  EXPECT_NEAR(f[0].value, integral / T, 1e-9);
+  EXPECT_NEAR(f[1].value, std::sqrt(square / T), 1e-9);
+  EXPECT_NEAR(f[2].value, integral, 1e-9);
+  EXPECT_NEAR(f[2].time, T, 1e-12);
+  EXPECT_NEAR(f[3].value, std::sin(w * T) / w, 1e-10);
+  EXPECT_NEAR(f[4].time, std::asin(0.5) / w, 1e-9);  // sin(w t) = 1/2 first
+  EXPECT_NEAR(f[5].value, 2 * M_PI / w, 1e-9);       // upward zeros one period apart
+}
+
+TEST(ReportTest, PeriodOfADampedOscillationAndALevelNeverReached) {
+  const double w = 2 * M_PI, zeta = 0.05, wd = w * std::sqrt(1 - zeta * zeta);
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<DampedOscillator>("osc", w, zeta));
+  auto diagram = builder.Build();
+  SolverOptions options;
+  options.t_end = 6.3;
+  options.rtol = 1e-10;
+  options.atol = 1e-12;
+  Simulator sim(*diagram, options, {diagram->ResolveSignal("osc.x")});
+  const SignalRef x = diagram->ResolveSignal("osc.x");
+  ReportRequest never{"never", "", ReportKind::kCrossing, x};
+  never.level = 1.0;  // x never exceeds 1 / w
+  sim.SetReports({{"period", "", ReportKind::kPeriod, x}, never});
+  ASSERT_TRUE(sim.Run().ok);
+  const auto& f = sim.results().figures();
+  EXPECT_NEAR(f[0].value, 2 * M_PI / wd, 1e-9);
+  EXPECT_FALSE(f[1].found);
+}
+
 }  // namespace
 }  // namespace mechflow::blocks

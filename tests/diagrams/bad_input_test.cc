@@ -124,7 +124,8 @@ TEST(BadInputTest, ReportOfAnUnknownSignal) {
 
 TEST(BadInputTest, ReportAsksForNoneOrTwoFigures) {
   EXPECT_THAT(InputErrorOf([] { LoadXml(WithReport("<report label='x'/>")); }),
-              StartsWith("test.xml:4: <report> needs one of peak=\"signal\", min=\"signal\" or peak_abs=\"signal\""));
+              StartsWith("test.xml:4: <report> needs one of peak, min, peak_abs, mean, rms, integral, final, crossing "
+                         "or period =\"signal\""));
   EXPECT_THAT(InputErrorOf([] { LoadXml(WithReport("<report peak='s.y' min='s.y'/>")); }),
               StartsWith("test.xml:4: <report> asks for 'peak' and 'min'; one figure per <report>"));
   EXPECT_THAT(InputErrorOf([] { LoadXml(WithReport("<report peak='s.y' index='1'/>")); }),
