@@ -16,9 +16,10 @@ extern char** environ;
 
 namespace mechflow::cli {
 std::string GnuplotScript(const blocks::Results& results, const std::vector<diagrams::PlotGroup>& groups,
-                          const std::string& title, const std::string& csv_name, const std::string& plot_name) {
+                          const std::string& title, const std::string& csv_name, const std::string& plot_name,
+                          const std::vector<diagrams::XYPlotRequest>& xy) {
   const bool svg = std::filesystem::path(plot_name).extension() == ".svg";
-  const int panels = std::max<int>(1, static_cast<int>(groups.size()));
+  const int panels = std::max<int>(1, static_cast<int>(groups.size() + xy.size()));
   const int height = std::min(4000, 120 + 260 * panels);
   std::ostringstream s;
   s << "# drawn by mechflow; edit and run again in this folder with: gnuplot " << GnuplotQuote(plot_name + ".gp") << "\n";
@@ -39,7 +40,17 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
     }
     s << "\n";
   }
-  if (groups.empty()) s << "set title 'nothing logged'\nunset key\nplot [0:1] 0 notitle\n";
+  for (const diagrams::XYPlotRequest& p : xy) {
+    s << "set title " << GnuplotQuote(p.title) << "\nset xlabel " << GnuplotQuote(p.x_label) << "\nset ylabel "
+      << GnuplotQuote(p.y_label) << "\nplot ";
+    for (std::size_t i = 0; i < p.curves.size(); ++i) {
+      const auto [x, y] = p.curves[i];
+      s << (i ? ", \\\n     " : "") << (i ? "''" : GnuplotQuote(csv_name)) << " using " << x + 1 << ":" << y + 1
+        << " every ::1 with lines lw 1.5 title " << GnuplotQuote(results.columns()[y] + " : " + results.columns()[x]);
+    }
+    s << "\n";
+  }
+  if (groups.empty() && xy.empty()) s << "set title 'nothing logged'\nunset key\nplot [0:1] 0 notitle\n";
   s << "unset multiplot\n";
   return s.str();
 }

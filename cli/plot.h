@@ -17,8 +17,10 @@ namespace mechflow::cli {
 // The gnuplot script that draws `groups` of the CSV file `csv_name` into
 // `plot_name`, both plain names in the folder gnuplot runs in. Every text
 // is a single-quoted gnuplot string that cannot end its line.
+// `xy`: panels of one column against another, after the time panels.
 std::string GnuplotScript(const blocks::Results& results, const std::vector<diagrams::PlotGroup>& groups,
-                          const std::string& title, const std::string& csv_name, const std::string& plot_name);
+                          const std::string& title, const std::string& csv_name, const std::string& plot_name,
+                          const std::vector<diagrams::XYPlotRequest>& xy = {});
 
 // Writes `plot_name + ".gp"` into the folder and runs gnuplot on it there.
 // Returns "" when the plot was drawn, or why gnuplot could not be run (not

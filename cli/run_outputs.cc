@@ -42,7 +42,7 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
           text([&](std::ostream& s) { WriteScriptChanges(*loaded.control, *loaded.identifiers, s); }), "");
   if (!loaded.plot_file.empty()) {
     const std::string script =
-        GnuplotScript(sim.results(), loaded.groups, loaded.description.name, csv, loaded.plot_file);
+        GnuplotScript(sim.results(), loaded.groups, loaded.description.name, csv, loaded.plot_file, loaded.xy_plots);
     try {
       const std::string problem = DrawPlot(script, folder, loaded.plot_file);
       if (problem.empty()) {

@@ -104,7 +104,8 @@ struct DiagramDescription {
   SourceLoc output_loc;
   std::vector<LogDesc> logs;
   std::vector<ReportDesc> reports;
-  std::vector<ReportDesc> spectra;  // <spectrum>: attributes as written
+  std::vector<ReportDesc> spectra;   // <spectrum>: attributes as written
+  std::vector<ReportDesc> xy_plots;  // <xy>: attributes as written
   ScriptDesc script;
 };
 

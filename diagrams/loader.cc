@@ -259,6 +259,41 @@ void CollectSpectra(const DiagramDescription& d, const Evaluator& eval, LoadedDi
   }
 }
 
+// <xy>s: curves="X:Y X:Y ..." naming logged columns.
+void CollectXYPlots(const DiagramDescription& d, LoadedDiagram* out) {
+  std::vector<std::string> columns = {"time"};
+  for (const blocks::SignalRef& s : out->logged)
+    for (int i = 0; i < s.width; ++i) columns.push_back(s.width == 1 ? s.name : s.name + "[" + std::to_string(i) + "]");
+  auto column = [&](const std::string& name, const Attribute& a) {
+    const auto it = std::find(columns.begin(), columns.end(), name);
+    if (it == columns.end())
+      throw InputError(a.loc.str() + ": <xy>: '" + name + "' is not a logged column" +
+                       blocks::DidYouMean(name, columns) + "; log it with <log signal=\"...\"/> (columns: " +
+                       blocks::JoinNames(columns) + ")");
+    return static_cast<int>(it - columns.begin());
+  };
+  for (const ReportDesc& r : d.xy_plots) {
+    XYPlotRequest request;
+    const Attribute* curves = FindAttribute(r.attributes, "curves");
+    std::stringstream in(curves->value);
+    for (std::string pair; in >> pair;) {
+      const auto colon = pair.find(':');
+      if (colon == std::string::npos || colon == 0 || colon + 1 == pair.size())
+        throw InputError(curves->loc.str() + ": <xy>: curves are X:Y pairs of logged columns, got '" + pair + "'");
+      request.curves.emplace_back(column(pair.substr(0, colon), *curves), column(pair.substr(colon + 1), *curves));
+    }
+    if (request.curves.empty()) throw InputError(curves->loc.str() + ": <xy>: curves=\"X:Y ...\" names no curve");
+    const auto text = [&](const char* name, const std::string& fallback) {
+      const Attribute* a = FindAttribute(r.attributes, name);
+      return a ? a->value : fallback;
+    };
+    request.x_label = text("x_label", columns[request.curves[0].first]);
+    request.y_label = text("y_label", columns[request.curves[0].second]);
+    request.title = text("title", request.y_label + " against " + request.x_label);
+    out->xy_plots.push_back(std::move(request));
+  }
+}
+
 // --variant NAME: the named sets of identifier values, in the order given. A
 // name is the variant's own, or "group/variant" when two groups share it.
 void ApplyVariants(const DiagramDescription& d, const std::vector<std::string>& selected,
@@ -365,6 +400,7 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   CollectLoggedSignals(d, &out);
   CollectReports(d, eval, &out);
   CollectSpectra(d, eval, &out);
+  CollectXYPlots(d, &out);
   const Attribute* csv = FindAttribute(d.output, "csv");
   out.csv_file = csv && !Trim(csv->value).empty() ? Trim(csv->value) : d.name + ".csv";
   if (const std::string problem = OutputNameProblem(out.csv_file); !problem.empty())
@@ -379,6 +415,9 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
     if (const std::string problem = OutputNameProblem(out.plot_file); !out.plot_file.empty() && !problem.empty())
       throw InputError(plot->loc.str() + ": plot file '" + out.plot_file + "' " + problem);
   }
+  if (!d.xy_plots.empty() && out.plot_file.empty())
+    throw InputError(d.xy_plots.front().loc.str() + ": <xy> is a panel of the plot, and there is none: name it with "
+                                                    "<output plot=\"NAME.png\">");
   out.description = std::move(d);
   return out;
 }

@@ -49,6 +49,12 @@ struct SpectrumRequest {
   std::string origin;      // file:line
 };
 
+// <xy>: a panel of the plot with one logged column against another.
+struct XYPlotRequest {
+  std::string title, x_label, y_label;
+  std::vector<std::pair<int, int>> curves;  // (x column, y column) of the results
+};
+
 struct LoadedDiagram {
   DiagramDescription description;
   // declared before the diagram: blocks may hold compiled Lua, so Lua goes last
@@ -63,6 +69,7 @@ struct LoadedDiagram {
   std::vector<PlotGroup> groups;
   std::vector<blocks::ReportRequest> reports;  // <report>s, signals resolved
   std::vector<SpectrumRequest> spectra;        // <spectrum>s, columns checked
+  std::vector<XYPlotRequest> xy_plots;         // <xy>s, panels after the time ones
   std::string csv_file;   // relative to the output folder; never empty
   std::string plot_file;  // relative to the output folder; empty: no plot
 };

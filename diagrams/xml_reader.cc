@@ -70,7 +70,8 @@ const std::vector<ElementSchema>& Schema() {
       {"connections", {}, {}, {"connect"}},
       {"connect", {"from", "to"}, {}, {}},
       {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps", "linear_solver"}, {}},
-      {"output", {}, {"interval", "csv", "plot"}, {"log", "report", "spectrum"}},
+      {"output", {}, {"interval", "csv", "plot"}, {"log", "report", "spectrum", "xy"}},
+      {"xy", {"curves"}, {"title", "x_label", "y_label"}, {}},
       {"spectrum", {"signal"}, {"segment", "overlap", "window", "from", "peaks", "max_frequency"}, {}},
       {"report", {}, {"peak", "min", "peak_abs", "mean", "rms", "integral", "final", "crossing", "period", "level",
                       "label", "unit", "index"}, {}},
@@ -244,6 +245,8 @@ class Reader {
         d.reports.push_back({Attributes(e), Loc(e)});
       for (const XMLElement* e = o->FirstChildElement("spectrum"); e; e = e->NextSiblingElement("spectrum"))
         d.spectra.push_back({Attributes(e), Loc(e)});
+      for (const XMLElement* e = o->FirstChildElement("xy"); e; e = e->NextSiblingElement("xy"))
+        d.xy_plots.push_back({Attributes(e), Loc(e)});
     } else {
       d.output_loc = Loc(root);
     }
