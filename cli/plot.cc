@@ -55,6 +55,36 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
   return s.str();
 }
 
+std::string OverlayScript(const std::vector<diagrams::PlotGroup>& groups, const std::vector<std::string>& columns,
+                          const std::vector<OverlayRun>& runs, const std::string& title, const std::string& plot_name) {
+  const bool svg = std::filesystem::path(plot_name).extension() == ".svg";
+  const int panels = std::max<int>(1, static_cast<int>(groups.size()));
+  std::ostringstream s;
+  s << "# drawn by mechflow; edit and run again in this folder with: gnuplot " << GnuplotQuote(plot_name + ".gp") << "\n";
+  s << "set terminal " << (svg ? "svg" : "pngcairo") << " size 1000," << std::min(4000, 120 + 300 * panels)
+    << " noenhanced font 'sans,10'" << (svg ? " background rgb 'white'" : "") << "\n";
+  s << "set output " << GnuplotQuote(plot_name) << "\n";
+  s << "set datafile separator ','\n";
+  s << "set grid\nset key outside right top\nset lmargin 12\nset rmargin 28\nset xlabel 'time [s]'\n";
+  s << "set multiplot layout " << panels << ",1 title " << GnuplotQuote(title) << "\n";
+  for (const auto& g : groups) {
+    s << "set title " << GnuplotQuote(g.name) << "\nplot ";
+    bool first = true;
+    for (const OverlayRun& run : runs)
+      for (const int c : g.columns) {
+        const std::string label = g.columns.size() > 1 ? run.label + " " + columns[c] : run.label;
+        s << (first ? "" : ", \\\n     ") << GnuplotQuote(run.csv_name) << " using 1:" << c + 1
+          << " every ::1 with lines lw 1.5 title " << GnuplotQuote(label);
+        first = false;
+      }
+    if (first) s << "[0:1] 0 notitle";
+    s << "\n";
+  }
+  if (groups.empty()) s << "set title 'nothing logged'\nunset key\nplot [0:1] 0 notitle\n";
+  s << "unset multiplot\n";
+  return s.str();
+}
+
 std::string DrawPlot(const std::string& script, const OutputFolder& folder, const std::string& plot_name) {
   std::string script_name = plot_name + ".gp";
   folder.Write(script_name, script);

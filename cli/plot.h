@@ -22,6 +22,16 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
                           const std::string& title, const std::string& csv_name, const std::string& plot_name,
                           const std::vector<diagrams::XYPlotRequest>& xy = {});
 
+// One run of a sweep for the overlay: its results file and its label
+// ("beta=0.1").
+struct OverlayRun {
+  std::string csv_name, label;
+};
+// The sweep's overlay (the seed's Fig. 7.2): a panel per logged group, in it
+// every column of the group from every run, labelled by the run.
+std::string OverlayScript(const std::vector<diagrams::PlotGroup>& groups, const std::vector<std::string>& columns,
+                          const std::vector<OverlayRun>& runs, const std::string& title, const std::string& plot_name);
+
 // Writes `plot_name + ".gp"` into the folder and runs gnuplot on it there.
 // Returns "" when the plot was drawn, or why gnuplot could not be run (not
 // installed), a warning. Throws WriteError when gnuplot failed or made no

@@ -1,5 +1,7 @@
 #include "cli/sweep.h"
 
+#include "cli/plot.h"
+
 #include <unistd.h>
 
 #include <atomic>
@@ -76,6 +78,9 @@ struct Plan {
   std::shared_ptr<const OutputFolder> folder;  // shared by the threads
   std::string width;                       // digits of the largest run number
   std::vector<std::string> figure_labels;  // the header's figure columns
+  std::string csv_file;                    // the diagram's results file name
+  std::vector<diagrams::PlotGroup> groups; // logged groups, for the overlay plot
+  std::vector<std::string> columns;        // the results' column names
 };
 
 // The values of run `index`: mixed radix, the last identifier fastest.
@@ -205,6 +210,12 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.runs = static_cast<int>(runs);
   plan.width = std::to_string(plan.runs);
   for (const blocks::ReportRequest& r : base.reports) plan.figure_labels.push_back(r.label);
+  plan.csv_file = base.csv_file;
+  plan.groups = base.groups;
+  plan.columns = {"time"};
+  for (const blocks::SignalRef& s : base.logged)
+    for (int i = 0; i < s.width; ++i)
+      plan.columns.push_back(s.width == 1 ? s.name : s.name + "[" + std::to_string(i) + "]");
   *header = SummaryHeader(plan, base);
   const fs::path csv(base.csv_file);
   *summary_name = (csv.parent_path() / (csv.stem().string() + ".sweep.csv")).string();
@@ -355,6 +366,24 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   }
   out << "wrote " << plan.folder->PathOf(summary_name) << " (" << plan.runs << " run" << (plan.runs == 1 ? "" : "s")
       << ")\n";
+  // every run's curves over one another, a panel per logged group
+  std::vector<OverlayRun> overlay;
+  for (int i = 0; i < plan.runs; ++i) {
+    const std::vector<double> values = Combination(plan, i);
+    const std::string name = RunFileName(plan, plan.csv_file, i, values);
+    if (plan.folder->HasFile(name)) overlay.push_back({name, Assignments(plan, values, ", ")});
+  }
+  const std::string plot = fs::path(summary_name).replace_extension(".png").string();
+  try {
+    const std::string warning = DrawPlot(
+        OverlayScript(plan.groups, plan.columns, overlay, fs::path(plan.csv_file).stem().string() + " sweep", plot),
+        *plan.folder, plot);
+    if (warning.empty()) out << "wrote " << plan.folder->PathOf(plot) << " (every run over one another)\n";
+    else err << "warning: no plot: " << warning << "\n";
+  } catch (const WriteError& e) {
+    err << e.what() << "\n";
+    return 1;
+  }
   return failed > 0 ? 1 : 0;
 }
 

@@ -152,6 +152,20 @@ TEST(SweepTest, DampingRatioDecayPerRow) {
       EXPECT_NEAR(rate, sigma, 1e-4 * sigma) << "peak " << k;
     }
   }
+  // the overlay (Fig. 7.2): every run's file in every panel, labelled by its value
+  std::ifstream script_file(dir / "damping_ratio.sweep.png.gp");
+  std::stringstream script;
+  script << script_file.rdbuf();
+  for (int r = 0; r < 3; ++r) {
+    const std::string file = summary[r + 1][5];
+    std::size_t uses = 0;
+    for (std::size_t at = script.str().find("'" + file + "' using 1:"); at != std::string::npos;
+         at = script.str().find("'" + file + "' using 1:", at + 1))
+      ++uses;
+    EXPECT_EQ(uses, 2u) << file;  // two groups: position, spring force
+  }
+  EXPECT_THAT(script.str(), HasSubstr("title 'beta=0.05'"));
+  EXPECT_THAT(o.out, HasSubstr("damping_ratio.sweep.png (every run over one another)"));
 }
 
 // Figures per row against the closed form of the first trough,
@@ -258,7 +272,7 @@ TEST(SweepTest, TwoJobsEqualOneJob) {
   EXPECT_EQ(Mechflow(args + "--jobs 1 --out " + one.string()).exit_code, 1);
   EXPECT_EQ(Mechflow(args + "--jobs 2 --out " + two.string()).exit_code, 1);
   const auto a = Files(one), b = Files(two);
-  EXPECT_EQ(a.size(), 9u);  // 8 runs and the summary
+  EXPECT_EQ(a.size(), 11u);  // 8 runs, the summary, the overlay plot and its script
   EXPECT_TRUE(a == b);
 }
 
@@ -272,7 +286,7 @@ TEST(SweepTest, ControlScriptsOnThreadsEqualSingleRuns) {
   ASSERT_EQ(Mechflow(args + "--jobs 1 --out " + one.string()).exit_code, 0);
   ASSERT_EQ(Mechflow(args + "--jobs 2 --out " + two.string()).exit_code, 0);
   const auto a = Files(one), b = Files(two);
-  EXPECT_EQ(a.size(), 5u);
+  EXPECT_EQ(a.size(), 7u);  // 4 runs, the summary, the overlay plot and its script
   EXPECT_TRUE(a == b);
   ASSERT_EQ(Mechflow("run " + diagram + " --set dist=8 --set period=0.02 --out " + single.string()).exit_code, 0);
   EXPECT_EQ(a.at("pendulum_pd_control.run4.dist=8.period=0.02.csv"),
@@ -328,7 +342,7 @@ TEST(SweepTest, TwoMpiRanksEqualThreads) {
   // the rows are printed once, by rank 0
   EXPECT_EQ(mpi.out.find("run 1/6"), mpi.out.rfind("run 1/6"));
   const auto a = Files(threads), b = Files(ranks);
-  EXPECT_EQ(a.size(), 7u);
+  EXPECT_EQ(a.size(), 9u);  // 6 runs, the summary, the overlay plot and its script
   EXPECT_EQ(a.at("damping_ratio.sweep.csv"), b.at("damping_ratio.sweep.csv"));
   EXPECT_TRUE(a == b);
 #endif
