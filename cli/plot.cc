@@ -31,7 +31,8 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
   s << "set grid\nset key outside right top\nset lmargin 12\nset rmargin 22\nset xlabel 'time [s]'\n";
   s << "set multiplot layout " << panels << ",1 title " << GnuplotQuote(title) << "\n";
   for (const auto& g : groups) {
-    s << "set title " << GnuplotQuote(g.name) << "\n";
+    // the group's name on its axis too: "contact force [N]" carries the unit
+    s << "set title " << GnuplotQuote(g.name) << "\nset ylabel " << GnuplotQuote(g.name) << "\n";
     s << "plot ";
     for (size_t i = 0; i < g.columns.size(); ++i) {
       const int c = g.columns[i];
