@@ -35,9 +35,12 @@ ElementDriveBlock::ElementDriveBlock(std::string name, const mech::Mechanism& me
                            element_.name() + "'" + (component.empty() ? "" : " component '" + component + "'");
   if (coordinate_.kind == Kind::kNone) {
     const bool bushing = element_.FindSensor("dx") >= 0;
-    throw InputError(what + (bushing ? " needs a component to drive: dx, dy, dz, ax, ay or az (--component)"
-                                     : " has no scalar coordinate to drive" +
-                                           std::string(component.empty() ? "" : " (components are a bushing's)")));
+    if (bushing)
+      throw InputError(what + (component.empty() ? " needs a component to drive (--component)"
+                                                 : " is not one of a bushing's components") +
+                       ": dx, dy, dz, ax, ay or az");
+    throw InputError(what + " has no scalar coordinate to drive" +
+                     (component.empty() ? "" : " (components are a bushing's)"));
   }
   if (element_.exact_stick())
     throw InputError(what + " sticks exactly: while stuck it has no force of its own, only what the mechanism "
@@ -100,15 +103,15 @@ ElementDriveBlock::ElementDriveBlock(std::string name, const mech::Mechanism& me
   // x0: the coordinate in the initial configuration, as the element measures
   // it (a contact's deepest point, a bushing's deflection)
   std::vector<double> state(element_.num_states(), 0.0), modes(element_.num_modes(), 0.0);
-  element_.Initialize(Context(0.0, state, modes), state, modes);
-  element_.Evaluate(Context(0.0, state, modes), &loads_, rates_, sensors_);
+  element_.Initialize(Context(0.0, state, modes, false), state, modes);
+  element_.Evaluate(Context(0.0, state, modes, false), &loads_, rates_, sensors_);
   x0_ = sensors_[coordinate_.coordinate_sensor];
 }
 
 mech::ElementContext ElementDriveBlock::Context(double t, std::span<const double> state,
-                                                std::span<const double> modes) const {
-  const double w = kTwoPi * drive_.frequency, angle = w * t + drive_.phase;
-  const double s = drive_.amplitude * std::sin(angle), rate = drive_.amplitude * w * std::cos(angle);
+                                                std::span<const double> modes, bool driven) const {
+  const double w = kTwoPi * drive_.frequency, angle = w * t + drive_.phase, a = driven ? drive_.amplitude : 0.0;
+  const double s = a * std::sin(angle), rate = a * w * std::cos(angle);
   kin_ = kin0_;
   kin_.time = t;
   if (coordinate_.kind == Kind::kJoint) {

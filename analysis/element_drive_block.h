@@ -50,8 +50,9 @@ class ElementDriveBlock final : public blocks::Block {
   bool DoUpdateModes(const blocks::BlockContext& ctx) const override;
 
   // The element's context at time t with the drive applied (kinematics and
-  // coordinates in the mutable scratch below).
-  mech::ElementContext Context(double t, std::span<const double> state, std::span<const double> modes) const;
+  // coordinates in the mutable scratch below); `driven` false: at rest at x0.
+  mech::ElementContext Context(double t, std::span<const double> state, std::span<const double> modes,
+                               bool driven = true) const;
   // Element sensors at the block's current state.
   void Evaluate(const blocks::BlockContext& ctx, std::span<double> rates) const;
 

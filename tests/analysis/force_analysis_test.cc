@@ -65,6 +65,39 @@ TEST(ForceAnalysisTest, SpringDamperStiffnessAndPhaseAtSeveralFrequencies) {
   }
 }
 
+TEST(ForceAnalysisTest, ContactNormalLawAndABushingComponent) {
+  // a points-plane contact with a linear law, 10 mm deep at the start (the
+  // body's point 10 mm below the plane), driven 1 mm about that: a
+  // spring-damper in the penetration; and a bushing's dx and az components
+  const std::string contact =
+      "<contact name='e' type='points_plane' body1='B' points='0 0 -0.01' body2='Base0' plane_point='0.5 0 0' "
+      "normal='0 0 1' stiffness='c' damping='d'/>";
+  ForceAnalysisRequest r = Request(WriteDiagram("contact", contact), {1e-3}, {1, 10});
+  ForceAnalysis fa = RunForceAnalysis(r);
+  for (const ForceAnalysisCase& c : fa.cases) {
+    ASSERT_TRUE(c.failure.empty()) << c.failure;
+    const double w = 2 * kPi * c.frequency;
+    EXPECT_NEAR(c.x0, 0.01, 1e-12);
+    EXPECT_NEAR(c.stiffness, std::hypot(400.0, 3 * w), 1e-6 * std::hypot(400.0, 3 * w));
+    EXPECT_NEAR(c.phase, std::atan(3 * w / 400.0), 1e-6);
+  }
+  const std::string bushing =
+      "<bushing name='e' body1='Base0' point1='0.5 0 0' body2='B' c='c 0 0' d='d 0 0' ca='0 0 7' da='0 0 0'/>";
+  r = Request(WriteDiagram("bushing", bushing), {1e-3}, {2});
+  r.component = "dx";
+  fa = RunForceAnalysis(r);
+  ASSERT_TRUE(fa.cases[0].failure.empty()) << fa.cases[0].failure;
+  EXPECT_NEAR(fa.cases[0].stiffness, std::hypot(400.0, 3 * 4 * kPi), 1e-6 * 400);
+  r.component = "az";
+  fa = RunForceAnalysis(r);
+  ASSERT_TRUE(fa.cases[0].failure.empty()) << fa.cases[0].failure;
+  EXPECT_NEAR(fa.cases[0].stiffness, 7.0, 1e-4 * 7);  // small angles: the rotation's sine
+  r.component = "qq";
+  EXPECT_THAT(testing::InputErrorOf([&] { RunForceAnalysis(r); }), HasSubstr("is not one of a bushing's components"));
+  r.component = "";
+  EXPECT_THAT(testing::InputErrorOf([&] { RunForceAnalysis(r); }), HasSubstr("needs a component"));
+}
+
 TEST(ForceAnalysisTest, DryFrictionLoopArea) {
   // The elastic-friction element with d = 0 is the Jenkins element: loop
   // area 4 F (a - F/c). The Frictional element with an undamped stick
