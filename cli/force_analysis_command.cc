@@ -30,6 +30,20 @@ double ParseValue(const std::string& text, const std::string& option) {
   throw UsageError(option + ": '" + text + "' is not a number");
 }
 
+int ParseCount(const std::string& text, const std::string& option) {
+  const double v = ParseValue(text, option);
+  if (!(v >= 1 && v <= 1e7 && v == std::floor(v))) throw UsageError(option + ": '" + text + "' is not a whole number");
+  return static_cast<int>(v);
+}
+
+// A CSV field: quoted when it holds a comma, a quote or a line break.
+std::string Field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string out = "\"";
+  for (const char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
 std::vector<double> ParseList(const std::string& text, const std::string& option) {
   std::vector<double> values;
   std::stringstream in(text);
@@ -116,8 +130,8 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
     else if (option == "--amplitude") request.amplitudes = ParseList(value, option);
     else if (option == "--frequency") request.frequencies = ParseList(value, option);
     else if (option == "--frequencies") request.frequencies = ParseRange(value);
-    else if (option == "--cycles") request.cycles = static_cast<int>(ParseValue(value, option));
-    else if (option == "--samples") request.samples = static_cast<int>(ParseValue(value, option));
+    else if (option == "--cycles") request.cycles = ParseCount(value, option);
+    else if (option == "--samples") request.samples = ParseCount(value, option);
   }
   if (request.element.empty()) throw UsageError("needs --element NAME (the force element to drive)");
   for (const auto& [names, values] : args.vary) {
@@ -135,7 +149,11 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
   out << "mechflow force-analysis " << args.file << ": " << fa.element_what << ", x = x0 + a sin(2 pi f t), "
       << "reaction R = -F; " << fa.cases.size() << " case" << (fa.cases.size() == 1 ? "" : "s") << "\n";
   std::string header;
-  for (const auto& v : request.vary) header += v.first.front() + (v.first.size() > 1 ? "(and others)" : "") + ",";
+  for (const auto& v : request.vary) {  // "ffr=ffr0": both take the row's value
+    std::string names;
+    for (const std::string& n : v.first) names += (names.empty() ? "" : "=") + n;
+    header += Field(names) + ",";
+  }
   header += "amplitude,frequency [Hz],x0,K,delta [deg],force amplitude,loop energy,periodic,error";
   csv << header << "\n";
   char line[256];
@@ -161,7 +179,7 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
     bad += !c.failure.empty() || !c.periodic;
     csv << Number(c.amplitude) << "," << Number(c.frequency) << "," << Number(c.x0) << "," << Number(c.stiffness)
         << "," << Number(c.phase * kDegrees) << "," << Number(c.force_amplitude) << "," << Number(c.loop_energy)
-        << "," << (c.periodic ? "yes" : "no") << "," << (c.failure.empty() ? "" : "failed") << "\n";
+        << "," << (c.periodic ? "yes" : "no") << "," << Field(c.failure) << "\n";
   }
   folder.Write(base + ".csv", csv.str());
   out << "wrote " << folder.PathOf(base + ".csv") << "\n";

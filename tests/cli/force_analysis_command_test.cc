@@ -40,7 +40,7 @@ TEST(ForceAnalysisCommandTest, ElasticFriction2StiffnessAgainstFriction) {
   EXPECT_THAT(outcome.out, HasSubstr("element 'friction'"));
   const auto table = ReadCsv(out / "elast_friction2.force_analysis.csv");
   ASSERT_EQ(table.size(), 7u);  // a header and 3 x 2 cases
-  EXPECT_EQ(table[0][0], "ffr(and others)");
+  EXPECT_EQ(table[0][0], "ffr=ffr0");
   EXPECT_EQ(table[0][4], "K");
   const double K[] = {80.00, 86.83, 117.58};
   for (int i = 0; i < 6; ++i) {
