@@ -656,7 +656,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     double t = t0;
     // output times are computed from an integer index: no drift over long runs
     auto output_time = [&](long k) { return std::min(t0 + k * options_.output_interval, t_end); };
-    while (t < t_end && !stop_requested_) {
+    while (t < t_end && !stop_requested_ && !Interrupted()) {
       const double stop = NextStop();
       double t_out = std::min(output_time(next_output), stop);
       // an output time that rounding puts a hair before a sample hit is taken
@@ -757,7 +757,12 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       t = std::max(t, t_ret);
       if (at_stop && t >= t_end) break;
     }
-    if (outcome.ok && stop_requested_) {
+    if (outcome.ok && Interrupted()) {
+      outcome.ok = false;
+      outcome.interrupted = *interrupt_;
+      outcome.t_reached = t;
+      outcome.failure = std::string("interrupted by ") + (*interrupt_ == SIGTERM ? "SIGTERM" : "SIGINT");
+    } else if (outcome.ok && stop_requested_) {
       // the row at the instant the control stopped the run, unless it was one
       if (results_.num_rows() == 0 || results_.at(results_.num_rows() - 1, 0) != ctx_.time) Record(ctx_.time, ctx_.x);
       outcome.stopped = true;

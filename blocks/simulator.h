@@ -40,6 +40,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -113,6 +114,7 @@ struct RunOutcome {
   std::string failure;  // when !ok: solver flag and reason
   bool stopped = false;     // ended early by its control (ok stays true)
   std::string stop_reason;  // when stopped: the control's reason
+  int interrupted = 0;      // the signal that ended it (SIGINT, SIGTERM), else 0; ok is false then
 };
 
 // Frozen motion: the same state bit for bit `dt` seconds apart although the
@@ -137,6 +139,11 @@ class Simulator {
   // A control (e.g. a Lua control script) called during every run; not
   // owned, nullptr for none. See blocks/run_control.h for when it runs.
   void SetControl(RunControl* control) { control_ = control; }
+
+  // A flag a signal handler sets (to the signal's number) to end the run:
+  // it is read before every output row, so the run ends at the last row
+  // taken, every row complete. Not owned.
+  void SetInterruptFlag(const volatile std::sig_atomic_t* flag) { interrupt_ = flag; }
 
   // Runs from t_start to t_end. `progress(t)` is called after every output row.
   RunOutcome Run(const std::function<void(double)>& progress = {});
@@ -252,6 +259,8 @@ class Simulator {
   RunControl* control_ = nullptr;
   bool control_changed_ = false;
   bool stop_requested_ = false;
+  const volatile std::sig_atomic_t* interrupt_ = nullptr;
+  bool Interrupted() const { return interrupt_ && *interrupt_ != 0; }
   std::string stop_reason_;
 };
 

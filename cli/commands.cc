@@ -1,9 +1,11 @@
 #include "cli/commands.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -62,12 +64,49 @@ class Progress {
 
 }  // namespace
 
+namespace {
+
+// Set by SIGINT and SIGTERM while a run is under way (to the signal's number).
+volatile std::sig_atomic_t g_interrupt = 0;
+
+void OnInterrupt(int signal) { g_interrupt = signal; }
+
+// The handlers for the life of one run; the previous ones come back after.
+class InterruptHandlers {
+ public:
+  InterruptHandlers() {
+    g_interrupt = 0;
+    struct sigaction action {};
+    action.sa_handler = OnInterrupt;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART;
+    sigaction(SIGINT, &action, &old_int_);
+    sigaction(SIGTERM, &action, &old_term_);
+  }
+  ~InterruptHandlers() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  InterruptHandlers(const InterruptHandlers&) = delete;
+  InterruptHandlers& operator=(const InterruptHandlers&) = delete;
+
+ private:
+  struct sigaction old_int_ {}, old_term_ {};
+};
+
+}  // namespace
+
 int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
   const OutputFolder folder(args.out_dir);  // before the run: a bad --out is bad input
   blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
   sim.SetReports(loaded.reports);
   sim.SetControl(loaded.control.get());
+  sim.SetInterruptFlag(&g_interrupt);
+  // Ctrl-C and SIGTERM end the run at its next row; what it computed is
+  // written below as for any other end. Until then further signals only set
+  // the flag again, so they cannot cut the files short.
+  const InterruptHandlers handlers;
 
   const auto wall_start = std::chrono::steady_clock::now();
   blocks::RunOutcome outcome;
@@ -83,6 +122,8 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
         << " (" << wall << " s of wall time)\n";
   } else if (outcome.ok) {
     out << "finished in " << wall << " s of wall time\n";
+  } else if (outcome.interrupted) {
+    err << outcome.failure << " at t = " << outcome.t_reached << " s; the rows up to there are written\n";
   } else {
     err << "simulation failed at t = " << outcome.t_reached << " s: " << outcome.failure << "\n";
   }
@@ -106,6 +147,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);
   PrintEventWarnings(*loaded.diagram, sim.events(), err);
+  if (outcome.interrupted) return 128 + outcome.interrupted;  // 130 SIGINT, 143 SIGTERM, as shells report them
   return outcome.ok && all_written ? 0 : 1;
 }
 

@@ -40,7 +40,10 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
   if (loaded.control && !loaded.control->changes().empty())
     write(stem + ".changes.csv",
           text([&](std::ostream& s) { WriteScriptChanges(*loaded.control, *loaded.identifiers, s); }), "");
-  if (!loaded.plot_file.empty()) {
+  if (!loaded.plot_file.empty() && sim.results().num_rows() < 2) {
+    err << "warning: no plot: the run left " << sim.results().num_rows() << " row"
+        << (sim.results().num_rows() == 1 ? "" : "s") << ", nothing to draw\n";
+  } else if (!loaded.plot_file.empty()) {
     const std::string script =
         GnuplotScript(sim.results(), loaded.groups, loaded.description.name, csv, loaded.plot_file, loaded.xy_plots);
     try {
