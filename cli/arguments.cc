@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "blocks/suggest.h"
@@ -38,6 +40,32 @@ std::pair<std::string, std::vector<double>> ParseVary(const std::string& text) {
     throw UsageError("--vary expects NAME=V1,V2,..., got '" + text + "'");
   const std::string name = text.substr(0, eq);
   std::vector<double> values;
+  // A:B:N (N values evenly spaced) or A:B:N:log (evenly on a log scale)
+  if (const std::string spec = text.substr(eq + 1); spec.find(':') != std::string::npos) {
+    std::vector<std::string> parts;
+    for (size_t start = 0;;) {
+      const size_t colon = spec.find(':', start);
+      parts.push_back(spec.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+      if (colon == std::string::npos) break;
+      start = colon + 1;
+    }
+    const bool log = parts.size() == 4 && parts[3] == "log";
+    if (parts.size() != 3 && !log)
+      throw UsageError("--vary " + name + ": a range is A:B:N or A:B:N:log, got '" + spec + "'");
+    const double a = ParseNumber(parts[0], "--vary " + name), b = ParseNumber(parts[1], "--vary " + name);
+    const double n = ParseNumber(parts[2], "--vary " + name);
+    if (!(n >= 2 && n <= 1e6 && n == std::floor(n)))
+      throw UsageError("--vary " + name + ": N must be a whole number from 2, got '" + parts[2] + "'");
+    if (!std::isfinite(a) || !std::isfinite(b) || (log && !(a > 0 && b > 0)))
+      throw UsageError("--vary " + name + ": " + (log ? "a log range needs A, B > 0" : "A and B must be numbers"));
+    for (int i = 0; i < n; ++i) {
+      // to 15 digits, so that 0.05:0.2:4 gives 0.15, not 0.15000000000000002
+      char text[32];
+      std::snprintf(text, sizeof text, "%.15g", log ? a * std::pow(b / a, i / (n - 1)) : a + (b - a) * i / (n - 1));
+      values.push_back(std::strtod(text, nullptr));
+    }
+    return {name, values};
+  }
   for (size_t start = eq + 1;;) {
     const size_t comma = text.find(',', start);
     const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
@@ -55,6 +83,7 @@ std::pair<std::string, std::vector<double>> ParseVary(const std::string& text) {
 std::string HelpText(const std::string& command) {
   if (command == "run")
     return "usage: mechflow run FILE [--variant NAME]... [--set NAME=VALUE]... [--t-end T] [--out DIR]\n"
+           "                    [--rtol R] [--atol A] [--interval DT] [--results NAME] [--quiet]\n"
            "                    [--unsafe-lua]\n"
            "\n"
            "Simulates the diagram FILE and writes its logged signals as CSV (and the plot\n"
@@ -67,11 +96,17 @@ std::string HelpText(const std::string& command) {
            "                    applied in order, after the variants; dependent\n"
            "                    identifiers follow)\n"
            "  --t-end T         end time [s], overrides <solver t_end>\n"
+           "  --rtol R, --atol A  the solver's tolerances, override <solver>\n"
+           "  --interval DT     the output grid [s], overrides <output interval>\n"
+           "  --results NAME    the results file's name (default: <output csv> or NAME.csv)\n"
+           "  --quiet           print nothing but errors\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
+           "Every option takes its value as --opt VALUE or --opt=VALUE.\n"
            "\n"
            "Exit codes: 0 finished, 1 simulation failed (results up to the failure are\n"
-           "written), 2 bad input.\n";
+           "written), 2 bad input, 130 / 143 ended by SIGINT (Ctrl-C) / SIGTERM (the rows\n"
+           "up to there are written).\n";
   if (command == "check")
     return "usage: mechflow check FILE [--variant NAME]... [--set NAME=VALUE]...\n"
            "\n"
@@ -123,9 +158,12 @@ std::string HelpText(const std::string& command) {
            "sweep goes on. NAME.sweep.png draws every run over one another, a panel per\n"
            "logged group, each curve labelled by its values.\n"
            "\n"
-           "  --vary NAME=V1,V2,...  values of an identifier defined by a number (repeatable)\n"
+           "  --vary NAME=V1,V2,...  values of an identifier defined by a number (repeatable);\n"
+           "                    NAME=A:B:N gives N values evenly from A to B, NAME=A:B:N:log\n"
+           "                    evenly on a log scale\n"
            "  --jobs N          runs at a time (default: the number of cores)\n"
-           "  --variant, --set, --t-end, --unsafe-lua   as for mechflow run, for every run\n"
+           "  --variant, --set, --t-end, --rtol, --atol, --interval, --results, --quiet,\n"
+           "  --unsafe-lua      as for mechflow run, for every run\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
            "\n"
            "Built with MPI (cmake -DMECHFLOW_MPI=ON), `mpirun -n K mechflow sweep ...`\n"
@@ -176,11 +214,19 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
                      "; commands: " + blocks::JoinNames(kCommands));
   a.command = first;
   for (i = 1; i < args.size(); ++i) {
-    const std::string& arg = args[i];
+    // --opt=value as well as --opt value
+    std::string arg = args[i];
+    std::optional<std::string> inline_value;
+    if (arg.rfind("--", 0) == 0 && arg.find('=') != std::string::npos) {
+      inline_value = arg.substr(arg.find('=') + 1);
+      arg = arg.substr(0, arg.find('='));
+    }
     auto value = [&](const std::string& option) -> std::string {
+      if (inline_value) return *inline_value;
       if (i + 1 >= args.size()) throw UsageError(option + " needs a value");
       return args[++i];
     };
+    const bool runs = a.command == "run" || a.command == "sweep";
     if (arg == "--help" || arg == "-h") {
       a.help = true;
     } else if (arg == "--set") {
@@ -194,6 +240,16 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.t_end = ParseNumber(value(arg), arg);
     } else if (arg == "--out") {
       a.out_dir = value(arg);
+    } else if (arg == "--rtol" && runs) {
+      a.rtol = ParseNumber(value(arg), arg);
+    } else if (arg == "--atol" && runs) {
+      a.atol = ParseNumber(value(arg), arg);
+    } else if (arg == "--interval" && runs) {
+      a.interval = ParseNumber(value(arg), arg);
+    } else if (arg == "--results" && runs) {
+      a.results = value(arg);
+    } else if (arg == "--quiet" && runs) {
+      a.quiet = true;
     } else if (arg == "--equilibrium" && a.command == "modes") {
       a.equilibrium = true;
     } else if (arg == "--unsafe-lua") {
@@ -210,6 +266,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.jobs = static_cast<int>(jobs);
     } else if (arg.rfind("--", 0) == 0) {
       std::vector<std::string> options = {"--set", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
+      if (runs) options.insert(options.end(), {"--rtol", "--atol", "--interval", "--results", "--quiet"});
       if (a.command == "modes") options.push_back("--equilibrium");
       if (a.command == "sweep") options.insert(options.end(), {"--vary", "--jobs"});
       if (a.command == "force-analysis") options.push_back("--vary");

@@ -15,6 +15,9 @@ struct Arguments {
   std::vector<std::string> variants;                      // --variant NAME
   std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE
   std::optional<double> t_end;                            // --t-end T
+  std::optional<double> rtol, atol, interval;             // --rtol, --atol, --interval
+  std::optional<std::string> results;                     // --results NAME
+  bool quiet = false;                                     // --quiet: errors only
   std::string out_dir = ".";                              // --out DIR
   bool unsafe_lua = false;                                // --unsafe-lua
   bool equilibrium = false;                               // modes --equilibrium

@@ -30,6 +30,10 @@ diagrams::LoadOptions ToLoadOptions(const Arguments& args) {
   o.variants = args.variants;
   o.overrides = args.overrides;
   o.t_end = args.t_end;
+  o.rtol = args.rtol;
+  o.atol = args.atol;
+  o.interval = args.interval;
+  o.results = args.results;
   o.unsafe_lua = args.unsafe_lua;
   return o;
 }
@@ -218,7 +222,13 @@ int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& 
   try {
     args = ParseArguments(argv);
   } catch (const UsageError& e) {
-    err << "mechflow: " << e.what() << "\n\n" << HelpText("");
+    // the one wrong argument, and the command's own usage lines
+    const std::string command = argv.empty() ? "" : argv[0];
+    const std::string help = HelpText(command);
+    const bool known = help != HelpText("");
+    err << "mechflow" << (known ? " " + command : "") << ": " << e.what() << "\n"
+        << help.substr(0, help.find("\n\n")) << "\n(mechflow help" << (known ? " " + command : "")
+        << " for more)\n";
     return 2;
   }
   if (args.version) {
@@ -229,12 +239,14 @@ int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& 
     out << HelpText(args.command);
     return 0;
   }
+  std::ostream null_stream(nullptr);  // --quiet: errors only
+  std::ostream& out_or_nothing = args.quiet ? null_stream : out;
   try {
-    if (args.command == "run") return RunCommand(args, out, err);
+    if (args.command == "run") return RunCommand(args, out_or_nothing, err);
     if (args.command == "check") return CheckCommand(args, out, err);
     if (args.command == "graph") return GraphCommand(args, out, err);
     if (args.command == "modes") return ModesCommand(args, out, err);
-    if (args.command == "sweep") return SweepCommand(args, out, err);
+    if (args.command == "sweep") return SweepCommand(args, out_or_nothing, err);
     if (args.command == "force-analysis") return ForceAnalysisCommand(args, out, err);
     if (args.command == "psd") return PsdCommand(args, out, err);
   } catch (const InputError& e) {

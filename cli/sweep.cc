@@ -182,6 +182,10 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.common.variants = args.variants;
   plan.common.overrides = args.overrides;
   plan.common.t_end = args.t_end;
+  plan.common.rtol = args.rtol;
+  plan.common.atol = args.atol;
+  plan.common.interval = args.interval;
+  plan.common.results = args.results;
   plan.common.unsafe_lua = args.unsafe_lua;
 
   // the diagram must load as given; its identifiers judge the --vary names

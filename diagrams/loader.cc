@@ -106,7 +106,13 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
     }
   }
   if (options.t_end) solver->t_end = *options.t_end;
-  if (const Attribute* a = FindAttribute(d.output, "interval")) {
+  if (options.rtol) solver->rtol = *options.rtol;
+  if (options.atol) solver->atol = *options.atol;
+  if (options.interval) {
+    solver->output_interval = *options.interval;
+    if (!(*options.interval > 0.0) || !std::isfinite(*options.interval))
+      throw InputError("--interval: expected a time > 0 s");
+  } else if (const Attribute* a = FindAttribute(d.output, "interval")) {
     solver->output_interval = eval.Number(a->value, a->loc.str() + ": output setting 'interval'");
     // 0 is the default's internal meaning, not a value a user writes
     if (!(solver->output_interval > 0.0) || !std::isfinite(solver->output_interval))
@@ -115,7 +121,10 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
   }
   const std::string problem = solver->Problem();
   if (!problem.empty())
-    throw InputError(d.solver_loc.str() + ": " + problem + (options.t_end ? " (t_end given by --t-end)" : ""));
+    throw InputError(d.solver_loc.str() + ": " + problem +
+                     (options.t_end                  ? " (t_end given by --t-end)"
+                      : options.rtol || options.atol ? " (tolerances given by --rtol, --atol)"
+                                                     : ""));
   if (solver->output_interval > 0.0) {
     const std::string rows = blocks::SamplePeriodProblem(solver->output_interval, solver->t_start, solver->t_end);
     if (!rows.empty()) throw InputError(d.output_loc.str() + ": output interval: " + rows);
@@ -402,7 +411,13 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   CollectSpectra(d, eval, &out);
   CollectXYPlots(d, &out);
   const Attribute* csv = FindAttribute(d.output, "csv");
-  out.csv_file = csv && !Trim(csv->value).empty() ? Trim(csv->value) : d.name + ".csv";
+  out.csv_file = options.results                     ? *options.results
+                 : csv && !Trim(csv->value).empty() ? Trim(csv->value)
+                                                    : d.name + ".csv";
+  if (options.results) {
+    if (const std::string problem = OutputNameProblem(out.csv_file); !problem.empty())
+      throw InputError("--results: '" + out.csv_file + "' " + problem);
+  }
   if (const std::string problem = OutputNameProblem(out.csv_file); !problem.empty())
     throw InputError(csv ? csv->loc.str() + ": csv file '" + out.csv_file + "' " + problem
                          : d.output_loc.str() + ": the results file '" + out.csv_file + "' named after the diagram " +

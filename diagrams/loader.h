@@ -28,6 +28,8 @@ struct LoadOptions {
   std::vector<std::string> variants;                      // --variant NAME, applied in order
   std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE, in order, after the variants
   std::optional<double> t_end;                            // --t-end
+  std::optional<double> rtol, atol, interval;             // --rtol, --atol, --interval
+  std::optional<std::string> results;                     // --results NAME (the CSV file)
   bool unsafe_lua = false;
 };
 

@@ -12,3 +12,4 @@ mechflow_test(force_analysis_command_test unit tests/cli/force_analysis_command_
 mechflow_test(psd_command_test unit tests/cli/psd_command_test.cc)
 mechflow_test(xy_plot_test unit tests/cli/xy_plot_test.cc)
 mechflow_test(interrupt_test unit tests/cli/interrupt_test.cc)
+mechflow_test(command_line_test unit tests/cli/command_line_test.cc)

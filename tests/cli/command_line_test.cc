@@ -1,0 +1,68 @@
+// Command-line conventions users bring from other tools (issue 15, item 5):
+// --opt=value, solver and output settings on the command line, ranges for
+// --vary, --quiet, and a usage error that shows the command's own usage.
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cli/arguments.h"
+#include "tests/cli/mechflow_command.h"
+
+namespace mechflow::cli {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+TEST(CommandLineTest, OptionEqualsValueReadsAsOptionThenValue) {
+  const Arguments a = ParseArguments({"run", "d.xml", "--set=c=2", "--t-end=3", "--rtol", "1e-9", "--atol=1e-12",
+                                      "--interval=0.5", "--results=r.csv", "--out=o", "--quiet"});
+  ASSERT_EQ(a.overrides.size(), 1u);
+  EXPECT_EQ(a.overrides[0].first, "c");
+  EXPECT_EQ(a.overrides[0].second, 2.0);
+  EXPECT_EQ(*a.t_end, 3.0);
+  EXPECT_EQ(*a.rtol, 1e-9);
+  EXPECT_EQ(*a.atol, 1e-12);
+  EXPECT_EQ(*a.interval, 0.5);
+  EXPECT_EQ(*a.results, "r.csv");
+  EXPECT_EQ(a.out_dir, "o");
+  EXPECT_TRUE(a.quiet);
+}
+
+TEST(CommandLineTest, VaryRanges) {
+  const Arguments lin = ParseArguments({"sweep", "d.xml", "--vary", "beta=0.05:0.2:4"});
+  EXPECT_THAT(lin.vary[0].second, ElementsAre(0.05, 0.1, 0.15, 0.2));
+  const Arguments log = ParseArguments({"sweep", "d.xml", "--vary=k=1:100:3:log"});
+  EXPECT_THAT(log.vary[0].second, ElementsAre(1.0, 10.0, 100.0));
+  EXPECT_THROW(ParseArguments({"sweep", "d.xml", "--vary", "k=1:2"}), UsageError);
+  EXPECT_THROW(ParseArguments({"sweep", "d.xml", "--vary", "k=0:2:3:log"}), UsageError);
+  EXPECT_THROW(ParseArguments({"sweep", "d.xml", "--vary", "k=1:2:1.5"}), UsageError);
+}
+
+TEST(CommandLineTest, RunSettingsQuietAndUsage) {
+  const fs::path out = fs::path(::testing::TempDir()) / "command_line";
+  const std::string example = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/pendulum.xml";
+  auto run = testing::RunMechflow("run " + example + " --interval=0.5 --t-end 2 --results=swing.csv --quiet --out " +
+                                  out.string());
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.out, "");  // --quiet: nothing but errors
+  const std::string csv = testing::ReadFile(out / "swing.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6);  // header and t = 0, 0.5, ..., 2
+  // a usage error: the wrong argument and the command's usage lines, not the whole help
+  run = testing::RunMechflow("run " + example + " --rtol");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("mechflow run: --rtol needs a value"));
+  EXPECT_THAT(run.err, HasSubstr("usage: mechflow run FILE"));
+  EXPECT_THAT(run.err, ::testing::Not(HasSubstr("Commands:")));
+  // settings the solver refuses name where they came from
+  run = testing::RunMechflow("run " + example + " --rtol=-1 --out " + out.string());
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("(tolerances given by --rtol, --atol)"));
+}
+
+}  // namespace
+}  // namespace mechflow::cli
