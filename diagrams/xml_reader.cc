@@ -307,10 +307,12 @@ ScriptDesc Reader::ReadScript(const XMLElement* e) const {
     script.chunk_name = "@" + path;
   } else if (has_text) {
     // Lua counts lines from the chunk's start: pad it so they are the file's.
-    // tinyxml2 gives the line of the text's first non-blank character.
+    // tinyxml2 gives the line of the text's first non-blank character, but of
+    // a CDATA section its start, where the code starts too.
     const std::string code = text->Value();
     const auto blank = code.substr(0, code.find_first_not_of(" \t\r\n"));
-    const int first_line = text->GetLineNum() - static_cast<int>(std::count(blank.begin(), blank.end(), '\n'));
+    const int first_line =
+        text->GetLineNum() - (text->ToText()->CData() ? 0 : static_cast<int>(std::count(blank.begin(), blank.end(), '\n')));
     script.code = std::string(std::max(0, first_line - 1), '\n') + code;
     script.chunk_name = "@" + file_;
   } else {

@@ -166,6 +166,15 @@ TEST(ControlScriptTest, SyntaxErrorsAndBadCallbacksAreBadInputWithTheLine) {
   const std::string xml = Diagram("\n    function step(sim) return ) end");
   const int line = 1 + static_cast<int>(std::count(xml.begin(), xml.begin() + xml.find("return )"), '\n'));
   EXPECT_THAT(InputErrorOf([&] { LoadXml(xml); }), HasSubstr("test.xml:" + std::to_string(line) + ": unexpected symbol"));
+  // inside CDATA (a script with < or &) the lines are the file's too
+  for (const std::string code : {"<![CDATA[\n    function step(sim) return ) end]]>",
+                                 "\n  <![CDATA[\n\n    function step(sim) return ) end]]>",
+                                 "<![CDATA[function step(sim) return ) end]]>"}) {
+    const std::string cdata = Diagram(code);
+    const int at = 1 + static_cast<int>(std::count(cdata.begin(), cdata.begin() + cdata.find("return )"), '\n'));
+    EXPECT_THAT(InputErrorOf([&] { LoadXml(cdata); }), HasSubstr("test.xml:" + std::to_string(at) + ": unexpected symbol"))
+        << code;
+  }
   EXPECT_THAT(InputErrorOf([&] { LoadXml(Diagram("step = 3")); }), HasSubstr("'step' is a number"));
   EXPECT_THAT(InputErrorOf([&] { LoadXml(Diagram("")); }), HasSubstr("<script> is empty"));
 }
