@@ -203,7 +203,8 @@ int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
       << count(report.modes.size(), "mode") << "\n";
   PrintModes(report, out);
 
-  // modes.csv in the output folder, as `run` writes its results
+  // NAME.modes.csv in the output folder, named after the diagram as `run`'s
+  // files are, so that two diagrams can share a folder
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(args.out_dir, ec);
@@ -211,7 +212,7 @@ int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     err << "cannot create output folder '" << args.out_dir << "': " << ec.message() << "\n";
     return 2;
   }
-  const fs::path csv = fs::absolute(fs::path(args.out_dir) / "modes.csv");
+  const fs::path csv = fs::absolute(fs::path(args.out_dir) / (loaded.description.name + ".modes.csv"));
   WriteModesCsv(report.modes, report.states, csv.string());
   out << "wrote " << csv.string() << " (" << count(report.modes.size(), "mode") << ")\n";
   return 0;

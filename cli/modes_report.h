@@ -1,5 +1,5 @@
 #pragma once
-// Output of `mechflow modes`: a table on the terminal and modes.csv.
+// Output of `mechflow modes`: a table on the terminal and NAME.modes.csv.
 
 #include <optional>
 #include <ostream>

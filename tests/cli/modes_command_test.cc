@@ -1,4 +1,4 @@
-// `mechflow modes` run as a user would: the table, modes.csv, --equilibrium,
+// `mechflow modes` run as a user would: the table, NAME.modes.csv, --equilibrium,
 // the output folder, help and exit codes, on block diagrams.
 
 #include <sys/wait.h>
@@ -132,9 +132,9 @@ TEST(ModesCommandTest, DampedOscillatorBlocks) {
   EXPECT_THAT(r.out, HasSubstr("oscillating"));
   EXPECT_EQ(PrintedState(r.out, "x.x"), 0.5);
   EXPECT_THAT(r.out, HasSubstr("coordinate"));
-  EXPECT_THAT(r.out, HasSubstr("wrote " + (dir / "results" / "modes.csv").string() + " (1 mode)"));
+  EXPECT_THAT(r.out, HasSubstr("wrote " + (dir / "results" / "damped_oscillator_blocks.modes.csv").string() + " (1 mode)"));
 
-  const Csv csv = ReadCsv(dir / "results" / "modes.csv");
+  const Csv csv = ReadCsv(dir / "results" / "damped_oscillator_blocks.modes.csv");
   EXPECT_EQ(csv.header, (std::vector<std::string>{"mode", "frequency_hz", "natural_frequency_hz", "damping_ratio",
                                                   "lambda_re", "lambda_im", "x.x", "v.x"}));
   ASSERT_EQ(csv.rows.size(), 1u);
@@ -152,7 +152,7 @@ TEST(ModesCommandTest, ThreeMassesBlocksInTheCurrentFolderByDefault) {
   const fs::path dir = FreshDir("three_masses");
   const Outcome r = Mechflow("modes " + Example("three_masses_blocks.xml"), dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const Csv csv = ReadCsv(dir / "modes.csv");
+  const Csv csv = ReadCsv(dir / "three_masses_blocks.modes.csv");
   ASSERT_EQ(csv.rows.size(), 3u);
   const double expected[3] = {17.6613, 43.8189, 67.2512};
   for (int k = 0; k < 3; ++k) {
@@ -184,8 +184,8 @@ TEST(ModesCommandTest, EquilibriumOfAHangingMass) {
   EXPECT_NEAR(PrintedState(r.out, "x.x"), -m * g / c, 1e-8);  // printed to 9 digits
   EXPECT_NEAR(PrintedState(r.out, "v.x"), 0.0, 1e-12);
   // gravity only shifts a linear spring: the same mode at both points
-  const Csv at_rest = ReadCsv(dir / "eq" / "modes.csv");
-  const Csv at_start = ReadCsv(dir / "initial" / "modes.csv");
+  const Csv at_rest = ReadCsv(dir / "eq" / "hanging_mass.modes.csv");
+  const Csv at_start = ReadCsv(dir / "initial" / "hanging_mass.modes.csv");
   ASSERT_EQ(at_rest.rows.size(), 1u);
   EXPECT_NEAR(at_rest.rows[0][2], std::sqrt(c / m) / (2 * kPi), 1e-9);
   EXPECT_NEAR(at_rest.rows[0][1], at_start.rows[0][1], 1e-12);
@@ -207,7 +207,7 @@ TEST(ModesCommandTest, RealModesListTheirDecayRate) {
   const Outcome r = Mechflow("modes decay.xml", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("decaying at 4 1/s (time constant 0.25 s)"));
-  const Csv csv = ReadCsv(dir / "modes.csv");
+  const Csv csv = ReadCsv(dir / "decay.modes.csv");  // named after the diagram (its file's stem)
   ASSERT_EQ(csv.rows.size(), 1u);
   EXPECT_EQ(csv.rows[0][1], 0.0);
   EXPECT_NEAR(csv.rows[0][4], -4.0, 1e-9);
@@ -224,7 +224,7 @@ TEST(ModesCommandTest, NoEquilibriumExitsWithOne) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, StartsWith("simulation failed: no static equilibrium found: Newton stalled"));
   EXPECT_THAT(r.err, HasSubstr("the largest rate is 1 (state 'x.x')"));
-  EXPECT_FALSE(fs::exists(dir / "modes.csv"));
+  EXPECT_FALSE(fs::exists(dir / "drift.modes.csv"));
   // without --equilibrium the same diagram has one rigid-body mode
   const Outcome plain = Mechflow("modes drift.xml", dir);
   EXPECT_EQ(plain.exit_code, 0) << plain.err;
