@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "analysis/force_analysis.h"
+#include "blocks/csv.h"
 #include "cli/output_folder.h"
 #include "cli/plot.h"
 #include "cli/xy_plot.h"
@@ -34,14 +35,6 @@ int ParseCount(const std::string& text, const std::string& option) {
   const double v = ParseValue(text, option);
   if (!(v >= 1 && v <= 1e7 && v == std::floor(v))) throw UsageError(option + ": '" + text + "' is not a whole number");
   return static_cast<int>(v);
-}
-
-// A CSV field: quoted when it holds a comma, a quote or a line break.
-std::string Field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string out = "\"";
-  for (const char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 std::vector<double> ParseList(const std::string& text, const std::string& option) {
@@ -152,7 +145,7 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
   for (const auto& v : request.vary) {  // "ffr=ffr0": both take the row's value
     std::string names;
     for (const std::string& n : v.first) names += (names.empty() ? "" : "=") + n;
-    header += Field(names) + ",";
+    header += blocks::CsvField(names) + ",";
   }
   header += "amplitude,frequency [Hz],x0,K,delta [deg],force amplitude,loop energy,periodic,error";
   csv << header << "\n";
@@ -167,7 +160,7 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
     for (double v : c.varied) {
       std::snprintf(line, sizeof line, "%10.4g ", v);
       out << line;
-      csv << Number(v) << ",";
+      csv << blocks::CsvNumber(v) << ",";
     }
     std::snprintf(line, sizeof line, "%11.4g %9.4g %12.6g %13.6g %13.6g %13.6g   %s\n", c.amplitude, c.frequency,
                   c.stiffness, c.phase * kDegrees, c.force_amplitude, c.loop_energy,
@@ -177,9 +170,10 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
     else if (!c.periodic) err << "  not periodic after " << request.cycles << " cycles: the last two differ by "
                               << c.periodic_error << " of the largest force (raise --cycles)\n";
     bad += !c.failure.empty() || !c.periodic;
-    csv << Number(c.amplitude) << "," << Number(c.frequency) << "," << Number(c.x0) << "," << Number(c.stiffness)
-        << "," << Number(c.phase * kDegrees) << "," << Number(c.force_amplitude) << "," << Number(c.loop_energy)
-        << "," << (c.periodic ? "yes" : "no") << "," << Field(c.failure) << "\n";
+    csv << blocks::CsvNumber(c.amplitude) << "," << blocks::CsvNumber(c.frequency) << "," << blocks::CsvNumber(c.x0)
+        << "," << blocks::CsvNumber(c.stiffness) << "," << blocks::CsvNumber(c.phase * kDegrees) << ","
+        << blocks::CsvNumber(c.force_amplitude) << "," << blocks::CsvNumber(c.loop_energy)
+        << "," << (c.periodic ? "yes" : "no") << "," << blocks::CsvField(c.failure) << "\n";
   }
   folder.Write(base + ".csv", csv.str());
   out << "wrote " << folder.PathOf(base + ".csv") << "\n";
@@ -200,8 +194,8 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
     for (std::size_t i = 0; i < fa.cases.size(); ++i) {
       const auto& c = fa.cases[i];
       const bool has = k < c.x.size();
-      loops << (i ? "," : "") << (has ? Number(c.x[k]) : "") << "," << (has ? Number(c.v[k]) : "") << ","
-            << (has ? Number(c.reaction[k]) : "");
+      loops << (i ? "," : "") << (has ? blocks::CsvNumber(c.x[k]) : "") << ","
+            << (has ? blocks::CsvNumber(c.v[k]) : "") << "," << (has ? blocks::CsvNumber(c.reaction[k]) : "");
     }
     loops << "\n";
   }
@@ -241,9 +235,10 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
     }
     table << "\n";
     for (int i = 0; i < n; ++i) {
-      table << Number(xs[i]);
+      table << blocks::CsvNumber(xs[i]);
       for (int j = 0; j < curves; ++j)
-        table << "," << Number(case_of(j, i).stiffness) << "," << Number(case_of(j, i).phase * kDegrees);
+        table << "," << blocks::CsvNumber(case_of(j, i).stiffness) << ","
+              << blocks::CsvNumber(case_of(j, i).phase * kDegrees);
       table << "\n";
     }
     const std::string x_label = by_frequency ? "frequency [Hz]" : request.vary.front().first.front();

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "blocks/csv.h"
 #include "cli/plot.h"
 #include "cli/xy_plot.h"
 #include "mech/errors.h"
@@ -66,11 +67,11 @@ std::string WritePsd(const PsdRequest& request, const OutputFolder& folder, std:
       << " window, one-sided, mean removed; resolution " << Number(first.resolution) << " Hz)\n";
   std::ostringstream csv;
   csv << "frequency [Hz]";
-  for (const PsdSignal& s : request.signals) csv << ",PSD " << s.name << " [signal^2/Hz]";
+  for (const PsdSignal& s : request.signals) csv << "," << blocks::CsvField("PSD " + s.name + " [signal^2/Hz]");
   csv << "\n";
   for (std::size_t k = 0; k < first.frequency.size(); ++k) {
-    csv << Number(first.frequency[k]);
-    for (const auto& s : spectra) csv << "," << Number(s.density[k]);
+    csv << blocks::CsvNumber(first.frequency[k]);
+    for (const auto& s : spectra) csv << "," << blocks::CsvNumber(s.density[k]);
     csv << "\n";
   }
   for (std::size_t i = 0; i < spectra.size(); ++i) {

@@ -1,5 +1,7 @@
 #include "cli/sweep.h"
 
+#include "blocks/csv.h"
+
 #include "cli/plot.h"
 
 #include <unistd.h>
@@ -43,19 +45,8 @@ std::string Shortest(double v) {
 }
 
 // Full precision, as the results and report CSVs write numbers.
-std::string Full(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
-
-// A CSV field: quoted when it holds a separator, a quote or a line break.
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
+std::string Full(double v) { return blocks::CsvNumber(v); }
+using blocks::CsvField;
 
 // One line for the summary and the terminal (tracebacks span several).
 std::string OneLine(const std::string& text) {
