@@ -271,6 +271,12 @@ mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
         if (!r.Has(et, "vector")) spec.value = r.Number(et, "value", 0.0);
       } else if (et_type == "tt" || et_type == "rt") {
         if (!r.Has(et, "value")) throw InputError(what + ": needs 'value', a function of t");
+        // a time function takes identifiers at their values at load: one
+        // fed by a signal would stay at its start, silently
+        if (r.MentionsInput(et.Text("value")))
+          throw InputError(what + ": 'value' names an <input> of this mechanism (a signal), but a time function "
+                                  "takes identifiers at their values at load and would not follow it; drive the "
+                                  "joint by a force from the signal (a <joint_force> expression of the input)");
         spec.function = std::make_shared<scripting::CompiledTimeFunction>(et.Text("value"), *eval.identifiers(), what);
         eval.identifiers()->NoteFixedUses(et.Text("value"), what);
       } else {

@@ -243,6 +243,20 @@ bool ControlScript::Resolve(const std::string& name, Target* target) {
   } else if (const int id = identifiers_.Find(name); id >= 0) {
     t.is_identifier = true;
     t.index = id;
+    // an <input> of a mechanism: what the mechanism receives is the signal
+    // that feeds it, not the identifier's value
+    for (const blocks::Connection& c : diagram_.connections()) {
+      const blocks::Block& to = diagram_.block(c.to_block);
+      if (to.type() != "mechanism" ||
+          scripting::ToLower(to.input_port(c.to_port).name) != scripting::ToLower(identifiers_.name(id)))
+        continue;
+      const blocks::Block& from = diagram_.block(c.from_block);
+      t.is_identifier = false;
+      t.index = diagram_.layout(c.from_block).output_offset[c.from_port];
+      t.width = 1;
+      t.fed_by = to.name() + "." + to.input_port(c.to_port).name + " <- " + from.name() + "." +
+                 from.output_port(c.from_port).name;
+    }
   } else {
     // an output port name that one block alone has (a sensor name)
     std::vector<std::string> owners, all;
@@ -295,6 +309,11 @@ bool ControlScript::DoSet(const char* name, double value) {
     return false;
   }
   const int id = identifiers_.Find(name);
+  if (Target target; id >= 0 && Resolve(name, &target) && !target.fed_by.empty()) {
+    error_ = "sim:set: '" + std::string(name) + "' is a mechanism input fed by a signal (" + target.fed_by +
+             "), which decides its value; set what that signal is made from instead";
+    return false;
+  }
   lua_State* L = lua_.get();
   before_ = identifiers_.Values();
   changed_.clear();

@@ -91,6 +91,7 @@ class ControlScript final : public blocks::RunControl {
     bool is_identifier = false;
     int index = 0;  // identifier index or signal offset
     int width = 1;
+    std::string fed_by;  // an identifier a signal feeds into a mechanism: "m.Ffr <- f.y"; read as that signal
   };
 
   // The methods of `sim`, called by Lua. They may raise Lua errors, so they
