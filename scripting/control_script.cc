@@ -244,13 +244,14 @@ bool ControlScript::Resolve(const std::string& name, Target* target) {
     t.is_identifier = true;
     t.index = id;
     // an <input> of a mechanism: what the mechanism receives is the signal
-    // that feeds it, not the identifier's value
+    // that feeds it, not the identifier's value -- unless that signal is an
+    // identifier block's, which reads the identifier (set it, and it follows)
     for (const blocks::Connection& c : diagram_.connections()) {
       const blocks::Block& to = diagram_.block(c.to_block);
-      if (to.type() != "mechanism" ||
+      const blocks::Block& from = diagram_.block(c.from_block);
+      if (to.type() != "mechanism" || from.type() == "identifier" ||
           scripting::ToLower(to.input_port(c.to_port).name) != scripting::ToLower(identifiers_.name(id)))
         continue;
-      const blocks::Block& from = diagram_.block(c.from_block);
       t.is_identifier = false;
       t.index = diagram_.layout(c.from_block).output_offset[c.from_port];
       t.width = 1;
