@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 
 #include "blocks/suggest.h"
@@ -78,6 +79,23 @@ std::pair<std::string, std::vector<double>> ParseVary(const std::string& text) {
   return {name, values};
 }
 
+// --set NAME=VALUE: a number, or else an expression of identifiers.
+void AddSet(const std::string& kv, const std::string& where, Arguments* a) {
+  const auto eq = kv.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
+    throw UsageError(where + ": expected NAME=VALUE, got '" + kv + "'");
+  const auto trim = [](std::string s) {
+    const auto first = s.find_first_not_of(" \t"), last = s.find_last_not_of(" \t");
+    return first == std::string::npos ? std::string() : s.substr(first, last - first + 1);
+  };
+  const std::string name = trim(kv.substr(0, eq)), text = trim(kv.substr(eq + 1));
+  if (name.empty() || text.empty()) throw UsageError(where + ": expected NAME=VALUE, got '" + kv + "'");
+  double number = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
+  if (error == std::errc() && end == text.data() + text.size()) a->overrides.push_back({name, number});
+  else a->set_expressions.push_back({name, text});
+}
+
 }  // namespace
 
 std::string HelpText(const std::string& command) {
@@ -94,7 +112,9 @@ std::string HelpText(const std::string& command) {
            "                    <variants> (repeatable, in order; `mechflow check` lists them)\n"
            "  --set NAME=VALUE  override an identifier defined by a number (repeatable,\n"
            "                    applied in order, after the variants; dependent\n"
-           "                    identifiers follow)\n"
+           "                    identifiers follow); VALUE may be an expression of\n"
+           "                    identifiers (2*c0), evaluated after the numbers\n"
+           "  --set-file FILE   NAME=VALUE lines (# comments), as --set\n"
            "  --t-end T         end time [s], overrides <solver t_end>\n"
            "  --rtol R, --atol A  the solver's tolerances, override <solver>\n"
            "  --interval DT     the output grid [s], overrides <output interval>\n"
@@ -230,10 +250,20 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
     if (arg == "--help" || arg == "-h") {
       a.help = true;
     } else if (arg == "--set") {
-      const std::string kv = value(arg);
-      const auto eq = kv.find('=');
-      if (eq == std::string::npos || eq == 0) throw UsageError("--set expects NAME=VALUE, got '" + kv + "'");
-      a.overrides.push_back({kv.substr(0, eq), ParseNumber(kv.substr(eq + 1), "--set " + kv.substr(0, eq))});
+      AddSet(value(arg), "--set", &a);
+    } else if (arg == "--set-file") {
+      // NAME=VALUE lines (OpenModelica's override file); '#' starts a comment
+      const std::string path = value(arg);
+      std::ifstream in(path);
+      if (!in) throw UsageError("--set-file: cannot read '" + path + "'");
+      int number = 0;
+      for (std::string line; std::getline(in, line);) {
+        ++number;
+        line = line.substr(0, line.find('#'));
+        const auto first = line.find_first_not_of(" \t\r"), last = line.find_last_not_of(" \t\r");
+        if (first == std::string::npos) continue;
+        AddSet(line.substr(first, last - first + 1), path + ":" + std::to_string(number), &a);
+      }
     } else if (arg == "--variant") {
       a.variants.push_back(value(arg));
     } else if (arg == "--t-end") {
@@ -265,7 +295,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
         throw UsageError("--jobs: '" + text + "' is not a whole number from 1 to 4096");
       a.jobs = static_cast<int>(jobs);
     } else if (arg.rfind("--", 0) == 0) {
-      std::vector<std::string> options = {"--set", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
+      std::vector<std::string> options = {"--set", "--set-file", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
       if (runs) options.insert(options.end(), {"--rtol", "--atol", "--interval", "--results", "--quiet"});
       if (a.command == "modes") options.push_back("--equilibrium");
       if (a.command == "sweep") options.insert(options.end(), {"--vary", "--jobs"});

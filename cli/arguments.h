@@ -14,6 +14,7 @@ struct Arguments {
   std::string file;
   std::vector<std::string> variants;                      // --variant NAME
   std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE
+  std::vector<std::pair<std::string, std::string>> set_expressions;  // --set NAME=EXPR (not a number)
   std::optional<double> t_end;                            // --t-end T
   std::optional<double> rtol, atol, interval;             // --rtol, --atol, --interval
   std::optional<std::string> results;                     // --results NAME

@@ -29,6 +29,7 @@ diagrams::LoadOptions ToLoadOptions(const Arguments& args) {
   diagrams::LoadOptions o;
   o.variants = args.variants;
   o.overrides = args.overrides;
+  o.expression_overrides = args.set_expressions;
   o.t_end = args.t_end;
   o.rtol = args.rtol;
   o.atol = args.atol;

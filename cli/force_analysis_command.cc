@@ -116,6 +116,7 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
   request.file = args.file;
   request.options.variants = args.variants;
   request.options.overrides = args.overrides;
+  request.options.expression_overrides = args.set_expressions;
   request.options.unsafe_lua = args.unsafe_lua;
   for (const auto& [option, value] : args.command_options) {
     if (option == "--element") request.element = value;

@@ -172,6 +172,7 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.file = args.file;
   plan.common.variants = args.variants;
   plan.common.overrides = args.overrides;
+  plan.common.expression_overrides = args.set_expressions;
   plan.common.t_end = args.t_end;
   plan.common.rtol = args.rtol;
   plan.common.atol = args.atol;

@@ -361,6 +361,16 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
     }
   }
   ids.Evaluate(*out.lua);
+  // --set NAME=EXPR: each evaluated over the identifiers as they are then
+  for (const auto& [name, text] : options.expression_overrides) {
+    try {
+      ids.Override(name, ids.EvaluateExpression(*out.lua, text, "--set " + name + "=" + text));
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      throw InputError(message.rfind("--set", 0) == 0 ? message : "--set " + name + ": " + message);
+    }
+    ids.Evaluate(*out.lua);
+  }
   const Evaluator eval(out.lua.get(), out.identifiers.get());
 
   // the control script runs first: expressions may call functions it defines

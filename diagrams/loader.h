@@ -27,6 +27,8 @@ namespace mechflow::diagrams {
 struct LoadOptions {
   std::vector<std::string> variants;                      // --variant NAME, applied in order
   std::vector<std::pair<std::string, double>> overrides;  // --set NAME=VALUE, in order, after the variants
+  // --set NAME=EXPR (an expression of identifiers), in order, after the numbers
+  std::vector<std::pair<std::string, std::string>> expression_overrides;
   std::optional<double> t_end;                            // --t-end
   std::optional<double> rtol, atol, interval;             // --rtol, --atol, --interval
   std::optional<std::string> results;                     // --results NAME (the CSV file)

@@ -2,6 +2,7 @@
 // --opt=value, solver and output settings on the command line, ranges for
 // --vary, --quiet, and a usage error that shows the command's own usage.
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -62,6 +63,30 @@ TEST(CommandLineTest, RunSettingsQuietAndUsage) {
   run = testing::RunMechflow("run " + example + " --rtol=-1 --out " + out.string());
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("(tolerances given by --rtol, --atol)"));
+}
+
+TEST(CommandLineTest, SetTakesExpressionsAndFiles) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "set_expressions";
+  fs::create_directories(dir);
+  std::ofstream(dir / "overrides.txt") << "# damping study\nbeta = 0.2   # a fifth of critical\n\nmass=500\n";
+  const std::string example = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/damping_ratio.xml";
+  // f follows the mass from the file: f = 2 * sqrt(mass / 1000) Hz via an expression of identifiers
+  const auto run = testing::RunMechflow("check " + example + " --set-file " + (dir / "overrides.txt").string() +
+                                        " --set f=4*beta");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("beta"));
+  const Arguments a = ParseArguments({"run", "d.xml", "--set-file", (dir / "overrides.txt").string(), "--set=f=4*beta"});
+  EXPECT_THAT(a.overrides, ElementsAre(std::pair<std::string, double>{"beta", 0.2},
+                                       std::pair<std::string, double>{"mass", 500}));
+  ASSERT_EQ(a.set_expressions.size(), 1u);
+  EXPECT_EQ(a.set_expressions[0], (std::pair<std::string, std::string>{"f", "4*beta"}));
+  // an expression over an unknown name is bad input naming the --set
+  const auto bad = testing::RunMechflow("check " + example + " --set f=4*betta");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("--set f=4*betta"));
+  EXPECT_THAT(bad.err, HasSubstr("betta"));
+  std::ofstream(dir / "bad.txt") << "beta 0.2\n";
+  EXPECT_THROW(ParseArguments({"run", "d.xml", "--set-file", (dir / "bad.txt").string()}), UsageError);
 }
 
 }  // namespace
