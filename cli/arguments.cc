@@ -101,7 +101,7 @@ void AddSet(const std::string& kv, const std::string& where, Arguments* a) {
 std::string HelpText(const std::string& command) {
   if (command == "run")
     return "usage: mechflow run FILE [--variant NAME]... [--set NAME=VALUE]... [--t-end T] [--out DIR]\n"
-           "                    [--rtol R] [--atol A] [--interval DT] [--results NAME] [--quiet]\n"
+           "                    [--rtol R] [--atol A] [--interval DT] [--results NAME] [--quiet | --verbose]\n"
            "                    [--unsafe-lua]\n"
            "\n"
            "Simulates the diagram FILE and writes its logged signals as CSV (and the plot\n"
@@ -120,6 +120,8 @@ std::string HelpText(const std::string& command) {
            "  --interval DT     the output grid [s], overrides <output interval>\n"
            "  --results NAME    the results file's name (default: <output csv> or NAME.csv)\n"
            "  --quiet           print nothing but errors\n"
+           "  --verbose         also print the event log: every event's time, block, and for\n"
+           "                    a mechanism the element and what it switched to\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
            "Every option takes its value as --opt VALUE or --opt=VALUE.\n"
@@ -280,6 +282,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.results = value(arg);
     } else if (arg == "--quiet" && runs) {
       a.quiet = true;
+    } else if (arg == "--verbose" && a.command == "run") {
+      a.verbose = true;
     } else if (arg == "--equilibrium" && a.command == "modes") {
       a.equilibrium = true;
     } else if (arg == "--unsafe-lua") {

@@ -19,6 +19,7 @@ struct Arguments {
   std::optional<double> rtol, atol, interval;             // --rtol, --atol, --interval
   std::optional<std::string> results;                     // --results NAME
   bool quiet = false;                                     // --quiet: errors only
+  bool verbose = false;                                   // run --verbose: the event log
   std::string out_dir = ".";                              // --out DIR
   bool unsafe_lua = false;                                // --unsafe-lua
   bool equilibrium = false;                               // modes --equilibrium

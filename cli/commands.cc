@@ -151,6 +151,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   const bool all_written = WriteRunOutputs(loaded, sim, folder, out, err);
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);
+  if (args.verbose) PrintEventLog(*loaded.diagram, sim.events(), out);
   PrintEventWarnings(*loaded.diagram, sim.events(), err);
   if (outcome.interrupted) return 128 + outcome.interrupted;  // 130 SIGINT, 143 SIGTERM, as shells report them
   return outcome.ok && all_written ? 0 : 1;

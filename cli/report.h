@@ -24,6 +24,11 @@ void PrintFigures(const std::vector<blocks::ReportFigure>& figures, bool finishe
 // Warnings carried by events (an element crossing that means "check the
 // model", e.g. a contact's penetration beyond its max_penetration): one line
 // per element, at the first such event, with its time.
+// The event log (mechflow run --verbose): every event with its time, the
+// block, and for a mechanism the element and what the event means for it.
+void PrintEventLog(const blocks::Diagram& diagram, const std::vector<blocks::EventRecord>& events,
+                   std::ostream& out);
+
 void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks::EventRecord>& events,
                         std::ostream& out);
 

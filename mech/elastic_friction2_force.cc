@@ -165,4 +165,14 @@ ElementCoordinate ElasticFriction2Force::Coordinate(const std::string& component
   return c;
 }
 
+std::string ElasticFriction2Force::CrossingName(int index, int) const {
+  switch (index) {
+    case kBreaksForward: return "slider breaks away: slip+";
+    case kBreaksBackward: return "slider breaks away: slip-";
+    case kSlipPlusStops: return "slip+ ends: the slider sticks";
+    case kSlipMinusStops: return "slip- ends: the slider sticks";
+  }
+  return ForceElement::CrossingName(index, 0);
+}
+
 }  // namespace mechflow::mech

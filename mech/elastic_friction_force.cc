@@ -120,4 +120,14 @@ ElementCoordinate ElasticFrictionForce::Coordinate(const std::string& component)
   return c;
 }
 
+std::string ElasticFrictionForce::CrossingName(int index, int) const {
+  switch (index) {
+    case kBreaksForward: return "slider breaks away: slip+";
+    case kBreaksBackward: return "slider breaks away: slip-";
+    case kSlipPlusStops: return "slip+ ends: the slider sticks";
+    case kSlipMinusStops: return "slip- ends: the slider sticks";
+  }
+  return ForceElement::CrossingName(index, 0);
+}
+
 }  // namespace mechflow::mech

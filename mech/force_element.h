@@ -171,6 +171,12 @@ class ForceElement {
   // for the element's own.
   virtual ElementCoordinate Coordinate(const std::string& /*component*/) const { return {}; }
 
+  // What crossing `index` firing in `direction` means, for the event log
+  // (`mechflow run --verbose`): "sticks", "breaks away forward", ...
+  virtual std::string CrossingName(int index, int /*direction*/) const {
+    return "crossing " + std::to_string(index);
+  }
+
   // Crossing `index` fired in `direction`: a warning for the user when the
   // event means "check the model" (e.g. a contact sinking deeper than its
   // bound), else empty. Called after a run, not at run time.

@@ -194,4 +194,14 @@ ElementCoordinate FrictionalForce::Coordinate(const std::string& component) cons
   return c;
 }
 
+std::string FrictionalForce::CrossingName(int index, int) const {
+  switch (index) {
+    case kSlipPlusStops: return "slip+ ends: sticks (or turns, when the hold is beyond the limit)";
+    case kSlipMinusStops: return "slip- ends: sticks (or turns, when the hold is beyond the limit)";
+    case kBreaksForward: return "breaks away: slip+";
+    case kBreaksBackward: return "breaks away: slip-";
+  }
+  return ForceElement::CrossingName(index, 0);
+}
+
 }  // namespace mechflow::mech

@@ -56,6 +56,7 @@ class FrictionalForce final : public ForceElement {
   void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                 std::span<double> sensors) const override;
   ElementCoordinate Coordinate(const std::string& component) const override;
+  std::string CrossingName(int index, int direction) const override;
   void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
   void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
                   std::span<double> modes) const override;

@@ -89,5 +89,23 @@ TEST(CommandLineTest, SetTakesExpressionsAndFiles) {
   EXPECT_THROW(ParseArguments({"run", "d.xml", "--set-file", (dir / "bad.txt").string()}), UsageError);
 }
 
+TEST(CommandLineTest, VerboseLogsEveryEventWithItsElement) {
+  const fs::path out = fs::path(::testing::TempDir()) / "verbose";
+  const auto run = testing::RunMechflow("run " + std::string(MECHFLOW_SOURCE_DIR) +
+                                        "/diagrams/examples/elast_friction.xml --variant 'Simple spring' --verbose --out " +
+                                        out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // FR-2 with the stick spring: breakaway, then every reversal a stop and a breakaway, the last stop for good
+  std::size_t events = 0;
+  for (std::size_t at = run.out.find("event: t = "); at != std::string::npos; at = run.out.find("event: t = ", at + 1))
+    ++events;
+  EXPECT_EQ(events, 10u);
+  EXPECT_THAT(run.out, HasSubstr("s: m.friction: breaks away: slip-"));
+  EXPECT_THAT(run.out, HasSubstr("s: m.friction: slip- ends: sticks"));
+  const auto quiet = testing::RunMechflow("run " + std::string(MECHFLOW_SOURCE_DIR) +
+                                          "/diagrams/examples/elast_friction.xml --out " + out.string());
+  EXPECT_THAT(quiet.out, ::testing::Not(HasSubstr("event: t = ")));
+}
+
 }  // namespace
 }  // namespace mechflow::cli
