@@ -344,11 +344,13 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
                        modes.subspan(mechanism.mode_offset(e), element.num_modes()));
     if (element.tracks_work()) x[mechanism.state_offset(e) + element.work_state()] = 0.0;
   }
-  // The references of the energy sensors: what is stored at the start.
-  EvaluateElements(mechanism, 0.0, x, inputs, modes, ws, {});
+  // The references of the energy sensors: what is stored at the start (the
+  // elements are evaluated only when one integrates its work).
   ws->initial_mechanical_energy = 0.0;
   for (int b = 1; b < model.num_bodies(); ++b)
     ws->initial_mechanical_energy += KineticEnergy(model, ws->kin, b) + PotentialEnergy(model, ws->kin, b);
+  if (!mechanism.tracks_work()) return;
+  EvaluateElements(mechanism, 0.0, x, inputs, modes, ws, {});
   for (int e = 0; e < mechanism.num_elements(); ++e) {
     const int energy = mechanism.element(e).energy_sensor();
     ws->initial_stored_energy[e] = energy < 0 ? 0.0 : ws->sensors[mechanism.sensor_offset(e) + energy];
