@@ -36,9 +36,8 @@ FoundElement FindElement(const diagrams::LoadedDiagram& loaded, const std::strin
                    (names.empty() ? "; the diagram has none" : "; elements: " + blocks::JoinNames(names)));
 }
 
-// Rows [first, first + samples] of column `c`.
-std::vector<double> Period(const blocks::Results& r, int c, std::size_t first, int samples) {
-  const std::vector<double> column = r.Column(c);
+// Rows [first, first + samples] of a column.
+std::vector<double> Period(const std::vector<double>& column, std::size_t first, int samples) {
   return std::vector<double>(column.begin() + first, column.begin() + first + samples + 1);
 }
 
@@ -74,16 +73,17 @@ ForceAnalysisCase RunCase(const diagrams::LoadedDiagram& loaded, const FoundElem
   }
   const blocks::Results& r = sim.results();
   const int samples = request.samples;
-  const std::size_t rows = r.Column(0).size();
+  const std::size_t rows = r.num_rows();
   if (rows < static_cast<std::size_t>(2 * samples + 1)) {
     out.failure = "too few rows for two periods";
     return out;
   }
   const std::size_t last = rows - 1 - samples, before = last - samples;
-  out.x = Period(r, 1, last, samples);
-  out.v = Period(r, 2, last, samples);
-  out.reaction = Period(r, 3, last, samples);
-  const std::vector<double> previous = Period(r, 3, before, samples);
+  const std::vector<double> reaction = r.Column(3);
+  out.x = Period(r.Column(1), last, samples);
+  out.v = Period(r.Column(2), last, samples);
+  out.reaction = Period(reaction, last, samples);
+  const std::vector<double> previous = Period(reaction, before, samples);
   double largest = 0.0, difference = 0.0;
   for (int k = 0; k <= samples; ++k) {
     largest = std::max(largest, std::abs(out.reaction[k]));

@@ -26,57 +26,13 @@ const std::vector<std::string>& CommandOptions(const std::string& command) {
   return none;
 }
 
-double ParseNumber(const std::string& text, const std::string& option) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size())
-    throw UsageError(option + ": '" + text + "' is not a number");
-  return value;
-}
-
-// --vary NAME=V1,V2,...: finite numbers, at least one.
+// --vary NAME=...: the name and its values.
 std::pair<std::string, std::vector<double>> ParseVary(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
     throw UsageError("--vary expects NAME=V1,V2,..., got '" + text + "'");
   const std::string name = text.substr(0, eq);
-  std::vector<double> values;
-  // A:B:N (N values evenly spaced) or A:B:N:log (evenly on a log scale)
-  if (const std::string spec = text.substr(eq + 1); spec.find(':') != std::string::npos) {
-    std::vector<std::string> parts;
-    for (size_t start = 0;;) {
-      const size_t colon = spec.find(':', start);
-      parts.push_back(spec.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
-      if (colon == std::string::npos) break;
-      start = colon + 1;
-    }
-    const bool log = parts.size() == 4 && parts[3] == "log";
-    if (parts.size() != 3 && !log)
-      throw UsageError("--vary " + name + ": a range is A:B:N or A:B:N:log, got '" + spec + "'");
-    const double a = ParseNumber(parts[0], "--vary " + name), b = ParseNumber(parts[1], "--vary " + name);
-    const double n = ParseNumber(parts[2], "--vary " + name);
-    if (!(n >= 2 && n <= 1e6 && n == std::floor(n)))
-      throw UsageError("--vary " + name + ": N must be a whole number from 2, got '" + parts[2] + "'");
-    if (!std::isfinite(a) || !std::isfinite(b) || (log && !(a > 0 && b > 0)))
-      throw UsageError("--vary " + name + ": " + (log ? "a log range needs A, B > 0" : "A and B must be numbers"));
-    for (int i = 0; i < n; ++i) {
-      // to 15 digits, so that 0.05:0.2:4 gives 0.15, not 0.15000000000000002
-      char text[32];
-      std::snprintf(text, sizeof text, "%.15g", log ? a * std::pow(b / a, i / (n - 1)) : a + (b - a) * i / (n - 1));
-      values.push_back(std::strtod(text, nullptr));
-    }
-    return {name, values};
-  }
-  for (size_t start = eq + 1;;) {
-    const size_t comma = text.find(',', start);
-    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    const double v = ParseNumber(item, "--vary " + name);
-    if (!std::isfinite(v)) throw UsageError("--vary " + name + ": '" + item + "' is not a finite number");
-    values.push_back(v);
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return {name, values};
+  return {name, ParseValues(text.substr(eq + 1), "--vary " + name)};
 }
 
 // --set NAME=VALUE: a number, or else an expression of identifiers.
@@ -97,6 +53,46 @@ void AddSet(const std::string& kv, const std::string& where, Arguments* a) {
 }
 
 }  // namespace
+
+double ParseNumber(const std::string& text, const std::string& option) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size())
+    throw UsageError(option + ": '" + text + "' is not a number");
+  if (!std::isfinite(value)) throw UsageError(option + ": '" + text + "' is not a finite number");
+  return value;
+}
+
+std::vector<double> ParseValues(const std::string& spec, const std::string& option) {
+  std::vector<std::string> parts;
+  const char separator = spec.find(':') != std::string::npos ? ':' : ',';
+  for (size_t start = 0;;) {
+    const size_t at = spec.find(separator, start);
+    parts.push_back(spec.substr(start, at == std::string::npos ? std::string::npos : at - start));
+    if (at == std::string::npos) break;
+    start = at + 1;
+  }
+  std::vector<double> values;
+  if (separator == ',') {
+    for (const std::string& item : parts) values.push_back(ParseNumber(item, option));
+    return values;
+  }
+  // A:B:N (N values evenly spaced) or A:B:N:log (evenly on a log scale)
+  const bool log = parts.size() == 4 && parts[3] == "log";
+  if (parts.size() != 3 && !log) throw UsageError(option + ": a range is A:B:N or A:B:N:log, got '" + spec + "'");
+  const double a = ParseNumber(parts[0], option), b = ParseNumber(parts[1], option);
+  const double n = ParseNumber(parts[2], option);
+  if (!(n >= 2 && n <= 1e6 && n == std::floor(n)))
+    throw UsageError(option + ": N must be a whole number from 2, got '" + parts[2] + "'");
+  if (log && !(a > 0 && b > 0)) throw UsageError(option + ": a log range needs A, B > 0");
+  for (int i = 0; i < n; ++i) {
+    // to 15 digits, so that 0.05:0.2:4 gives 0.15, not 0.15000000000000002
+    char text[32];
+    std::snprintf(text, sizeof text, "%.15g", log ? a * std::pow(b / a, i / (n - 1)) : a + (b - a) * i / (n - 1));
+    values.push_back(std::strtod(text, nullptr));
+  }
+  return values;
+}
 
 std::string HelpText(const std::string& command) {
   if (command == "run")
@@ -314,6 +310,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
     }
   }
   if (!a.help && a.file.empty()) throw UsageError("mechflow " + a.command + " needs a diagram FILE");
+  if (a.quiet && a.verbose) throw UsageError("--quiet and --verbose contradict each other; give one");
   if (!a.help && a.command == "sweep" && a.vary.empty())
     throw UsageError("mechflow sweep needs at least one --vary NAME=V1,V2,...");
   return a;

@@ -39,6 +39,12 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A finite number, or UsageError naming `option`.
+double ParseNumber(const std::string& text, const std::string& option);
+// Values as a list "V1,V2,..." or a range "A:B:N" (evenly spaced) or
+// "A:B:N:log" (evenly on a log scale); UsageError naming `option`.
+std::vector<double> ParseValues(const std::string& spec, const std::string& option);
+
 // Help texts: general (command empty) or per command.
 std::string HelpText(const std::string& command);
 

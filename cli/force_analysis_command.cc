@@ -1,5 +1,6 @@
 #include "cli/force_analysis_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -21,41 +22,10 @@ std::string Number(double v) {
   return text;
 }
 
-double ParseValue(const std::string& text, const std::string& option) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(option + ": '" + text + "' is not a number");
-}
-
 int ParseCount(const std::string& text, const std::string& option) {
-  const double v = ParseValue(text, option);
+  const double v = ParseNumber(text, option);
   if (!(v >= 1 && v <= 1e7 && v == std::floor(v))) throw UsageError(option + ": '" + text + "' is not a whole number");
   return static_cast<int>(v);
-}
-
-std::vector<double> ParseList(const std::string& text, const std::string& option) {
-  std::vector<double> values;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) values.push_back(ParseValue(item, option));
-  if (values.empty()) throw UsageError(option + " needs at least one value");
-  return values;
-}
-
-// F1:F2:N, N frequencies from F1 to F2 spaced evenly on a log scale.
-std::vector<double> ParseRange(const std::string& text) {
-  const auto a = text.find(':'), b = text.rfind(':');
-  if (a == std::string::npos || a == b) throw UsageError("--frequencies expects F1:F2:N, got '" + text + "'");
-  const double f1 = ParseValue(text.substr(0, a), "--frequencies"), f2 = ParseValue(text.substr(a + 1, b - a - 1), "--frequencies");
-  const double n = ParseValue(text.substr(b + 1), "--frequencies");
-  if (!(f1 > 0 && f2 > f1)) throw UsageError("--frequencies: need 0 < F1 < F2, got '" + text + "'");
-  if (!(n >= 2 && n <= 10000 && n == std::floor(n))) throw UsageError("--frequencies: N must be a whole number from 2 to 10000");
-  std::vector<double> out;
-  for (int i = 0; i < n; ++i) out.push_back(f1 * std::pow(f2 / f1, i / (n - 1)));
-  return out;
 }
 
 std::string CaseLabel(const analysis::ForceAnalysisRequest& request, const analysis::ForceAnalysisCase& c) {
@@ -91,8 +61,8 @@ std::string ForceAnalysisHelp() {
          "\n"
          "  --element NAME      the force element (a <force>, <joint_force>, <contact> or <bushing>)\n"
          "  --component C       a bushing's dx, dy, dz (m) or ax, ay, az (rad)\n"
-         "  --amplitude A,...   amplitudes [m or rad], > 0\n"
-         "  --frequency F,...   frequencies [Hz], > 0\n"
+         "  --amplitude A,...   amplitudes [m or rad], > 0 (or a range A:B:N, A:B:N:log)\n"
+         "  --frequency F,...   frequencies [Hz], > 0 (or a range, as --amplitude)\n"
          "  --frequencies F1:F2:N  N frequencies from F1 to F2, evenly spaced on a log scale\n"
          "  --vary NAME=V1,...  repeat for every value of the identifier (repeatable; the\n"
          "                      cartesian product); NAME1,NAME2=... sets several alike\n"
@@ -121,13 +91,18 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
   for (const auto& [option, value] : args.command_options) {
     if (option == "--element") request.element = value;
     else if (option == "--component") request.component = value;
-    else if (option == "--amplitude") request.amplitudes = ParseList(value, option);
-    else if (option == "--frequency") request.frequencies = ParseList(value, option);
-    else if (option == "--frequencies") request.frequencies = ParseRange(value);
+    else if (option == "--amplitude") request.amplitudes = ParseValues(value, option);
+    else if (option == "--frequency") request.frequencies = ParseValues(value, option);
+    else if (option == "--frequencies") {
+      if (std::count(value.begin(), value.end(), ':') != 2)
+        throw UsageError("--frequencies expects F1:F2:N, got '" + value + "'");
+      request.frequencies = ParseValues(value + ":log", option);
+    }
     else if (option == "--cycles") request.cycles = ParseCount(value, option);
     else if (option == "--samples") request.samples = ParseCount(value, option);
   }
   if (request.element.empty()) throw UsageError("needs --element NAME (the force element to drive)");
+  if (args.t_end) throw UsageError("--t-end does not apply: each case runs --cycles periods of its frequency");
   for (const auto& [names, values] : args.vary) {
     std::vector<std::string> split;
     std::stringstream in(names);
@@ -245,9 +220,10 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
     const std::string x_label = by_frequency ? "frequency [Hz]" : request.vary.front().first.front();
     folder.Write(base + ".curves.csv", table.str());
     const std::string plot = base + ".png";
-    warning = DrawPlot(XYPlotScript({{"dynamic stiffness K = |R1| / a", x_label, "K", k_curves, by_frequency},
+    warning = DrawPlot(XYPlotScript({{"dynamic stiffness K = |R1| / a", x_label, "K", k_curves, by_frequency, false,
+                                      0.0, true},
                                      {"phase delta = arg R1 - arg x1", x_label, "delta [deg]", delta_curves,
-                                      by_frequency}},
+                                      by_frequency, false, 0.0, true}},
                                     fa.diagram + ": " + fa.element_what, base + ".curves.csv", plot),
                        folder, plot);
     if (warning.empty()) out << "wrote " << folder.PathOf(plot) << " (data " << base << ".curves.csv)\n";

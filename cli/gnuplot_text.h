@@ -1,6 +1,8 @@
 #pragma once
 // Text for gnuplot scripts.
 
+#include <algorithm>
+#include <filesystem>
 #include <string>
 
 namespace mechflow::cli {
@@ -18,6 +20,23 @@ inline std::string GnuplotQuote(const std::string& s) {
     else out += c;
   }
   return out + "'";
+}
+
+// The head of every plot script: the terminal (PNG, or SVG by the plot's
+// extension) sized for `panels` panels of `panel_height` pixels, the CSV
+// separator, grid, key and margins (fixed, so that stacked axes align), and
+// the stacked layout under `title`.
+inline std::string GnuplotPreamble(const std::string& plot_name, int panels, int panel_height, int right_margin,
+                                   const std::string& title) {
+  const bool svg = std::filesystem::path(plot_name).extension() == ".svg";
+  panels = std::max(1, panels);
+  return "# drawn by mechflow; edit and run again in this folder with: gnuplot " + GnuplotQuote(plot_name + ".gp") +
+         "\nset terminal " + (svg ? "svg" : "pngcairo") + " size 1000," +
+         std::to_string(std::min(4000, 120 + panel_height * panels)) + " noenhanced font 'sans,10'" +
+         (svg ? " background rgb 'white'" : "") + "\nset output " + GnuplotQuote(plot_name) +
+         "\nset datafile separator ','\nset grid\nset key outside right top\nset lmargin 12\nset rmargin " +
+         std::to_string(right_margin) + "\nset multiplot layout " + std::to_string(panels) + ",1 title " +
+         GnuplotQuote(title) + "\n";
 }
 
 }  // namespace mechflow::cli

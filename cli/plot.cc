@@ -18,18 +18,9 @@ namespace mechflow::cli {
 std::string GnuplotScript(const blocks::Results& results, const std::vector<diagrams::PlotGroup>& groups,
                           const std::string& title, const std::string& csv_name, const std::string& plot_name,
                           const std::vector<diagrams::XYPlotRequest>& xy) {
-  const bool svg = std::filesystem::path(plot_name).extension() == ".svg";
-  const int panels = std::max<int>(1, static_cast<int>(groups.size() + xy.size()));
-  const int height = std::min(4000, 120 + 260 * panels);
   std::ostringstream s;
-  s << "# drawn by mechflow; edit and run again in this folder with: gnuplot " << GnuplotQuote(plot_name + ".gp") << "\n";
-  s << "set terminal " << (svg ? "svg" : "pngcairo") << " size 1000," << height
-    << " noenhanced font 'sans,10'" << (svg ? " background rgb 'white'" : "") << "\n";
-  s << "set output " << GnuplotQuote(plot_name) << "\n";
-  s << "set datafile separator ','\n";
-  // fixed margins keep the time axes of all panels aligned
-  s << "set grid\nset key outside right top\nset lmargin 12\nset rmargin 22\nset xlabel 'time [s]'\n";
-  s << "set multiplot layout " << panels << ",1 title " << GnuplotQuote(title) << "\n";
+  s << GnuplotPreamble(plot_name, static_cast<int>(groups.size() + xy.size()), 260, 22, title)
+    << "set xlabel 'time [s]'\n";
   for (const auto& g : groups) {
     // the group's name on its axis too: "contact force [N]" carries the unit
     s << "set title " << GnuplotQuote(g.name) << "\nset ylabel " << GnuplotQuote(g.name) << "\n";
@@ -58,16 +49,8 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
 
 std::string OverlayScript(const std::vector<diagrams::PlotGroup>& groups, const std::vector<std::string>& columns,
                           const std::vector<OverlayRun>& runs, const std::string& title, const std::string& plot_name) {
-  const bool svg = std::filesystem::path(plot_name).extension() == ".svg";
-  const int panels = std::max<int>(1, static_cast<int>(groups.size()));
   std::ostringstream s;
-  s << "# drawn by mechflow; edit and run again in this folder with: gnuplot " << GnuplotQuote(plot_name + ".gp") << "\n";
-  s << "set terminal " << (svg ? "svg" : "pngcairo") << " size 1000," << std::min(4000, 120 + 300 * panels)
-    << " noenhanced font 'sans,10'" << (svg ? " background rgb 'white'" : "") << "\n";
-  s << "set output " << GnuplotQuote(plot_name) << "\n";
-  s << "set datafile separator ','\n";
-  s << "set grid\nset key outside right top\nset lmargin 12\nset rmargin 28\nset xlabel 'time [s]'\n";
-  s << "set multiplot layout " << panels << ",1 title " << GnuplotQuote(title) << "\n";
+  s << GnuplotPreamble(plot_name, static_cast<int>(groups.size()), 300, 28, title) << "set xlabel 'time [s]'\n";
   for (const auto& g : groups) {
     s << "set title " << GnuplotQuote(g.name) << "\nplot ";
     bool first = true;

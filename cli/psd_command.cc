@@ -34,16 +34,6 @@ std::vector<std::string> Fields(const std::string& line) {
   return out;
 }
 
-double Value(const std::string& text, const std::string& option) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used == text.size()) return v;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(option + ": '" + text + "' is not a number");
-}
-
 }  // namespace
 
 const std::vector<std::string> kPsdOptions = {"--signal", "--segment", "--overlap", "--window",
@@ -85,14 +75,18 @@ int PsdCommand(const Arguments& args, std::ostream& out, std::ostream&) {
   std::vector<std::string> wanted;
   for (const auto& [option, value] : args.command_options) {
     if (option == "--signal") wanted.push_back(value);
-    else if (option == "--segment") request.options.segment = static_cast<int>(Value(value, option));
-    else if (option == "--overlap") request.options.overlap = Value(value, option);
+    else if (option == "--segment") request.options.segment = static_cast<int>(ParseNumber(value, option));
+    else if (option == "--overlap") request.options.overlap = ParseNumber(value, option);
     else if (option == "--window") request.options.window = analysis::ParseWindow(value, "--window");
-    else if (option == "--from") request.from = Value(value, option);
-    else if (option == "--peaks") request.peaks = static_cast<int>(Value(value, option));
-    else if (option == "--max-frequency") request.max_frequency = Value(value, option);
+    else if (option == "--from") request.from = ParseNumber(value, option);
+    else if (option == "--peaks") request.peaks = static_cast<int>(ParseNumber(value, option));
+    else if (option == "--max-frequency") request.max_frequency = ParseNumber(value, option);
   }
   if (wanted.empty()) throw UsageError("needs --signal NAME (a column of " + args.file + ")");
+  if (!args.variants.empty() || !args.overrides.empty() || !args.set_expressions.empty() || args.t_end ||
+      args.unsafe_lua)
+    throw UsageError("reads a results file: --set, --set-file, --variant, --t-end and --unsafe-lua do not apply "
+                     "(give them to the run that wrote it)");
   const OutputFolder folder(args.out_dir);
   std::stringstream text(blocks::ReadInputFile(args.file, "results file"));
   std::string line;

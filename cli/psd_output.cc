@@ -26,7 +26,9 @@ std::vector<std::vector<double>> UniformRows(const PsdRequest& r, double* dt) {
   std::size_t first = 0;
   while (first < r.time.size() && r.time[first] < r.from) ++first;
   const std::size_t n = r.time.size() - first;
-  if (n < 16) throw InputError("spectrum: " + std::to_string(n) + " rows from t = " + Number(r.time.empty() ? 0 : r.time[first < r.time.size() ? first : 0]) + " on; at least 16 are needed");
+  if (n < 16)
+    throw InputError("spectrum: " + std::to_string(n) + " rows from t = " + Number(std::max(r.from, 0.0)) +
+                     " s on; at least 16 are needed");
   const double t0 = r.time[first], t1 = r.time.back();
   *dt = (t1 - t0) / (n - 1);
   if (!(*dt > 0.0)) throw InputError("spectrum: the rows' times do not advance");

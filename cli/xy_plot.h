@@ -20,6 +20,9 @@ struct XYPanel {
   std::vector<XYCurve> curves;
   bool log_x = false, log_y = false;
   double x_max = 0.0;  // > 0: the x axis ends there
+  // the y axis reaches 0: a figure that is constant up to round-off shows
+  // flat, not its last digits stretched over the panel
+  bool y_includes_zero = false;
 };
 
 // The script that draws `panels` from the CSV file `csv_name` (a header row

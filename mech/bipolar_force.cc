@@ -57,14 +57,7 @@ void BipolarForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<d
 }
 
 ElementCoordinate BipolarForce::Coordinate(const std::string& component) const {
-  ElementCoordinate c;
-  if (!component.empty()) return c;
-  c.kind = ElementCoordinate::Kind::kLine;
-  c.body1 = body1_;
-  c.body2 = body2_;
-  c.point1 = point1_;
-  c.point2 = point2_;
-  return c;
+  return component.empty() ? ElementCoordinate::Line(body1_, point1_, body2_, point2_) : ElementCoordinate{};
 }
 
 }  // namespace mechflow::mech

@@ -84,15 +84,7 @@ void CirclePlaneContact::OnCrossing(int index, int direction, const ElementConte
 }
 
 ElementCoordinate CirclePlaneContact::Coordinate(const std::string& component) const {
-  ElementCoordinate c;
-  if (!component.empty()) return c;
-  c.kind = ElementCoordinate::Kind::kPenetration;
-  c.body1 = body1_;
-  c.body2 = body2_;
-  c.axis = normal_;
-  c.force_sensor = 0;  // "normal": it pushes the penetration down
-  c.force_sign = -1.0;
-  return c;
+  return component.empty() ? ElementCoordinate::Penetration(body1_, body2_, normal_) : ElementCoordinate{};
 }
 
 }  // namespace mechflow::mech

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "mech/errors.h"
+#include "mech/elastic_friction_force.h"
 #include "mech/frictional_force.h"
 
 namespace mechflow::mech {
@@ -155,24 +156,9 @@ bool ElasticFriction2Force::UpdateModes(const ElementContext& ctx, std::span<dou
 }
 
 ElementCoordinate ElasticFriction2Force::Coordinate(const std::string& component) const {
-  ElementCoordinate c;
-  if (!component.empty()) return c;
-  c.kind = ElementCoordinate::Kind::kLine;
-  c.body1 = body1_;
-  c.body2 = body2_;
-  c.point1 = point1_;
-  c.point2 = point2_;
-  return c;
+  return component.empty() ? ElementCoordinate::Line(body1_, point1_, body2_, point2_) : ElementCoordinate{};
 }
 
-std::string ElasticFriction2Force::CrossingName(int index, int) const {
-  switch (index) {
-    case kBreaksForward: return "slider breaks away: slip+";
-    case kBreaksBackward: return "slider breaks away: slip-";
-    case kSlipPlusStops: return "slip+ ends: the slider sticks";
-    case kSlipMinusStops: return "slip- ends: the slider sticks";
-  }
-  return ForceElement::CrossingName(index, 0);
-}
+std::string ElasticFriction2Force::CrossingName(int index, int) const { return SliderCrossingName(index); }
 
 }  // namespace mechflow::mech

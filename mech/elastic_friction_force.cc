@@ -110,24 +110,19 @@ double ElasticFrictionForce::SlidingDeflection(const ElementContext& ctx, double
 }
 
 ElementCoordinate ElasticFrictionForce::Coordinate(const std::string& component) const {
-  ElementCoordinate c;
-  if (!component.empty()) return c;
-  c.kind = ElementCoordinate::Kind::kLine;
-  c.body1 = body1_;
-  c.body2 = body2_;
-  c.point1 = point1_;
-  c.point2 = point2_;
-  return c;
+  return component.empty() ? ElementCoordinate::Line(body1_, point1_, body2_, point2_) : ElementCoordinate{};
 }
 
-std::string ElasticFrictionForce::CrossingName(int index, int) const {
+std::string SliderCrossingName(int index) {
   switch (index) {
     case kBreaksForward: return "slider breaks away: slip+";
     case kBreaksBackward: return "slider breaks away: slip-";
     case kSlipPlusStops: return "slip+ ends: the slider sticks";
     case kSlipMinusStops: return "slip- ends: the slider sticks";
   }
-  return ForceElement::CrossingName(index, 0);
+  return "crossing " + std::to_string(index);
 }
+
+std::string ElasticFrictionForce::CrossingName(int index, int) const { return SliderCrossingName(index); }
 
 }  // namespace mechflow::mech

@@ -20,6 +20,10 @@
 
 namespace mechflow::mech {
 
+// The event log's names of the crossings both elastic-friction elements
+// declare, in the same order: breaks forward, backward, slip+ ends, slip- ends.
+std::string SliderCrossingName(int index);
+
 class ElasticFrictionForce final : public ForceElement {
  public:
   // Throws InputError for negative constants, or c = d = 0 with F > 0.

@@ -66,6 +66,27 @@ struct ElementCoordinate {
   int force_sensor = 0;
   double force_sign = 1.0;
   int coordinate_sensor = 1;  // "length" of lines and joint forces, a contact's "penetration"
+
+  static ElementCoordinate Line(int body1, const Vec3& point1, int body2, const Vec3& point2) {
+    ElementCoordinate c;
+    c.kind = Kind::kLine;
+    c.body1 = body1, c.body2 = body2, c.point1 = point1, c.point2 = point2;
+    return c;
+  }
+  static ElementCoordinate Joint(int q_index, int v_index) {
+    ElementCoordinate c;
+    c.kind = Kind::kJoint;
+    c.q_index = q_index, c.v_index = v_index;
+    return c;
+  }
+  // a contact: its sensor 0 ("normal") pushes the penetration down
+  static ElementCoordinate Penetration(int body1, int body2, const Vec3& normal) {
+    ElementCoordinate c;
+    c.kind = Kind::kPenetration;
+    c.body1 = body1, c.body2 = body2, c.axis = normal;
+    c.force_sign = -1.0;
+    return c;
+  }
 };
 
 // A numeric element parameter: a constant, or a function of (t, inputs...)

@@ -178,20 +178,9 @@ void FrictionalForce::OnCrossing(int index, int, const ElementContext&, std::spa
 }
 
 ElementCoordinate FrictionalForce::Coordinate(const std::string& component) const {
-  ElementCoordinate c;
-  if (!component.empty()) return c;
-  if (q_index_ >= 0) {
-    c.kind = ElementCoordinate::Kind::kJoint;
-    c.q_index = q_index_;
-    c.v_index = v_index_;
-    return c;
-  }
-  c.kind = ElementCoordinate::Kind::kLine;
-  c.body1 = body1_;
-  c.body2 = body2_;
-  c.point1 = point1_;
-  c.point2 = point2_;
-  return c;
+  if (!component.empty()) return {};
+  return q_index_ >= 0 ? ElementCoordinate::Joint(q_index_, v_index_)
+                       : ElementCoordinate::Line(body1_, point1_, body2_, point2_);
 }
 
 std::string FrictionalForce::CrossingName(int index, int) const {

@@ -25,12 +25,7 @@ void JointForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<dou
 }
 
 ElementCoordinate JointForce::Coordinate(const std::string& component) const {
-  ElementCoordinate c;
-  if (!component.empty()) return c;
-  c.kind = ElementCoordinate::Kind::kJoint;
-  c.q_index = q_index_;
-  c.v_index = v_index_;
-  return c;
+  return component.empty() ? ElementCoordinate::Joint(q_index_, v_index_) : ElementCoordinate{};
 }
 
 }  // namespace mechflow::mech

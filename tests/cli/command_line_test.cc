@@ -42,6 +42,7 @@ TEST(CommandLineTest, VaryRanges) {
   EXPECT_THROW(ParseArguments({"sweep", "d.xml", "--vary", "k=1:2"}), UsageError);
   EXPECT_THROW(ParseArguments({"sweep", "d.xml", "--vary", "k=0:2:3:log"}), UsageError);
   EXPECT_THROW(ParseArguments({"sweep", "d.xml", "--vary", "k=1:2:1.5"}), UsageError);
+  EXPECT_THROW(ParseArguments({"run", "d.xml", "--quiet", "--verbose"}), UsageError);
 }
 
 TEST(CommandLineTest, RunSettingsQuietAndUsage) {

@@ -54,6 +54,9 @@ TEST(PsdCommandTest, BadInputExits2) {
   outcome = RunMechflow("psd " + (dir / "r.csv").string() + " --out " + dir.string());
   EXPECT_EQ(outcome.exit_code, 2);
   EXPECT_THAT(outcome.err, HasSubstr("needs --signal"));
+  outcome = RunMechflow("psd " + (dir / "r.csv").string() + " --signal x --set c=1 --out " + dir.string());
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.err, HasSubstr("do not apply"));
   // a <spectrum> of a column that is not logged is refused at its line
   std::ofstream(dir / "d.xml") << "<diagram name='d'>\n<blocks><block type='sine' name='s' amplitude='1' frequency='5'/>"
                                   "</blocks>\n<solver t_end='1'/>\n<output interval='0.001'><log signal='s.y'/>\n"
