@@ -258,6 +258,8 @@ mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
       mech::TransformSpec spec;
       spec.type = static_cast<T>(it - kEtTypes.begin());
       spec.origin = et.loc.str();
+      if (r.Has(et, "signal") && et_type != "tt" && et_type != "rt")
+        throw InputError(what + ": 'signal' drives a prescribed transformation; use type \"tt\" or \"rt\"");
       if (et_type == "tc" && r.Has(et, "vector")) {
         const Vec3 vec = r.Vector(et, "vector", Vec3::Zero());
         if (!(vec.norm() > 0)) throw InputError(what + ": the translation vector is zero");
@@ -269,14 +271,24 @@ mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
       }
       if (et_type == "tc" || et_type == "rc") {
         if (!r.Has(et, "vector")) spec.value = r.Number(et, "value", 0.0);
+      } else if ((et_type == "tt" || et_type == "rt") && r.Has(et, "signal")) {
+        // driven by a block signal: an input port of width 3 (q, q', q'')
+        if (r.Has(et, "value")) throw InputError(what + ": give either 'value' (a function of t) or 'signal', not both");
+        spec.signal = et.Text("signal");
+        if (!scripting::IsLuaName(spec.signal))
+          throw InputError(what + ": 'signal' must be a name (letters, digits, '_'), got '" + spec.signal + "'");
+        if (std::find(r.inputs().begin(), r.inputs().end(), scripting::ToLower(spec.signal)) != r.inputs().end())
+          throw InputError(what + ": the driving signal '" + spec.signal +
+                           "' has the name of an <input>; a drive is its own port of q, q', q'' -- name it apart");
       } else if (et_type == "tt" || et_type == "rt") {
-        if (!r.Has(et, "value")) throw InputError(what + ": needs 'value', a function of t");
+        if (!r.Has(et, "value"))
+          throw InputError(what + ": needs 'value', a function of t, or 'signal', the name of a driving port");
         // a time function takes identifiers at their values at load: one
         // fed by a signal would stay at its start, silently
         if (r.MentionsInput(et.Text("value")))
           throw InputError(what + ": 'value' names an <input> of this mechanism (a signal), but a time function "
                                   "takes identifiers at their values at load and would not follow it; drive the "
-                                  "joint by a force from the signal (a <joint_force> expression of the input)");
+                                  "motion by a signal instead (signal=\"NAME\", fed by a motion block)");
         spec.function = std::make_shared<scripting::CompiledTimeFunction>(et.Text("value"), *eval.identifiers(), what);
         eval.identifiers()->NoteFixedUses(et.Text("value"), what);
       } else {

@@ -52,7 +52,7 @@ const std::vector<ElementSchema>& Schema() {
        {"point1", "point2", "rotation1", "rotation2", "axis", "q0", "v0", "locked", "position", "angles", "velocity",
         "angular_velocity", "axis1", "axis2", "reference1", "reference2"},
        {"et"}},
-      {"et", {"type"}, {"axis", "value", "vector", "q0", "v0", "locked", "name"}, {}},
+      {"et", {"type"}, {"axis", "value", "signal", "vector", "q0", "v0", "locked", "name"}, {}},
       {"force", {"name", "type", "body1", "body2"},
        {"point1", "point2", "c", "x0", "d", "f0", "points", "interpolation", "extrapolation", "expression",
         "friction", "ratio", "stick", "c1", "c2", "mu", "mu0", "l0", "limit", "normal_force"},

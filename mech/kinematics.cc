@@ -17,6 +17,7 @@ Kinematics::Kinematics(const Model& model) {
   velocity.assign(ns, Vec6::Zero());
   bias.assign(ns, Vec6::Zero());
   prescribed.resize(ns);
+  drives.resize(model.drive_signals().size());
   body_pose.resize(nb);
   body_omega.assign(nb, Vec3::Zero());
   body_velocity.assign(nb, Vec3::Zero());
@@ -38,7 +39,7 @@ void UpdateKinematics(const Model& model, double t, std::span<const double> q, s
     } else {
       Jet s;
       if (seg.drive == SegmentDrive::kTime) {
-        s = seg.function->Evaluate(t);
+        s = seg.signal >= 0 ? kin->drives[seg.signal] : seg.function->Evaluate(t);
         kin->prescribed[i] = s;
       } else if (seg.drive == SegmentDrive::kDof) {
         s = {q[seg.q_index], v[seg.v_index], 0.0};

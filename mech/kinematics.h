@@ -25,6 +25,8 @@ struct Kinematics {
   std::vector<Vec6> velocity;       // spatial velocity, segment frame
   std::vector<Vec6> bias;           // acceleration when the DOF accelerations are zero, minus the parent's
   std::vector<Jet> prescribed;      // s(t) of time-driven segments
+  // Values of Model::drive_signals, set by the owner before each update.
+  std::vector<Jet> drives;
   // per body (global)
   std::vector<Pose> body_pose;
   std::vector<Vec3> body_omega;

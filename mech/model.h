@@ -47,7 +47,8 @@ struct Segment {
   Vec3 axis = Vec3::UnitZ();  // unit, in the joint frame (revolute/prismatic)
   int q_index = -1;           // first position coordinate (kDof)
   int v_index = -1;           // first velocity coordinate (kDof)
-  std::shared_ptr<const TimeFunction> function;  // kTime
+  std::shared_ptr<const TimeFunction> function;  // kTime, unless driven by a signal
+  int signal = -1;  // kTime driven by a signal: index into Model::drive_signals and Kinematics::drives
   Mat6 inertia = Mat6::Zero();  // spatial inertia of the bodies it carries, in its frame
   int joint = -1;               // the joint this segment belongs to
   bool ghost = false;           // part of a cut joint's chain (massless)
@@ -104,6 +105,9 @@ class Model {
   const std::vector<Joint>& joints() const { return joints_; }
   const std::vector<Segment>& segments() const { return segments_; }
   const std::vector<Dof>& dofs() const { return dofs_; }
+  // Names of the signals that drive segments (tt/rt given by a signal rather
+  // than a function of time); Kinematics::drives holds their values.
+  const std::vector<std::string>& drive_signals() const { return drive_signals_; }
   const Vec3& gravity() const { return gravity_; }
   int nq() const { return nq_; }
   int nv() const { return nv_; }
@@ -126,6 +130,7 @@ class Model {
   std::vector<Joint> joints_;
   std::vector<Segment> segments_;
   std::vector<Dof> dofs_;
+  std::vector<std::string> drive_signals_;
   // name -> index, for the Find functions (a linear search per name made
   // building a long chain quadratic)
   std::map<std::string, int, std::less<>> body_index_, joint_index_, dof_index_;

@@ -1,5 +1,6 @@
 #include "mech/model_builder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -133,7 +134,8 @@ void ModelBuilder::AddJoint(JointSpec spec) {
                                  "' transformation " + std::to_string(k + 1) + ": ";
     if (!(et.axis.norm() > 0.0) || !et.axis.allFinite())
       throw InputError(et_where + "axis vector must be non-zero");
-    if (IsTimed(et.type) && !et.function) throw InputError(et_where + "a time function is required");
+    if (IsTimed(et.type) && !et.function == et.signal.empty())
+      throw InputError(et_where + "a time function or a driving signal is required (one of the two)");
     if (!std::isfinite(et.value) || !std::isfinite(et.rate)) throw InputError(et_where + "values must be finite");
   }
   joint_specs_.push_back(std::move(spec));
@@ -180,6 +182,11 @@ int ModelBuilder::AppendChain(const JointSpec& spec, int joint_index, int parent
     if (IsTimed(et.type)) {
       seg.drive = SegmentDrive::kTime;
       seg.function = et.function;
+      if (!et.signal.empty()) {
+        auto& names = m.drive_signals_;
+        seg.signal = static_cast<int>(std::find(names.begin(), names.end(), et.signal) - names.begin());
+        if (seg.signal == static_cast<int>(names.size())) names.push_back(et.signal);
+      }
     } else {
       ++k_variable;
       std::string name = et.dof_name;

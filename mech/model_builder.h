@@ -25,6 +25,7 @@ struct TransformSpec {
   double rate = 0.0;          // tv/rv: the initial velocity
   bool locked = false;        // tv/rv switched off: stays at `value`
   std::shared_ptr<const TimeFunction> function;  // tt/rt
+  std::string signal;         // tt/rt driven by this signal instead of `function`
   std::string dof_name;       // tv/rv: optional; default: the joint's name (one DOF) or joint.k
   std::string origin;
 };

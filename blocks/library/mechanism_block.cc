@@ -44,6 +44,12 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
       scratch_(mechanism_->num_states(), 0.0),
       xdot_(mechanism_->num_states(), 0.0) {
   for (int i = 0; i < mechanism_->num_inputs(); ++i) DeclareInputPort(mechanism_->input_name(i));
+  for (const std::string& signal : mechanism_->model().drive_signals()) {
+    if (FindInput(signal) >= 0)
+      throw InputError("mechanism '" + this->name() + "': the driving signal '" + signal +
+                       "' has the name of an <input>; give the drive another name");
+    DeclareInputPort(signal, 3);  // q, q', q''
+  }
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     const mech::SensorSpec& sensor = sensors_[i];
     mech::CheckSensor(*mechanism_, sensor);
@@ -58,7 +64,7 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
   // them (a spring force may feed a friction force back without a loop).
   for (int out = 0; out < num_outputs(); ++out) {
     if (mech::SensorDependsOnInputs(*mechanism_, sensors_[out])) continue;
-    for (int in = 0; in < num_inputs(); ++in) SetFeedthrough(in, out, false);
+    for (int in = 0; in < mechanism_->num_inputs(); ++in) SetFeedthrough(in, out, false);
   }
   const std::vector<std::string> names = StateNames(*mechanism_);
   for (const std::string& state : names) DeclareContinuousStates(1, state);
@@ -82,16 +88,28 @@ const BlockSparsity* MechanismBlock::sparsity() const {
 }
 
 std::span<const double> MechanismBlock::Inputs(const BlockContext& ctx) const {
-  for (int i = 0; i < num_inputs(); ++i) inputs_[i] = ctx.input_scalar(i);
+  for (int i = 0; i < mechanism_->num_inputs(); ++i) inputs_[i] = ctx.input_scalar(i);
+  ReadDrives(ctx);
   return inputs_;
 }
 
+void MechanismBlock::ReadDrives(const BlockContext& ctx) const {
+  const int first = mechanism_->num_inputs();
+  for (std::size_t k = 0; k < ws_.kin.drives.size(); ++k) {
+    const std::span<const double> jet = ctx.input(first + static_cast<int>(k));
+    ws_.kin.drives[k] = {jet[0], jet[1], jet[2]};
+  }
+}
+
 void MechanismBlock::DoInitialize(const BlockContext& ctx) const {
-  // Inputs are not valid yet: elements initialise with inputs at zero.
+  // Inputs are not valid yet: elements initialise with inputs at zero, and
+  // driven segments at zero until the first mode update (below).
   std::fill(inputs_.begin(), inputs_.end(), 0.0);
+  std::fill(ws_.kin.drives.begin(), ws_.kin.drives.end(), mech::Jet{});
   mech::InitialState(*mechanism_, inputs_, ctx.state(), ctx.discrete(), &ws_);
   positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
   worst_residual_ = 0.0;
+  initial_state_pending_ = !ws_.kin.drives.empty();
 }
 
 void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
@@ -103,6 +121,7 @@ void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
     full_at_ = positions_at_ = now;
   } else {
     if (positions_at_ == now || full_at_ == now) return;
+    ReadDrives(ctx);
     mech::EvaluatePositions(*mechanism_, ctx.time(), ctx.state(), &ws_);
     positions_at_ = now;
   }
@@ -162,6 +181,15 @@ void MechanismBlock::DoZeroCrossing(int index, int direction, const BlockContext
 }
 
 bool MechanismBlock::DoUpdateModes(const BlockContext& ctx) const {
+  if (initial_state_pending_) {
+    // The first update with valid inputs: assemble the loops and start the
+    // elements at the drives' starting values (DoInitialize saw zeros).
+    initial_state_pending_ = false;
+    mech::InitialState(*mechanism_, Inputs(ctx), ctx.state(), ctx.discrete(), &ws_);
+    positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
+    mech::UpdateElementModes(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_);
+    return true;
+  }
   if (mechanism_->num_modes() == 0) return false;
   const bool changed =
       mech::UpdateElementModes(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_);
@@ -187,6 +215,7 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
     for (int k = 3; k < 7; ++k) q[seg.q_index + k] /= norm;
   }
   if (!mechanism_->constraints().empty()) {
+    ReadDrives(ctx);
     mech::UpdateKinematics(model, ctx.time(), q, v, &ws_.kin);
     mechanism_->constraints().Residual(model, ws_.kin, &ws_.constraint.phi);
     worst_residual_ = std::max(worst_residual_, ws_.constraint.phi.lpNorm<Eigen::Infinity>());

@@ -2,7 +2,9 @@
 // MechanismBlock: a multibody mechanism as one block of a diagram.
 //
 //   inputs:  one scalar port per mechanism input (identifier inputs, applied
-//            force components), named as the mechanism names them
+//            force components), named as the mechanism names them; then one
+//            port of width 3 (q, q', q'') per driving signal of a segment
+//            (mech::Model::drive_signals), named after the signal
 //   outputs: one port per sensor (width 1, or 3 for vector sensors)
 //   states:  the mechanism's state vector ("q:<dof>", "v:<dof>", quaternion
 //            joints "<joint>.x" ..., element states "<element>.s<k>"), its
@@ -24,7 +26,9 @@
 //
 // Initialize runs mech::InitialState with every input at zero: inputs are not
 // valid yet when a diagram initialises (blocks/block.h), so elements whose
-// initial state depends on an input see it as zero.
+// initial state depends on an input see it as zero. A mechanism with driving
+// signals runs it again at its first mode update, when the inputs are valid:
+// loops assemble around the drives' starting positions.
 //
 // The block keeps a per-run workspace (mutable: one run at a time per block
 // instance), shared within one evaluation (Context::evaluation) between its
@@ -68,7 +72,9 @@ class MechanismBlock final : public Block {
   bool DoUpdateModes(const BlockContext& ctx) const override;
   void DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const override;
 
+  // The scalar inputs; also copies the driving signals into the kinematics.
   std::span<const double> Inputs(const BlockContext& ctx) const;
+  void ReadDrives(const BlockContext& ctx) const;
   void EnsureEvaluated(const BlockContext& ctx, bool full) const;
 
   std::shared_ptr<const mech::Mechanism> mechanism_;
@@ -78,6 +84,7 @@ class MechanismBlock final : public Block {
   mutable std::uint64_t positions_at_ = ~std::uint64_t{0}, full_at_ = ~std::uint64_t{0},
                         elements_at_ = ~std::uint64_t{0};
   mutable double worst_residual_ = 0.0;
+  mutable bool initial_state_pending_ = false;  // driven segments: redo InitialState with the drives
   mutable std::optional<std::optional<BlockSparsity>> sparsity_;  // outer: found yet
 };
 

@@ -114,8 +114,12 @@ std::optional<BlockSparsity> MechanismSparsity(const mech::Mechanism& m,
     Normalize(&group_reads[g]);
   }
 
-  IndexSet all_inputs(m.num_inputs());
+  // the scalar inputs, then one port per driving signal; a drive moves
+  // bodies that any element may touch, so it reaches everything (a superset)
+  const bool driven = !model.drive_signals().empty();
+  IndexSet all_inputs(m.num_inputs() + model.drive_signals().size());
   std::iota(all_inputs.begin(), all_inputs.end(), 0);
+  if (driven) std::fill(group_inputs.begin(), group_inputs.end(), true);
   BlockSparsity out;
   out.derivative_states.resize(m.num_states());
   out.derivative_inputs.resize(m.num_states());
@@ -139,7 +143,7 @@ std::optional<BlockSparsity> MechanismSparsity(const mech::Mechanism& m,
   for (int e = 0; e < m.num_elements(); ++e)
     for (int k = 0; k < m.element(e).num_states(); ++k) {
       out.derivative_states[m.state_offset(e) + k] = element_reads(e);
-      if (m.element(e).depends_on_inputs()) out.derivative_inputs[m.state_offset(e) + k] = all_inputs;
+      if (driven || m.element(e).depends_on_inputs()) out.derivative_inputs[m.state_offset(e) + k] = all_inputs;
     }
 
   // sensors

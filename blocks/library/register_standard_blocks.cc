@@ -19,6 +19,8 @@
 #include "blocks/library/friction_from_normal_force.h"
 #include "blocks/library/gain.h"
 #include "blocks/library/integrator.h"
+#include "blocks/library/lookup.h"
+#include "blocks/library/motion.h"
 #include "blocks/library/product.h"
 #include "blocks/library/ramp.h"
 #include "blocks/library/recorder.h"
@@ -90,6 +92,23 @@ std::string Operators(const BlockParams& p, const std::string& name, const std::
   return out;
 }
 
+// The points of a 1-D table: inline `points` rows or a `file`, argument named x.
+void CurvePoints(const BlockParams& p, const std::string& x, std::vector<double>* xs, std::vector<double>* ys) {
+  if (p.Has("points") == p.Has("file")) throw InputError("give either 'points' or 'file', not both or neither");
+  if (p.Has("file"))
+    ReadTableCsv(p.Text("file"), xs, ys, x);
+  else
+    TablePointsFromRows(p.Table("points"), xs, ys, x);
+}
+
+Axis MakeAxis(const BlockParams& p, std::vector<double> x, const std::string& what) {
+  return Axis(std::move(x), ParseInterpolation(p.Text("interpolation")), ParseExtrapolation(p.Text("extrapolation")),
+              what);
+}
+
+const ParamSpec kExtrapolation = {"extrapolation", K::kText, false, "hold",
+                                  "beyond the ends: hold (end value), linear (end tangent) or error (the run fails)"};
+
 void Add(BlockRegistry* r, std::string name, std::string doc, std::vector<ParamSpec> params,
          decltype(BlockType::create) create) {
   r->Add({std::move(name), std::move(doc), std::move(params), std::move(create)});
@@ -138,6 +157,79 @@ void RegisterSources(BlockRegistry* r) {
           TablePointsFromRows(p.Table("points"), &times, &values);
         }
         return std::make_unique<TableBlock>(n, std::move(times), std::move(values));
+      });
+}
+
+void RegisterTables(BlockRegistry* r) {
+  Add(r, "lookup", "y = f(u), a table of u interpolated step, linear or cubic (corners are events)",
+      {{"points", K::kTable, false, "", "inline points \"x0 y0; x1 y1; ...\" [unit of u, unit of y], x increasing"},
+       {"file", K::kPath, false, "", "CSV file with columns x, y (instead of points)"},
+       {"interpolation", K::kText, false, "linear", "step, linear or cubic (not-a-knot spline, smooth)"},
+       kExtrapolation},
+      [](const std::string& n, const BlockParams& p) {
+        std::vector<double> x, y;
+        CurvePoints(p, "x", &x, &y);
+        return std::make_unique<LookupBlock>(n, MakeAxis(p, std::move(x), "lookup '" + n + "'"), std::move(y));
+      });
+  Add(r, "lookup_2d", "y = f(u1, u2), a table over x (u1) and y (u2) breakpoints (corners are events)",
+      {{"x", K::kNumbers, false, "", "breakpoints of u1, increasing [unit of u1]"},
+       {"y", K::kNumbers, false, "", "breakpoints of u2, increasing [unit of u2]"},
+       {"values", K::kTable, false, "", "f(x_i, y_j): one row per x_i, one column per y_j [unit of y]"},
+       {"file", K::kPath, false, "", "CSV: a line \"label, y1, y2, ...\", then rows \"x_i, f(x_i, y1), ...\""},
+       {"interpolation", K::kText, false, "linear", "step, linear (bilinear) or cubic (tensor-product spline)"},
+       kExtrapolation},
+      [](const std::string& n, const BlockParams& p) {
+        std::vector<double> x, y;
+        std::vector<std::vector<double>> values;
+        const bool inline_table = p.Has("x") || p.Has("y") || p.Has("values");
+        if (inline_table == p.Has("file"))
+          throw InputError("give either 'x', 'y' and 'values', or 'file', not both or neither");
+        std::string where = "lookup_2d '" + n + "'";
+        if (p.Has("file")) {
+          ReadTable2DCsv(p.Text("file"), &x, &y, &values);
+          where = p.Text("file");
+        } else {
+          if (!p.Has("x") || !p.Has("y") || !p.Has("values"))
+            throw InputError("an inline 2-D table needs all of 'x', 'y' and 'values'");
+          x = p.Numbers("x");
+          y = p.Numbers("y");
+          values = p.Table("values");
+        }
+        return std::make_unique<Lookup2DBlock>(n, MakeAxis(p, std::move(x), where + ", x"),
+                                               MakeAxis(p, std::move(y), where + ", y"), values);
+      });
+}
+
+void RegisterMotions(BlockRegistry* r) {
+  Add(r, "motion_sine", "y = (q, q', q'') of q = bias + amplitude sin(2 pi frequency t + phase): drives a joint",
+      {{"amplitude", K::kNumber, false, "1", "amplitude [m or rad]"},
+       {"frequency", K::kNumber, false, "1", "frequency [Hz]"},
+       {"phase", K::kNumber, false, "0", "phase [rad]"},
+       {"bias", K::kNumber, false, "0", "offset added [m or rad]"}},
+      [](const std::string& n, const BlockParams& p) {
+        return std::make_unique<MotionSineBlock>(n, Finite(p, "amplitude"), Finite(p, "frequency"),
+                                                 Finite(p, "phase"), Finite(p, "bias"));
+      });
+  Add(r, "motion_table", "y = (q, q', q'') of q = f(start + speed t) from a table: drives a joint",
+      {{"points", K::kTable, false, "", "inline points \"s0 q0; s1 q1; ...\" [s or m, m or rad], s increasing"},
+       {"file", K::kPath, false, "", "CSV file with columns s, q (instead of points)"},
+       {"speed", K::kNumber, false, "1", "ds/dt: 1 for a table of time, the travel speed for one of distance"},
+       {"start", K::kNumber, false, "0", "s at t = 0 [unit of s]"},
+       {"interpolation", K::kText, false, "cubic", "cubic (continuous q''), linear or step"},
+       kExtrapolation},
+      [](const std::string& n, const BlockParams& p) {
+        std::vector<double> s, q;
+        CurvePoints(p, "s", &s, &q);
+        return std::make_unique<MotionTableBlock>(n, MakeAxis(p, std::move(s), "motion_table '" + n + "'"),
+                                                  std::move(q), Finite(p, "start"), Finite(p, "speed"));
+      });
+  Add(r, "motion_filter", "y = (q, q', q''), q'' = w^2 (u - q) - 2 zeta w q': any signal u made a motion",
+      {{"frequency", K::kNumber, true, "", "filter frequency w / (2 pi) [Hz], > 0"},
+       {"damping", K::kNumber, false, "1", "damping ratio zeta [-], > 0 (1: critical, no overshoot)"}},
+      [](const std::string& n, const BlockParams& p) {
+        if (!(Finite(p, "frequency") > 0)) throw InputError("'frequency' must be > 0");
+        if (!(Finite(p, "damping") > 0)) throw InputError("'damping' must be > 0");
+        return std::make_unique<MotionFilterBlock>(n, p.Number("frequency"), p.Number("damping"));
       });
 }
 
@@ -275,6 +367,8 @@ void RegisterSinksAndSampling(BlockRegistry* r) {
 
 void RegisterStandardBlocks(BlockRegistry* r) {
   RegisterSources(r);
+  RegisterTables(r);
+  RegisterMotions(r);
   RegisterMath(r);
   RegisterDynamic(r);
   RegisterFriction(r);

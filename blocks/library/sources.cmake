@@ -10,8 +10,11 @@ set(MECHFLOW_LIBRARY_SOURCES
   blocks/library/friction_from_normal_force.cc
   blocks/library/gain.cc
   blocks/library/integrator.cc
+  blocks/library/interpolation.cc
+  blocks/library/lookup.cc
   blocks/library/mechanism_block.cc
   blocks/library/mechanism_sparsity.cc
+  blocks/library/motion.cc
   blocks/library/piecewise_linear.cc
   blocks/library/product.cc
   blocks/library/ramp.cc

@@ -21,12 +21,12 @@ std::string Format(double v) {
 // Checks one point against the points before it; `where` starts the message
 // and `previous` names the row before ("row 2", "line 7").
 void CheckPoint(double t, double y, const std::vector<double>& times, const std::string& where,
-                const std::string& previous) {
+                const std::string& previous, const std::string& x) {
   if (!std::isfinite(t) || !std::isfinite(y))
     throw InputError(where + ": point (" + Format(t) + ", " + Format(y) + ") is not finite");
   if (!times.empty() && !(t > times.back()))
-    throw InputError(where + ": times must increase strictly, but t = " + Format(t) + " follows t = " +
-                     Format(times.back()) + " (" + previous + ")");
+    throw InputError(where + ": " + (x == "t" ? "times" : "breakpoints") + " must increase strictly, but " + x +
+                     " = " + Format(t) + " follows " + x + " = " + Format(times.back()) + " (" + previous + ")");
 }
 
 void CheckCount(const std::vector<double>& times, const std::string& source) {
@@ -57,22 +57,23 @@ void TableBlock::DoCalcOutput(int, const BlockContext& ctx) const {
 }
 
 void TablePointsFromRows(const std::vector<std::vector<double>>& rows, std::vector<double>* times,
-                         std::vector<double>* values) {
+                         std::vector<double>* values, const std::string& x) {
   for (size_t i = 0; i < rows.size(); ++i) {
     const std::string where = "points row " + std::to_string(i + 1);
     if (rows[i].size() != 2)
-      throw InputError(where + " has " + std::to_string(rows[i].size()) + " numbers; expected two (t y)");
-    CheckPoint(rows[i][0], rows[i][1], *times, where, "row " + std::to_string(i));
+      throw InputError(where + " has " + std::to_string(rows[i].size()) + " numbers; expected two (" + x + " y)");
+    CheckPoint(rows[i][0], rows[i][1], *times, where, "row " + std::to_string(i), x);
     times->push_back(rows[i][0]);
     values->push_back(rows[i][1]);
   }
   CheckCount(*times, "points");
 }
 
-void ReadTableCsv(const std::string& path, std::vector<double>* times, std::vector<double>* values) {
+std::vector<NumberRow> ReadNumberRows(const std::string& path, const std::string& expected) {
   std::istringstream in(ReadInputFile(path, "table file"));
+  std::vector<NumberRow> rows;
   std::string line;
-  int line_number = 0, previous_line = 0;
+  int line_number = 0;
   bool header_allowed = true;
   while (std::getline(in, line)) {
     ++line_number;
@@ -81,34 +82,49 @@ void ReadTableCsv(const std::string& path, std::vector<double>* times, std::vect
     std::string fields = text;
     for (char& c : fields)
       if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
-    std::vector<double> row;
-    bool numeric = true;
+    NumberRow row{line_number, {}, false};
+    int text_fields = 0;
     size_t pos = 0;
     while ((pos = fields.find_first_not_of(' ', pos)) != std::string::npos) {
       const size_t end = std::min(fields.find(' ', pos), fields.size());
       double v = 0;
       const auto [ptr, error] = std::from_chars(fields.data() + pos, fields.data() + end, v);
-      if (error != std::errc() || ptr != fields.data() + end) numeric = false;
-      row.push_back(v);
+      if (error != std::errc() || ptr != fields.data() + end) {
+        v = std::nan("");
+        ++text_fields;
+      }
+      row.values.push_back(v);
       pos = end;
     }
-    if (row.empty()) continue;
-    const std::string where = path + ":" + std::to_string(line_number);
-    if (!numeric) {
-      // one header line is allowed, before the first point
-      if (header_allowed) {
-        header_allowed = false;
-        continue;
-      }
-      throw InputError(where + ": expected two numbers (t, y), found '" + text + "'");
-    }
+    if (row.values.empty()) continue;
+    const bool first = header_allowed;
     header_allowed = false;
-    if (row.size() != 2)
-      throw InputError(where + ": expected two numbers (t, y), found " + std::to_string(row.size()));
-    CheckPoint(row[0], row[1], *times, where, "line " + std::to_string(previous_line));
-    times->push_back(row[0]);
-    values->push_back(row[1]);
-    previous_line = line_number;
+    if (text_fields == 0) {
+      rows.push_back(std::move(row));
+    } else if (first && text_fields == 1 && std::isnan(row.values[0]) && row.values.size() > 1) {
+      row.header = true;  // a corner label, then numbers
+      rows.push_back(std::move(row));
+    } else if (!first) {
+      throw InputError(path + ":" + std::to_string(line_number) + ": expected " + expected + ", found '" + text +
+                       "'");
+    }  // else a header of text: skipped
+  }
+  return rows;
+}
+
+void ReadTableCsv(const std::string& path, std::vector<double>* times, std::vector<double>* values,
+                  const std::string& x) {
+  int previous_line = 0;
+  const std::string expected = "two numbers (" + x + ", y)";
+  for (const NumberRow& row : ReadNumberRows(path, expected)) {
+    const std::string where = path + ":" + std::to_string(row.line);
+    if (row.header) continue;  // a header such as "time, 0.5": not a point
+    if (row.values.size() != 2)
+      throw InputError(where + ": expected " + expected + ", found " + std::to_string(row.values.size()));
+    CheckPoint(row.values[0], row.values[1], *times, where, "line " + std::to_string(previous_line), x);
+    times->push_back(row.values[0]);
+    values->push_back(row.values[1]);
+    previous_line = row.line;
   }
   CheckCount(*times, path);
 }

@@ -35,13 +35,31 @@ class TableBlock : public Block {
   std::vector<double> times_, values_;
 };
 
-// Reads the points of a `points` parameter (rows of two numbers). Throws
-// InputError naming the offending row ("points row 3: ...").
+// Reads the points of a `points` parameter (rows of two numbers, the
+// argument named `x` in messages). Throws InputError naming the offending
+// row ("points row 3: ...").
 void TablePointsFromRows(const std::vector<std::vector<double>>& rows, std::vector<double>* times,
-                         std::vector<double>* values);
+                         std::vector<double>* values, const std::string& x = "t");
+
+// One line of numbers of a table file, and its line number. `header`: the
+// first line, whose first field was not a number (a corner label, as in the
+// first line of a 2-D table: "x\\y, 0, 1, 2"); that field reads as NaN.
+struct NumberRow {
+  int line = 0;
+  std::vector<double> values;
+  bool header = false;
+};
+
+// The lines of numbers of a table file: fields separated by commas,
+// semicolons, tabs or spaces, '#' comments, blank lines skipped, and at most
+// one header line before the data, either all text (skipped) or a corner
+// label and numbers (kept, `header`). InputError "path:line: expected
+// EXPECTED, found '...'" for text after that.
+std::vector<NumberRow> ReadNumberRows(const std::string& path, const std::string& expected);
 
 // Reads the points of a CSV file as described above. Throws InputError naming
 // path:line for a bad row, or the path when the file is unusable as a whole.
-void ReadTableCsv(const std::string& path, std::vector<double>* times, std::vector<double>* values);
+void ReadTableCsv(const std::string& path, std::vector<double>* times, std::vector<double>* values,
+                  const std::string& x = "t");
 
 }  // namespace mechflow::blocks

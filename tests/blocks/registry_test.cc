@@ -27,6 +27,10 @@ const ParamTexts& Required(const std::string& type) {
       {"friction_from_normal_force", {{"mu_static", "0.5"}, {"mu_dynamic", "0.3"}}},
       {"sample_hold", {{"period", "1"}}},
       {"table", {{"points", "0 0; 1 1"}}},
+      {"lookup", {{"points", "0 0; 1 1"}}},
+      {"lookup_2d", {{"x", "0 1"}, {"y", "0 1"}, {"values", "0 1; 1 2"}}},
+      {"motion_table", {{"points", "0 0; 1 1"}}},
+      {"motion_filter", {{"frequency", "10"}}},
   };
   static const ParamTexts none;
   const auto it = required.find(type);
@@ -38,9 +42,10 @@ TEST(RegistryTest, HoldsTheWholeLibrary) {
   const std::set<std::string> have(names.begin(), names.end());
   for (const char* type : {"constant", "clock", "step", "ramp", "sine", "table", "gain", "sum", "product", "abs",
                            "saturation", "dead_zone", "integrator", "first_order_lag", "friction_from_normal_force",
-                           "recorder", "sample_hold"})
+                           "recorder", "sample_hold", "lookup", "lookup_2d", "motion_sine", "motion_table",
+                           "motion_filter"})
     EXPECT_TRUE(have.count(type)) << type;
-  EXPECT_EQ(have.size(), 17u);
+  EXPECT_EQ(have.size(), 22u);
 }
 
 TEST(RegistryTest, EveryParameterIsDocumentedAndEveryTypeBuildsFromDefaults) {

@@ -19,3 +19,4 @@ mechflow_test(joint_friction_test regression tests/regression/joint_friction_tes
 mechflow_test(exact_stick_test regression tests/regression/exact_stick_test.cc)
 mechflow_test(energy_balance_test regression tests/regression/energy_balance_test.cc)
 mechflow_test(long_run_test regression tests/regression/long_run_test.cc)
+mechflow_test(signal_drive_test regression tests/regression/signal_drive_test.cc)

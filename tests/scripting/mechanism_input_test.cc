@@ -55,7 +55,7 @@ TEST(MechanismInputTest, ATimeFunctionNamingAnInputIsRefused) {
         "<connections><connect from='c.y' to='m.u'/></connections><solver t_end='1'/></diagram>");
   });
   EXPECT_THAT(message, HasSubstr("'value' names an <input> of this mechanism"));
-  EXPECT_THAT(message, HasSubstr("drive the joint by a force from the signal"));
+  EXPECT_THAT(message, HasSubstr("drive the motion by a signal instead (signal=\"NAME\", fed by a motion block)"));
 }
 
 }  // namespace
