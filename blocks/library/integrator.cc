@@ -1,5 +1,7 @@
 #include "blocks/library/integrator.h"
 
+#include "blocks/library/hysteresis.h"
+
 #include <algorithm>
 
 namespace mechflow::blocks {
@@ -45,9 +47,11 @@ double IntegratorBlock::Clamp(double x) const {
 }
 
 double IntegratorBlock::LimitMode(double x, double u) const {
-  // on a limit: held while u pushes into it, exact while u is 0, free when it pulls away
-  if (upper_ && x >= *upper_) return u > 0.0 ? kAtUpper : u == 0.0 ? kExactUpper : kFree;
-  if (lower_ && x <= *lower_) return u < 0.0 ? kAtLower : u == 0.0 ? kExactLower : kFree;
+  // on a limit: held while u pushes into it, exact while u rests on 0 (within
+  // the hysteresis band), free when it pulls away
+  const double band = CornerBand(0.0);
+  if (upper_ && x >= *upper_) return u > band ? kAtUpper : u >= -band ? kExactUpper : kFree;
+  if (lower_ && x <= *lower_) return u < -band ? kAtLower : u <= band ? kExactLower : kFree;
   return kFree;
 }
 
@@ -98,11 +102,13 @@ void IntegratorBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
     const auto u = ctx.input(0);
     const auto modes = ctx.discrete();
     for (size_t i = 0; i < x.size(); ++i) {
-      // at a limit u changing sign is the event; free, reaching the limit (a missing one never fires)
+      // at a limit u pulling away past the band is the event; free, reaching
+      // the limit (a missing one never fires)
       const bool at_upper = modes[i] == kAtUpper || modes[i] == kExactUpper;
       const bool at_lower = modes[i] == kAtLower || modes[i] == kExactLower;
-      g[2 * i] = at_upper ? u[i] : upper_ ? *upper_ - x[i] : 1.0;
-      g[2 * i + 1] = at_lower ? u[i] : lower_ ? x[i] - *lower_ : 1.0;
+      const double band = CornerBand(0.0);
+      g[2 * i] = at_upper ? u[i] + band : upper_ ? *upper_ - x[i] : 1.0;
+      g[2 * i + 1] = at_lower ? u[i] - band : lower_ ? x[i] - *lower_ : 1.0;
     }
   }
   if (reset_crossing_ >= 0) g[reset_crossing_] = ctx.input_scalar(1);

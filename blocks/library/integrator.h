@@ -13,15 +13,15 @@
 //
 // Limits (events, not clipping inside a step): while free, a zero crossing of
 // upper - x (or x - lower) puts the element in the 'at limit' mode; x is set
-// exactly to the limit and x' = 0. It leaves the limit when u changes sign
-// away from it (a zero crossing of u). After every event the mode is
-// re-classified from x and u, which also handles an input that jumped:
-// on a limit and pushing into it -> at the limit, pulling away -> free.
-// Tie: x on a limit with u exactly 0 gives the mode 'at limit, exact', where
-// x' = min(u, 0) at the upper limit (max(u, 0) at the lower), so x stays or
-// leaves correctly whichever way u goes. A frozen mode would be wrong there,
-// because CVODE ignores a crossing function that is exactly zero where an
-// integration starts (after every event).
+// exactly to the limit and x' = 0. It leaves the limit when u pulls away
+// past the hysteresis band of blocks/library/hysteresis.h (a zero crossing
+// of u plus or minus the band), so an input resting on 0 with round-off
+// noise does not chatter. After every event the mode is re-classified from
+// x and u, which also handles an input that jumped: on a limit and pushing
+// into it -> at the limit, pulling away -> free.
+// Tie: x on a limit with u within the band of 0 gives the mode 'at limit,
+// exact', where x' = min(u, 0) at the upper limit (max(u, 0) at the lower),
+// so x stays or leaves correctly whichever way u goes.
 //
 // Reset: `rising` fires when the trigger goes from <= 0 to > 0, `falling` from
 // >= 0 to < 0, `either` on both. A continuous crossing is a zero crossing of

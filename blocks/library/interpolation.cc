@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "blocks/library/hysteresis.h"
 #include "mech/errors.h"
 
 namespace mechflow::blocks {
@@ -69,11 +70,6 @@ double Axis::LowerCorner(int region) const { return region == 0 ? -kInfinity : x
 
 double Axis::UpperCorner(int region) const {
   return region == num_regions() - 1 ? kInfinity : x_[corner_index_[region]];
-}
-
-bool Axis::OnCorner(double u) const {
-  const int r = Region(u);
-  return r > 0 && u == x_[corner_index_[r - 1]];
 }
 
 bool Axis::Forbidden(int region) const {
@@ -179,14 +175,12 @@ CurvePoint Curve::CurveAt(const Axis& axis, const double* y, const double* m, do
 
 namespace {
 
-// The mode for input u after an event or at the start (see AxisModes::Settle).
-double SettleRegion(const Axis& axis, double mode, double u) {
-  if (axis.OnCorner(u)) return AxisModes::kExact;
-  const int r = static_cast<int>(mode);
-  if (mode != AxisModes::kExact && r >= 0 && r < axis.num_regions() && u > axis.LowerCorner(r) &&
-      u < axis.UpperCorner(r))
-    return mode;
-  return axis.Region(u);
+// True when u lies in `region` widened by the hysteresis band.
+bool InsideRegion(const Axis& axis, int region, double u) {
+  if (region < 0 || region >= axis.num_regions()) return false;
+  const double lower = axis.LowerCorner(region), upper = axis.UpperCorner(region);
+  return (region == 0 || u > lower - CornerBand(lower)) &&
+         (region == axis.num_regions() - 1 || u < upper + CornerBand(upper));
 }
 
 }  // namespace
@@ -201,7 +195,7 @@ AxisModes::AxisModes(std::vector<const Axis*> axes) : axes_(std::move(axes)), mo
 
 void AxisModes::Initialize(std::span<double> modes) const {
   // inputs are not valid yet: Settle classifies once they are
-  for (int i = 0; i < num_modes(); ++i) modes[i] = kExact;
+  for (int i = 0; i < num_modes(); ++i) modes[i] = kUnclassified;
 }
 
 void AxisModes::Crossings(std::span<const double> u, std::span<const double> modes, std::span<double> g) const {
@@ -212,22 +206,19 @@ void AxisModes::Crossings(std::span<const double> u, std::span<const double> mod
     double& upper = g[2 * i + 1];
     lower = 1.0;
     upper = -1.0;
-    if (modes[i] == kExact) continue;
+    if (modes[i] == kUnclassified) continue;
     const int r = static_cast<int>(modes[i]);
-    if (r > 0) lower = value - axis.LowerCorner(r);
-    if (r < axis.num_regions() - 1) upper = value - axis.UpperCorner(r);
+    const double below = axis.LowerCorner(r), above = axis.UpperCorner(r);
+    if (r > 0) lower = value - (below - CornerBand(below));
+    if (r < axis.num_regions() - 1) upper = value - (above + CornerBand(above));
   }
 }
 
 void AxisModes::Cross(int i, std::span<const double> u, std::span<double> modes) const {
   const int k = i / 2;
   const Axis& axis = *axes_[moded_[k]];
-  if (modes[k] == kExact) {
-    modes[k] = SettleRegion(axis, modes[k], u[moded_[k]]);
-    return;
-  }
   const int next = static_cast<int>(modes[k]) + (CrossingRises(i) ? 1 : -1);
-  if (next < 0 || next >= axis.num_regions()) return;
+  if (modes[k] == kUnclassified || next < 0 || next >= axis.num_regions()) return;
   if (axis.Forbidden(next)) axis.ThrowBeyond(u[moded_[k]]);
   modes[k] = next;
 }
@@ -240,7 +231,13 @@ bool AxisModes::Settle(std::span<const double> u, std::span<double> modes) const
   }
   bool changed = false;
   for (int i = 0; i < num_modes(); ++i) {
-    const double mode = SettleRegion(*axes_[moded_[i]], modes[i], u[moded_[i]]);
+    const Axis& axis = *axes_[moded_[i]];
+    const double value = u[moded_[i]];
+    double mode = modes[i];
+    if (!InsideRegion(axis, static_cast<int>(mode), value)) {
+      mode = axis.Region(value);
+      if (axis.Forbidden(static_cast<int>(mode))) mode -= 1;  // exactly on the last breakpoint
+    }
     changed |= mode != modes[i];
     modes[i] = mode;
   }
@@ -250,7 +247,7 @@ bool AxisModes::Settle(std::span<const double> u, std::span<double> modes) const
 int AxisModes::Segment(int k, double u, std::span<const double> modes) const {
   const Axis& axis = *axes_[k];
   const int i = mode_of_axis_[k];
-  int segment = i < 0 || modes[i] == kExact ? axis.Segment(u) : axis.SegmentIn(u, static_cast<int>(modes[i]));
+  int segment = i < 0 || modes[i] == kUnclassified ? axis.Segment(u) : axis.SegmentIn(u, static_cast<int>(modes[i]));
   // a trial step a hair outside a table that must not be left: its end piece, extended
   if (axis.extrapolation() == Extrapolation::kError) segment = std::clamp(segment, 0, axis.size() - 2);
   return segment;

@@ -74,7 +74,6 @@ class Axis {
   // Corner below / above region r (-inf / +inf at the outer regions).
   double LowerCorner(int region) const;
   double UpperCorner(int region) const;
-  bool OnCorner(double u) const;
   // True for a region outside the table when extrapolation is an error.
   bool Forbidden(int region) const;
   // The segment to evaluate u on while frozen in `region`: the segment
@@ -118,15 +117,12 @@ class Curve {
 void SplineCurvatures(const std::vector<double>& x, const double* y, double* m, double* scratch);
 
 // The frozen regions of a block's inputs, one input per axis (axes without
-// corners take no part): one mode each (the region, or kExact while the
-// input sits exactly on a corner -- CVODE ignores a crossing that is zero
-// where integration starts, so a region chosen there could be left without
-// an event; the input is then evaluated unfrozen until the next event) and
-// two crossings each (the input minus the region's lower corner, an event
-// when falling; minus its upper corner, an event when rising).
+// corners take no part): one mode each, the region, and two crossings each
+// (the input minus the region's lower corner less the band, an event when
+// falling; minus its upper corner plus the band, an event when rising).
 class AxisModes {
  public:
-  static constexpr double kExact = -1.0;
+  static constexpr double kUnclassified = -1.0;  // before the first Settle
 
   explicit AxisModes(std::vector<const Axis*> axes);
   int num_modes() const { return static_cast<int>(moded_.size()); }
@@ -141,7 +137,7 @@ class AxisModes {
   // forbidden one).
   void Cross(int i, std::span<const double> u, std::span<double> modes) const;
   // After an event or at the start: keep each region while its input is
-  // inside, else classify (exact on a corner); SimulationError for an input
+  // inside (widened by the band), else classify; SimulationError for an input
   // beyond a table that must not be left. True when a mode changed.
   bool Settle(std::span<const double> u, std::span<double> modes) const;
   // The segment to evaluate input k on.

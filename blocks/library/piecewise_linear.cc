@@ -1,11 +1,13 @@
 #include "blocks/library/piecewise_linear.h"
 
+#include "blocks/library/hysteresis.h"
+
 namespace mechflow::blocks {
 namespace {
 
-// Mode of an element whose input is on a corner (and before the first
-// classification, as inputs are not valid in Initialize): y follows u exactly.
-constexpr double kExact = -1.0;
+// Mode before the first classification (inputs are not valid in
+// Initialize): y follows u on the piece u lies in.
+constexpr double kUnclassified = -1.0;
 
 }  // namespace
 
@@ -26,12 +28,12 @@ int PiecewiseLinearBlock::Classify(double u) const {
 
 bool PiecewiseLinearBlock::InsidePiece(int mode, double u) const {
   const int n = static_cast<int>(corners_.size());
-  return mode >= 0 && mode <= n && (mode == 0 || u > corners_[mode - 1]) && (mode == n || u < corners_[mode]);
+  return mode >= 0 && mode <= n && (mode == 0 || u > corners_[mode - 1] - CornerBand(corners_[mode - 1])) &&
+         (mode == n || u < corners_[mode] + CornerBand(corners_[mode]));
 }
 
 void PiecewiseLinearBlock::DoInitialize(const BlockContext& ctx) const {
-  // inputs are not valid yet: UpdateModes classifies once they are
-  for (double& mode : ctx.discrete()) mode = kExact;
+  for (double& mode : ctx.discrete()) mode = kUnclassified;
 }
 
 void PiecewiseLinearBlock::DoCalcOutput(int, const BlockContext& ctx) const {
@@ -39,7 +41,7 @@ void PiecewiseLinearBlock::DoCalcOutput(int, const BlockContext& ctx) const {
   const auto y = ctx.output(0);
   const auto modes = ctx.discrete();
   for (size_t i = 0; i < y.size(); ++i) {
-    const int mode = modes[i] == kExact ? Classify(u[i]) : static_cast<int>(modes[i]);
+    const int mode = modes[i] == kUnclassified ? Classify(u[i]) : static_cast<int>(modes[i]);
     y[i] = Piece(mode, u[i]);
   }
 }
@@ -47,9 +49,15 @@ void PiecewiseLinearBlock::DoCalcOutput(int, const BlockContext& ctx) const {
 void PiecewiseLinearBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
   const auto u = ctx.input(0);
   const auto g = ctx.zero_crossings();
+  const auto modes = ctx.discrete();
   const size_t n = corners_.size();
   for (size_t i = 0; i < u.size(); ++i)
-    for (size_t k = 0; k < n; ++k) g[i * n + k] = u[i] - corners_[k];
+    for (size_t k = 0; k < n; ++k) {
+      // above corner k: an event once u falls below it by the band; below:
+      // once it rises above it by the band
+      const double band = CornerBand(corners_[k]);
+      g[i * n + k] = u[i] - corners_[k] + (modes[i] > static_cast<double>(k) ? band : -band);
+    }
 }
 
 void PiecewiseLinearBlock::DoZeroCrossing(int index, int direction, const BlockContext& ctx) const {
@@ -64,10 +72,7 @@ bool PiecewiseLinearBlock::DoUpdateModes(const BlockContext& ctx) const {
   const auto modes = ctx.discrete();
   bool changed = false;
   for (size_t i = 0; i < u.size(); ++i) {
-    const int piece = Classify(u[i]);
-    // on a corner: exact, since leaving it might give no event
-    const bool on_corner = piece > 0 && u[i] == corners_[piece - 1];
-    const double mode = on_corner ? kExact : InsidePiece(static_cast<int>(modes[i]), u[i]) ? modes[i] : piece;
+    const double mode = InsidePiece(static_cast<int>(modes[i]), u[i]) ? modes[i] : Classify(u[i]);
     changed |= mode != modes[i];
     modes[i] = mode;
   }

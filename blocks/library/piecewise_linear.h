@@ -10,16 +10,13 @@
 // Inside a solver step y follows the frozen piece, so the right-hand side is
 // smooth there even when a trial step overshoots a corner; the crossing of
 // u - c_k switches the piece at the located instant (rising through c_k
-// enters piece k+1, falling enters piece k). After every event and at the
-// start the modes are re-classified from u, which handles an input that
-// jumped across corners at another block's event.
-//
-// Ties: when u sits exactly on a corner at an event (or at the start), the
-// mode is 'exact': y is the piecewise function of u itself (both pieces agree
-// on the corner). A frozen piece would be wrong there, because CVODE ignores
-// a crossing function that is exactly zero where an integration starts (after
-// every event): an input that leaves the corner then gives no event. The next
-// crossing, or any later event, puts the element back on a frozen piece.
+// enters piece k+1, falling enters piece k), with the hysteresis of
+// blocks/library/hysteresis.h: a piece is left only once u is past its
+// corner by the band, so no crossing function is ever exactly zero where
+// integration starts (CVODE ignores such a crossing) and a signal resting on
+// a corner does not chatter. After every event and at the start the modes
+// are re-classified from u, which handles an input that jumped across
+// corners at another block's event.
 
 #include <string>
 #include <vector>
@@ -45,7 +42,7 @@ class PiecewiseLinearBlock : public Block {
  private:
   // The piece holding u (a corner itself goes to the piece above it).
   int Classify(double u) const;
-  // True when u lies strictly inside piece `mode`.
+  // True when u lies inside piece `mode` widened by the hysteresis band.
   bool InsidePiece(int mode, double u) const;
 
   std::vector<double> corners_;
