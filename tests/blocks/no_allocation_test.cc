@@ -125,7 +125,11 @@ TEST(NoAllocationTest, StandardLibraryBlocks) {
       {"integrator", {{"upper", "0.3"}, {"lower", "-0.3"}, {"reset", "either"}}},
       {"first_order_lag", {{"time_constant", "0.1"}}},
       {"friction_from_normal_force", {{"mu_static", "0.5"}, {"mu_dynamic", "0.3"}}},
-      {"sample_hold", {{"period", "0.1"}}}, {"recorder", {{"inputs", "2"}}}};
+      {"sample_hold", {{"period", "0.1"}}}, {"recorder", {{"inputs", "2"}}},
+      {"lookup", {{"points", "-1 0; 0 1; 1 0"}}},
+      {"lookup_2d", {{"x", "-1 0 1"}, {"y", "-1 1"}, {"values", "0 1; 1 2; 2 0"}, {"interpolation", "cubic"}}},
+      {"motion_sine", {}}, {"motion_table", {{"points", "0 0; 1 1; 1.5 0; 2 2"}}},
+      {"motion_filter", {{"frequency", "5"}}}};
   for (const auto& [type, params] : blocks_made) builder.AddBlock(MakeBlock(type, type, params));
   const std::vector<std::pair<const char*, const char*>> connections = {
       {"sine", "gain"}, {"sine", "sum.u1"}, {"table", "sum.u2"}, {"ramp", "sum.u3"}, {"sine", "product.u1"},
@@ -133,7 +137,8 @@ TEST(NoAllocationTest, StandardLibraryBlocks) {
       {"sine", "dead_zone"}, {"sum", "integrator.u"}, {"sine", "integrator.reset"}, {"table", "integrator.x0"},
       {"sine", "first_order_lag"}, {"constant", "friction_from_normal_force.N"},
       {"sine", "friction_from_normal_force.v"}, {"clock", "sample_hold"}, {"integrator", "recorder.u1"},
-      {"saturation", "recorder.u2"}};
+      {"saturation", "recorder.u2"}, {"sine", "lookup"}, {"sine", "lookup_2d.u1"}, {"table", "lookup_2d.u2"},
+      {"sine", "motion_filter"}};
   for (const auto& [from, to] : connections) builder.Connect(from, to);
   const auto diagram = builder.Build();
   const blocks::Diagram& d = *diagram;
@@ -176,7 +181,7 @@ INSTANTIATE_TEST_SUITE_P(Examples, ExampleDiagram,
                                            "van_der_pol_stiff.xml", "bouncing_ball_blocks.xml",
                                            "leaf_spring.xml", "elast_friction.xml", "slider_crank.xml",
                                            "falling.xml", "rollers.xml", "tension_mechanism.xml",
-                                           "cart_pendulum_friction.xml"),
+                                           "cart_pendulum_friction.xml", "quarter_car.xml"),
                          [](const ::testing::TestParamInfo<const char*>& info) {
                            std::string name = info.param;
                            name = name.substr(0, name.find('.'));
