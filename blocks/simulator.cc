@@ -564,7 +564,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   double* y = solver_->y.data();
   std::fill(y, y + n, 0.0);
   void* mem = solver_->cvode.get();
-  results_ = Results(ColumnNames(logged_));
+  results_.Clear();  // a run again starts afresh (streaming, if set, stays)
   events_.clear();
   stats_ = SolverStats();
   for (const AlgebraicLoop& loop : diagram_.loops()) loop.ResetStats();
@@ -764,7 +764,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       outcome.failure = std::string("interrupted by ") + (*interrupt_ == SIGTERM ? "SIGTERM" : "SIGINT");
     } else if (outcome.ok && stop_requested_) {
       // the row at the instant the control stopped the run, unless it was one
-      if (results_.num_rows() == 0 || results_.at(results_.num_rows() - 1, 0) != ctx_.time) Record(ctx_.time, ctx_.x);
+      if (results_.num_rows() == 0 || results_.last_time() != ctx_.time) Record(ctx_.time, ctx_.x);
       outcome.stopped = true;
       outcome.stop_reason = stop_reason_;
       outcome.t_reached = ctx_.time;

@@ -149,6 +149,9 @@ class Simulator {
   RunOutcome Run(const std::function<void(double)>& progress = {});
 
   const Results& results() const { return results_; }
+  // Rows go to `sink` (not owned) as they are recorded, and only the
+  // columns in `keep` stay in memory (blocks/results.h). Call before Run.
+  void StreamRows(RowSink* sink, std::vector<int> keep) { results_.Stream(sink, std::move(keep)); }
   const SolverStats& stats() const { return stats_; }
   const std::vector<EventRecord>& events() const { return events_; }
   // The reports' figures so far (also in results().figures() after a run).

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cli/modes_report.h"
+#include "cli/interrupt.h"
 #include "cli/output_folder.h"
 #include "cli/report.h"
 #include "cli/run_outputs.h"
@@ -69,49 +70,15 @@ class Progress {
 
 }  // namespace
 
-namespace {
-
-// Set by SIGINT and SIGTERM while a run is under way (to the signal's number).
-volatile std::sig_atomic_t g_interrupt = 0;
-
-void OnInterrupt(int signal) { g_interrupt = signal; }
-
-// The handlers for the life of one run; the previous ones come back after.
-class InterruptHandlers {
- public:
-  InterruptHandlers() {
-    g_interrupt = 0;
-    struct sigaction action {};
-    action.sa_handler = OnInterrupt;
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESTART;
-    sigaction(SIGINT, &action, &old_int_);
-    sigaction(SIGTERM, &action, &old_term_);
-  }
-  ~InterruptHandlers() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
-  }
-  InterruptHandlers(const InterruptHandlers&) = delete;
-  InterruptHandlers& operator=(const InterruptHandlers&) = delete;
-
- private:
-  struct sigaction old_int_ {}, old_term_ {};
-};
-
-}  // namespace
-
 int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
   const OutputFolder folder(args.out_dir);  // before the run: a bad --out is bad input
   blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
   sim.SetReports(loaded.reports);
   sim.SetControl(loaded.control.get());
-  sim.SetInterruptFlag(&g_interrupt);
-  // Ctrl-C and SIGTERM end the run at its next row; what it computed is
-  // written below as for any other end. Until then further signals only set
-  // the flag again, so they cannot cut the files short.
-  const InterruptHandlers handlers;
+  sim.SetInterruptFlag(InterruptFlag());
+  const std::unique_ptr<ResultsFile> results_file = StreamResults(loaded, &sim, folder);
+  const InterruptHandlers handlers;  // Ctrl-C, SIGTERM: cli/interrupt.h
 
   const auto wall_start = std::chrono::steady_clock::now();
   blocks::RunOutcome outcome;
@@ -148,7 +115,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   }
 
   // results are written whether or not the run finished
-  const bool all_written = WriteRunOutputs(loaded, sim, folder, out, err);
+  const bool all_written = WriteRunOutputs(loaded, sim, folder, results_file.get(), out, err);
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);
   if (args.verbose) PrintEventLog(*loaded.diagram, sim.events(), out);

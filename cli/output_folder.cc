@@ -27,7 +27,7 @@ OutputFolder::OutputFolder(const std::string& folder) {
   if (path_.size() > 1 && path_.back() == '/') path_.pop_back();
 }
 
-void OutputFolder::Write(const std::string& name, const std::string& bytes) const {
+int OutputFolder::Create(const std::string& name) const {
   const std::string path = PathOf(name);
   // O_NOFOLLOW: a symbolic link planted under this name is refused, not followed
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC | O_NOCTTY, 0644);
@@ -35,6 +35,12 @@ void OutputFolder::Write(const std::string& name, const std::string& bytes) cons
     if (errno == ELOOP) throw WriteError("cannot write '" + path + "': it is a symbolic link, which is not followed");
     throw WriteError("cannot write '" + path + "': " + Why());
   }
+  return fd;
+}
+
+void OutputFolder::Write(const std::string& name, const std::string& bytes) const {
+  const std::string path = PathOf(name);
+  const int fd = Create(name);
   std::size_t done = 0;
   while (done < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);

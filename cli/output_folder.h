@@ -34,6 +34,10 @@ class OutputFolder {
   // (a symbolic link in the way, no space left, ...).
   void Write(const std::string& name, const std::string& bytes) const;
 
+  // Creates (or truncates) `name` for writing and returns its descriptor,
+  // refusing a symbolic link as Write does. Throws WriteError.
+  int Create(const std::string& name) const;
+
   // Removes `name` if it is there, so a program run to make it (gnuplot)
   // can be seen to have made it; refuses (WriteError) when `name` is a
   // symbolic link or not a regular file, which that program would follow.

@@ -98,13 +98,9 @@ void PrintSignalRanges(const blocks::Results& r, std::ostream& out) {
   for (int c = 1; c < r.num_columns(); ++c) width = std::max(width, r.columns()[c].size());
   out << "signal" << std::string(width - 6, ' ') << "           min    at t [s]            max    at t [s]\n";
   for (int c = 1; c < r.num_columns(); ++c) {
-    int lo = 0, hi = 0;
-    for (int i = 1; i < r.num_rows(); ++i) {
-      if (r.at(i, c) < r.at(lo, c)) lo = i;
-      if (r.at(i, c) > r.at(hi, c)) hi = i;
-    }
-    out << r.columns()[c] << std::string(width - r.columns()[c].size(), ' ') << Format(" %14.6g", r.at(lo, c))
-        << Format(" %11.6g", r.at(lo, 0)) << Format(" %14.6g", r.at(hi, c)) << Format(" %11.6g", r.at(hi, 0))
+    const blocks::ColumnRange& range = r.range(c);
+    out << r.columns()[c] << std::string(width - r.columns()[c].size(), ' ') << Format(" %14.6g", range.min)
+        << Format(" %11.6g", range.min_time) << Format(" %14.6g", range.max) << Format(" %11.6g", range.max_time)
         << "\n";
   }
 }

@@ -12,8 +12,22 @@
 
 namespace mechflow::cli {
 
+std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded, blocks::Simulator* sim,
+                                           const OutputFolder& folder) {
+  std::unique_ptr<ResultsFile> file;
+  try {
+    file = std::make_unique<ResultsFile>(folder, loaded.csv_file, sim->results().columns());
+  } catch (const WriteError& e) {
+    throw InputError(e.what());
+  }
+  std::vector<int> keep;
+  for (const diagrams::SpectrumRequest& s : loaded.spectra) keep.push_back(sim->results().FindColumn(s.column));
+  sim->StreamRows(file.get(), keep);
+  return file;
+}
+
 bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim, const OutputFolder& folder,
-                     std::ostream& out, std::ostream& err) {
+                     ResultsFile* results_file, std::ostream& out, std::ostream& err) {
   std::vector<std::string> written, failed;
   const auto write = [&](const std::string& name, const std::string& bytes, const std::string& note) {
     try {
@@ -31,8 +45,13 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
     return s.str();
   };
   const std::string& csv = loaded.csv_file;
-  write(csv, text([&](std::ostream& s) { sim.results().WriteCsv(s); }),
-        " (" + std::to_string(sim.results().num_rows()) + " rows)");
+  if (const std::string problem = results_file->Close(); problem.empty()) {
+    written.push_back(csv);
+    out << "wrote " << folder.PathOf(csv) << " (" << sim.results().num_rows() << " rows)\n";
+  } else {
+    err << problem << "\n";
+    failed.push_back(csv);
+  }
   // beside the results: tension_mechanism.csv -> tension_mechanism.report.csv
   const std::string stem = std::filesystem::path(csv).replace_extension().string();
   if (!sim.results().figures().empty())

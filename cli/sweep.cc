@@ -9,6 +9,7 @@
 #include <atomic>
 #include <charconv>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -22,7 +23,9 @@
 
 #include "blocks/simulator.h"
 #include "blocks/suggest.h"
+#include "cli/interrupt.h"
 #include "cli/output_folder.h"
+#include "cli/results_file.h"
 #include "cli/ranks.h"
 #include "diagrams/loader.h"
 #include "mech/errors.h"
@@ -111,6 +114,16 @@ struct RunRow {
 
 RunRow RunOne(const Plan& plan, int index) {
   const std::vector<double> values = Combination(plan, index);
+  if (const int signal = *InterruptFlag()) {  // Ctrl-C before this run began: not run
+    RunRow row;
+    row.csv = std::to_string(index + 1);
+    for (const double v : values) row.csv += "," + Shortest(v);
+    row.csv += ",not run,,interrupted,";
+    for (std::size_t i = 0; i < plan.figure_labels.size(); ++i) row.csv += ",,";
+    row.message = "run " + std::to_string(index + 1) + "/" + std::to_string(plan.runs) + " (" +
+                  Assignments(plan, values, ", ") + "): not run (" + (signal == SIGTERM ? "SIGTERM" : "SIGINT") + ")";
+    return row;
+  }
   diagrams::LoadOptions options = plan.common;
   for (std::size_t k = 0; k < values.size(); ++k) options.overrides.push_back({plan.names[k], values[k]});
 
@@ -123,6 +136,11 @@ RunRow RunOne(const Plan& plan, int index) {
     blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
     sim.SetReports(loaded.reports);
     sim.SetControl(loaded.control.get());
+    sim.SetInterruptFlag(InterruptFlag());
+    // rows streamed as computed, as `run` does; written whether or not the run finishes
+    const std::string name = RunFileName(plan, loaded.csv_file, index, values);
+    ResultsFile file(*plan.folder, name, sim.results().columns());
+    sim.StreamRows(&file, {});
     const blocks::RunOutcome outcome = sim.Run();
     ran = true;
     ok = outcome.ok;
@@ -131,11 +149,7 @@ RunRow RunOne(const Plan& plan, int index) {
     if (!ok) error = outcome.failure;
     if (stopped) error = outcome.stop_reason;
     figures = sim.results().figures();
-    // results are written whether or not the run finished, as `run` does
-    const std::string name = RunFileName(plan, loaded.csv_file, index, values);
-    std::ostringstream csv;
-    sim.results().WriteCsv(csv);
-    plan.folder->Write(name, csv.str());
+    if (const std::string problem = file.Close(); !problem.empty()) throw WriteError(problem);
     results_file = name;
   } catch (const std::exception& e) {
     ok = false;
@@ -321,6 +335,7 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
         << std::flush;
   const auto wall_start = std::chrono::steady_clock::now();
   std::vector<RunRow> rows(mine.size());
+  const InterruptHandlers handlers;  // Ctrl-C, SIGTERM: the runs under way end, the rest are not run
   {
     SweepProgress progress(static_cast<int>(mine.size()), ranks->root());
     std::atomic<std::size_t> next{0};
@@ -337,11 +352,12 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
+  const int interrupted = *InterruptFlag();
   int failed_here = 0;
   for (const RunRow& row : rows) failed_here += !row.ok;
   const std::vector<std::string> parts = ranks->GatherToRoot(Pack(mine, rows));
   const bool any_failed = ranks->Max(failed_here > 0 ? 1 : 0) > 0;
-  if (!ranks->root()) return any_failed ? 1 : 0;
+  if (!ranks->root()) return interrupted ? 128 + interrupted : any_failed ? 1 : 0;
 
   std::vector<RunRow> all(plan.runs);
   for (const std::string& part : parts) Unpack(part, &all);
@@ -380,6 +396,7 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     err << e.what() << "\n";
     return 1;
   }
+  if (interrupted) return 128 + interrupted;  // 130 SIGINT, 143 SIGTERM
   return failed > 0 ? 1 : 0;
 }
 

@@ -17,6 +17,7 @@
 
 #include "blocks/results.h"
 #include "cli/output_folder.h"
+#include "cli/results_file.h"
 #include "cli/plot.h"
 #include "cli/xy_plot.h"
 #include "tests/cli/mechflow_command.h"
@@ -137,11 +138,19 @@ TEST_F(HostileDiagramTest, ASymbolicLinkInTheOutputFolderIsNotFollowed) {
   std::ofstream(victim) << "precious\n";
   fs::create_symlink(victim, dir_ / "out" / "r.csv");
   fs::create_symlink(victim, dir_ / "out" / "r.png");
-  const auto run = RunMechflow("run " + Diagram("d", "csv=\"r.csv\" plot=\"r.png\"") + " --out " + Out());
-  EXPECT_EQ(run.exit_code, 1);
+  // the results file is made before the run: bad input, nothing run
+  auto run = RunMechflow("run " + Diagram("d", "csv=\"r.csv\" plot=\"r.png\"") + " --out " + Out());
+  EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("r.csv': it is a symbolic link, which is not followed"));
-  EXPECT_THAT(run.err, HasSubstr("not written: r.csv, r.png in "));
-  EXPECT_THAT(run.err, HasSubstr("; written: nothing"));
+  EXPECT_THAT(run.out, ::testing::Not(HasSubstr("finished")));
+  EXPECT_EQ(ReadFile(victim), "precious\n");
+  // the plot is made after it: reported, the rest written
+  fs::remove(dir_ / "out" / "r.csv");
+  run = RunMechflow("run " + Diagram("d", "csv=\"r.csv\" plot=\"r.png\"") + " --out " + Out());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.err, HasSubstr("r.png': it is a symbolic link, which is not followed"));
+  EXPECT_THAT(run.err, HasSubstr("not written: r.png in "));
+  EXPECT_THAT(run.err, HasSubstr("; written: r.csv"));
   EXPECT_EQ(ReadFile(victim), "precious\n");
 }
 
@@ -151,6 +160,15 @@ TEST_F(HostileDiagramTest, ABadOutputFolderIsBadInputBeforeTheRun) {
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("cannot create the output folder"));
   EXPECT_THAT(run.out, ::testing::Not(HasSubstr("finished")));
+}
+
+TEST_F(HostileDiagramTest, AFullDiskWhileStreamingIsReportedAtTheEnd) {
+  if (::access("/dev/full", W_OK) != 0 || ::access("/dev", W_OK) != 0) GTEST_SKIP() << "needs /dev/full";
+  const OutputFolder dev("/dev");
+  ResultsFile file(dev, "full", {"time", "x"});
+  const double row[2] = {0.5, 1.25};
+  for (int i = 0; i < 10000; ++i) file.WriteRow(row, 2);  // the buffer fills and fails: no throw into the run
+  EXPECT_THAT(file.Close(), HasSubstr("error writing '/dev/full' after 0 bytes: No space left on device"));
 }
 
 TEST_F(HostileDiagramTest, AFullDiskIsAWriteErrorNamingTheFile) {

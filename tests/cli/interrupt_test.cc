@@ -35,9 +35,9 @@ struct Ended {
   std::string out, err;
 };
 
-// Starts a long run, waits until its progress shows it is running, sends
-// `signal`, and collects what it printed.
-Ended InterruptedRun(int signal, const fs::path& dir) {
+// Starts a long run (or a sweep of them: `sweep` holds its options), waits
+// until it is running, sends `signal`, and collects what it printed.
+Ended InterruptedRun(int signal, const fs::path& dir, const std::vector<std::string>& sweep = {}) {
   fs::create_directories(dir);
   // the README's stick-slip example, endless, a row every 0.5 s (so that
   // what it writes when stopped is small)
@@ -46,8 +46,9 @@ Ended InterruptedRun(int signal, const fs::path& dir) {
   const fs::path diagram = dir / "stick_slip_blocks.xml";
   std::ofstream(diagram) << xml;
   const std::string out = (dir / "out").string(), err = (dir / "err").string();
-  std::vector<std::string> args = {MECHFLOW_BINARY, "run", diagram.string(), "--t-end", "1e7",
-                                   "--out", (dir / "results").string()};
+  std::vector<std::string> args = {MECHFLOW_BINARY, sweep.empty() ? "run" : "sweep", diagram.string(), "--t-end",
+                                   "1e7", "--out", (dir / "results").string()};
+  args.insert(args.end(), sweep.begin(), sweep.end());
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -100,6 +101,21 @@ TEST(InterruptTest, SigtermAlike) {
   EXPECT_EQ(e.exit_code, 143) << e.err;
   EXPECT_THAT(e.err, HasSubstr("interrupted by SIGTERM at t = "));
   ExpectCompleteRows(dir / "results" / "stick_slip_blocks.csv");
+}
+
+// A sweep: the runs under way end with their rows written, the others are
+// not started, the summary says which, and the exit code is the signal's.
+TEST(InterruptTest, ASweepEndsItsRunsAndStartsNoMore) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "interrupt_sweep";
+  const Ended e = InterruptedRun(SIGINT, dir, {"--vary", "mu_s=0.5,0.6,0.7", "--jobs", "1"});
+  EXPECT_EQ(e.exit_code, 130) << e.err;
+  EXPECT_THAT(e.err, HasSubstr("run 1/3 (mu_s=0.5): failed at t = "));
+  EXPECT_THAT(e.err, HasSubstr("interrupted by SIGINT"));
+  EXPECT_THAT(e.err, HasSubstr("run 2/3 (mu_s=0.6): not run (SIGINT)"));
+  EXPECT_THAT(e.err, HasSubstr("run 3/3 (mu_s=0.7): not run (SIGINT)"));
+  ExpectCompleteRows(dir / "results" / "stick_slip_blocks.run1.mu_s=0.5.csv");
+  const std::string summary = testing::ReadFile(dir / "results" / "stick_slip_blocks.sweep.csv");
+  EXPECT_THAT(summary, HasSubstr("\n2,0.6,not run,,interrupted,"));
 }
 
 // A run that fails at its start writes what it has (a header) and draws no

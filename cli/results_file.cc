@@ -1,0 +1,51 @@
+#include "cli/results_file.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace mechflow::cli {
+namespace {
+
+constexpr std::size_t kBufferBytes = 64 * 1024;
+
+}  // namespace
+
+ResultsFile::ResultsFile(const OutputFolder& folder, const std::string& name, const std::vector<std::string>& columns)
+    : path_(folder.PathOf(name)), fd_(folder.Create(name)) {
+  buffer_.reserve(kBufferBytes + 4096);
+  buffer_ = blocks::CsvHeader(columns);
+}
+
+ResultsFile::~ResultsFile() { Close(); }
+
+void ResultsFile::WriteRow(const double* values, int count) {
+  blocks::AppendCsvRow(values, count, &buffer_);
+  if (buffer_.size() >= kBufferBytes) Flush();
+}
+
+void ResultsFile::Flush() {
+  std::size_t done = 0;
+  while (error_.empty() && done < buffer_.size()) {
+    const ssize_t n = ::write(fd_, buffer_.data() + done, buffer_.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      error_ = "error writing '" + path_ + "' after " + std::to_string(bytes_ + done) +
+               " bytes: " + (n < 0 ? std::strerror(errno) : "nothing more could be written");
+    else
+      done += static_cast<std::size_t>(n);
+  }
+  bytes_ += static_cast<long long>(done);
+  buffer_.clear();
+}
+
+std::string ResultsFile::Close() {
+  if (fd_ < 0) return error_;
+  Flush();
+  if (::close(fd_) != 0 && error_.empty()) error_ = "error writing '" + path_ + "' (at close): " + std::strerror(errno);
+  fd_ = -1;
+  return error_;
+}
+
+}  // namespace mechflow::cli

@@ -1,0 +1,41 @@
+#pragma once
+// ResultsFile: the results CSV written as the run computes it.
+//
+// Rows are formatted as they come (blocks::RowSink) into a 64 KiB buffer
+// that is written out whenever it fills, so memory stays bounded and a run
+// that is interrupted, or fails, leaves every row it took on disk, each one
+// complete (the buffer only ever holds whole rows). A write error is kept
+// and reported by Close; the run itself goes on.
+
+#include <string>
+#include <vector>
+
+#include "blocks/results.h"
+#include "cli/output_folder.h"
+
+namespace mechflow::cli {
+
+class ResultsFile final : public blocks::RowSink {
+ public:
+  // Creates `name` in `folder` and writes the header. Throws WriteError.
+  ResultsFile(const OutputFolder& folder, const std::string& name, const std::vector<std::string>& columns);
+  ~ResultsFile() override;
+  ResultsFile(const ResultsFile&) = delete;
+  ResultsFile& operator=(const ResultsFile&) = delete;
+
+  void WriteRow(const double* values, int count) override;
+  // Writes what is buffered and closes; "" or what went wrong.
+  std::string Close();
+  const std::string& path() const { return path_; }
+
+ private:
+  void Flush();
+
+  std::string path_;
+  int fd_ = -1;
+  std::string buffer_;
+  std::string error_;
+  long long bytes_ = 0;
+};
+
+}  // namespace mechflow::cli
