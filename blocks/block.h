@@ -164,6 +164,8 @@ class Block {
   // After a failed run: what the block knows about why (e.g. a mechanism at
   // a singular position), as a sentence; empty when it knows nothing.
   virtual std::string FailureNote() const { return {}; }
+  // The unit of an output's values ("m", "N"), "" when the block cannot know.
+  virtual std::string OutputUnit(int /*port*/) const { return {}; }
 
  protected:
   // Declarations, for constructors only. Return the new port's index.

@@ -22,8 +22,8 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
   s << GnuplotPreamble(plot_name, static_cast<int>(groups.size() + xy.size()), 260, 22, title)
     << "set xlabel 'time [s]'\n";
   for (const auto& g : groups) {
-    // the group's name on its axis too: "contact force [N]" carries the unit
-    s << "set title " << GnuplotQuote(g.name) << "\nset ylabel " << GnuplotQuote(g.name) << "\n";
+    // the group's name on its axis too, with the unit of its columns
+    s << "set title " << GnuplotQuote(g.name) << "\nset ylabel " << GnuplotQuote(g.axis_label) << "\n";
     s << "plot ";
     for (size_t i = 0; i < g.columns.size(); ++i) {
       const int c = g.columns[i];
@@ -52,7 +52,7 @@ std::string OverlayScript(const std::vector<diagrams::PlotGroup>& groups, const 
   std::ostringstream s;
   s << GnuplotPreamble(plot_name, static_cast<int>(groups.size()), 300, 28, title) << "set xlabel 'time [s]'\n";
   for (const auto& g : groups) {
-    s << "set title " << GnuplotQuote(g.name) << "\nplot ";
+    s << "set title " << GnuplotQuote(g.name) << "\nset ylabel " << GnuplotQuote(g.axis_label) << "\nplot ";
     bool first = true;
     for (const OverlayRun& run : runs)
       for (const int c : g.columns) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "blocks/csv.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/suggest.h"
 #include "mech/mechanism.h"
@@ -62,7 +63,7 @@ void PrintScriptChanges(const scripting::ControlScript& script, const scripting:
       ++count;
     }
     if (!first) continue;
-    out << "  " << identifiers.name(id) << ": " << count << " times, first " << first->value << " at t = "
+    out << "  " << identifiers.spelling(id) << ": " << count << " times, first " << first->value << " at t = "
         << first->time << " s, last " << last->value << " at t = " << last->time << " s\n";
   }
 }
@@ -70,8 +71,9 @@ void PrintScriptChanges(const scripting::ControlScript& script, const scripting:
 void WriteScriptChanges(const scripting::ControlScript& script, const scripting::IdentifierTable& identifiers,
                         std::ostream& file) {
   file << "time,identifier,value\n";
-  file.precision(17);
-  for (const auto& c : script.changes()) file << c.time << "," << identifiers.name(c.identifier) << "," << c.value << "\n";
+  for (const auto& c : script.changes())
+    file << blocks::CsvNumber(c.time) << "," << blocks::CsvField(identifiers.spelling(c.identifier)) << ","
+         << blocks::CsvNumber(c.value) << "\n";
 }
 
 void PrintStats(const blocks::SolverStats& s, std::ostream& out) {
@@ -175,7 +177,7 @@ void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
   if (ids.size() > 0) {
     out << "\nidentifiers:\n";
     for (int i = 0; i < ids.size(); ++i)
-      out << "  " << ids.name(i) << " = " << Format("%.10g", ids.value(i))
+      out << "  " << ids.spelling(i) << " = " << Format("%.10g", ids.value(i))
           << (ids.is_expression(i) ? "  (= " + ids.definition(i) + ")" : "")
           << (ids.unit(i).empty() ? "" : "  [" + ids.unit(i) + "]")
           << (ids.comment(i).empty() ? "" : "  " + ids.comment(i)) << "\n";

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "blocks/csv.h"
 #include "blocks/suggest.h"
 #include "cli/plot.h"
 #include "cli/psd_output.h"
@@ -54,6 +55,13 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
   }
   // beside the results: tension_mechanism.csv -> tension_mechanism.report.csv
   const std::string stem = std::filesystem::path(csv).replace_extension().string();
+  // the unit of every column (STEM.units.csv: column,unit), where known
+  write(stem + ".units.csv", text([&](std::ostream& s) {
+          s << "column,unit\n";
+          for (int c = 0; c < sim.results().num_columns(); ++c)
+            s << blocks::CsvField(sim.results().columns()[c]) << ',' << blocks::CsvField(loaded.units[c]) << '\n';
+        }),
+        "");
   if (!sim.results().figures().empty())
     write(stem + ".report.csv", text([&](std::ostream& s) { sim.results().WriteFiguresCsv(s); }), "");
   if (loaded.control && !loaded.control->changes().empty())

@@ -203,15 +203,15 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
       throw InputError("--vary " + name + ": " + args.file + " has no identifier '" + name + "'" +
                        blocks::DidYouMean(name, ids.Names()));
     if (ids.is_expression(i))
-      throw InputError("--vary " + name + ": identifier '" + ids.name(i) + "' (" + ids.origin(i) +
+      throw InputError("--vary " + name + ": identifier '" + ids.spelling(i) + "' (" + ids.origin(i) +
                        ") is derived (= " + ids.definition(i) +
                        "); it follows the identifiers it uses, vary one of those");
     for (const std::string& seen : plan.names)
-      if (seen == ids.name(i)) throw InputError("--vary " + name + ": identifier '" + seen + "' is varied twice");
+      if (seen == ids.spelling(i)) throw InputError("--vary " + name + ": identifier '" + seen + "' is varied twice");
     for (const auto& [set_name, unused] : args.overrides)
       if (ids.Find(set_name) == i)
-        throw InputError("--vary " + name + ": identifier '" + ids.name(i) + "' is also given by --set");
-    plan.names.push_back(ids.name(i));
+        throw InputError("--vary " + name + ": identifier '" + ids.spelling(i) + "' is also given by --set");
+    plan.names.push_back(ids.spelling(i));  // as the diagram writes it, in the table and file names
     plan.values.push_back(values);
   }
   double runs = 1;

@@ -43,7 +43,7 @@ struct ConnectionDesc {
 };
 
 struct LogDesc {
-  std::string signal, group, label;
+  std::string signal, group, label, unit;
   SourceLoc loc;
 };
 

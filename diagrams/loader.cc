@@ -136,7 +136,19 @@ void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
   std::map<std::string, int> group_index;
   std::map<std::string, std::string> column_origin;
   int column = 1;
-  auto add = [&](blocks::SignalRef s, const std::string& group, const SourceLoc& loc) {
+  out->units = {"s"};
+  // the unit of a signal: the block's (a sensor's, an identifier's), else ""
+  const auto unit_of = [&](const blocks::SignalRef& s) -> std::string {
+    const blocks::Diagram& diagram = *out->diagram;
+    for (int b = 0; b < diagram.num_blocks(); ++b)
+      for (int p = 0; p < diagram.block(b).num_outputs(); ++p) {
+        if (diagram.layout(b).output_offset[p] != s.offset) continue;
+        const auto* id = dynamic_cast<const scripting::IdentifierBlock*>(&diagram.block(b));
+        return id ? out->identifiers->unit(id->identifier()) : diagram.block(b).OutputUnit(p);
+      }
+    return "";
+  };
+  auto add = [&](blocks::SignalRef s, const std::string& group, const SourceLoc& loc, const std::string& unit) {
     if (s.name == "time")
       throw InputError(loc.str() + ": a logged column named 'time', which is the name of the first column (the "
                        "time); give it another label");
@@ -148,7 +160,10 @@ void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
       group_index[group] = static_cast<int>(out->groups.size());
       out->groups.push_back({group, {}});
     }
-    for (int i = 0; i < s.width; ++i) out->groups[group_index[group]].columns.push_back(column++);
+    for (int i = 0; i < s.width; ++i) {
+      out->groups[group_index[group]].columns.push_back(column++);
+      out->units.push_back(unit.empty() ? unit_of(s) : unit);
+    }
     out->logged.push_back(std::move(s));
   };
   for (const auto& log : d.logs) {
@@ -160,7 +175,7 @@ void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
     }
     const std::string signal_name = s.name;
     if (!log.label.empty()) s.name = log.label;
-    add(std::move(s), log.group.empty() ? signal_name : log.group, log.loc);
+    add(std::move(s), log.group.empty() ? signal_name : log.group, log.loc, log.unit);
   }
   const blocks::Diagram& diagram = *out->diagram;
   for (int b = 0; b < diagram.num_blocks(); ++b) {
@@ -171,8 +186,14 @@ void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
       const auto& layout = diagram.layout(c.from_block);
       blocks::SignalRef s{from.name() + "." + from.output_port(c.from_port).name, layout.output_offset[c.from_port],
                           layout.output_width[c.from_port]};
-      add(std::move(s), diagram.block(b).name(), d.blocks[b].loc);
+      add(std::move(s), diagram.block(b).name(), d.blocks[b].loc, "");
     }
+  }
+  for (PlotGroup& g : out->groups) {
+    const std::string& unit = out->units[g.columns.front()];
+    bool common = !unit.empty() && unit != "-";
+    for (const int c : g.columns) common &= out->units[c] == unit;
+    g.axis_label = common && g.name.find('[') == std::string::npos ? g.name + " [" + unit + "]" : g.name;
   }
 }
 

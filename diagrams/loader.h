@@ -39,6 +39,9 @@ struct LoadOptions {
 struct PlotGroup {
   std::string name;
   std::vector<int> columns;  // indices into the results' columns
+  // The axis label: the name, with " [unit]" added when every column has
+  // that unit and the name gives none.
+  std::string axis_label;
 };
 
 // <spectrum>: the PSD of a logged column after the run (cli/psd_output.h).
@@ -70,6 +73,7 @@ struct LoadedDiagram {
   std::unique_ptr<scripting::ControlScript> control;
   blocks::SolverOptions solver;
   std::vector<blocks::SignalRef> logged;  // in column order; name = column label
+  std::vector<std::string> units;         // per results column, time ("s") first; "" unknown
   std::vector<PlotGroup> groups;
   std::vector<blocks::ReportRequest> reports;  // <report>s, signals resolved
   std::vector<SpectrumRequest> spectra;        // <spectrum>s, columns checked

@@ -75,7 +75,7 @@ const std::vector<ElementSchema>& Schema() {
       {"spectrum", {"signal"}, {"segment", "overlap", "window", "from", "peaks", "max_frequency"}, {}},
       {"report", {}, {"peak", "min", "peak_abs", "mean", "rms", "integral", "final", "crossing", "period", "level",
                       "label", "unit", "index"}, {}},
-      {"log", {"signal"}, {"group", "label"}, {}},
+      {"log", {"signal"}, {"group", "label", "unit"}, {}},
   };
   return schema;
 }
@@ -240,7 +240,7 @@ class Reader {
       d.output = Attributes(o);
       d.output_loc = Loc(o);
       for (const XMLElement* e = o->FirstChildElement("log"); e; e = e->NextSiblingElement("log"))
-        d.logs.push_back({Text(e, "signal"), Text(e, "group"), Text(e, "label"), Loc(e)});
+        d.logs.push_back({Text(e, "signal"), Text(e, "group"), Text(e, "label"), Text(e, "unit"), Loc(e)});
       for (const XMLElement* e = o->FirstChildElement("report"); e; e = e->NextSiblingElement("report"))
         d.reports.push_back({Attributes(e), Loc(e)});
       for (const XMLElement* e = o->FirstChildElement("spectrum"); e; e = e->NextSiblingElement("spectrum"))

@@ -167,4 +167,46 @@ void EvaluateSensor(const Mechanism& mechanism, const MechanismWorkspace& ws, st
   }
 }
 
+std::string SensorUnit(const Mechanism& mechanism, const SensorSpec& spec) {
+  const Model& model = mechanism.model();
+  const auto by_dof = [&](const char* translational, const char* rotational) {
+    return std::string(model.dofs().at(spec.index).rotational ? rotational : translational);
+  };
+  switch (spec.kind) {
+    case SensorKind::kCoordinate: return by_dof("m", "rad");
+    case SensorKind::kVelocity: return by_dof("m/s", "rad/s");
+    case SensorKind::kAcceleration: return by_dof("m/s^2", "rad/s^2");
+    case SensorKind::kReactionForce: return "N";
+    case SensorKind::kReactionTorque: return "N m";
+    case SensorKind::kPointPosition: return "m";
+    case SensorKind::kPointVelocity: return "m/s";
+    case SensorKind::kPointAcceleration: return "m/s^2";
+    case SensorKind::kBodyAngles: return "rad";
+    case SensorKind::kBodyAngularVelocity: return "rad/s";
+    case SensorKind::kKineticEnergy:
+    case SensorKind::kPotentialEnergy:
+    case SensorKind::kEnergyBalance: return "J";
+    case SensorKind::kElement: break;
+  }
+  // an element on rotational coordinates (a joint force on a rotation)
+  // measures moments and angles
+  const ForceElement& element = mechanism.element(spec.index);
+  bool rotational = !element.coordinates().empty();
+  for (const int v : element.coordinates())
+    for (const Dof& dof : model.dofs())
+      if (dof.v_index == v && !dof.rotational) rotational = false;
+  const std::string& name = element.sensor_names().at(spec.element_sensor);
+  if (name == "force") return rotational ? "N m" : "N";
+  if (name == "length" || name == "deflection") return rotational ? "rad" : "m";
+  if (name == "rate") return rotational ? "rad/s" : "m/s";
+  if (name == "normal" || name == "friction" || name == "fx" || name == "fy" || name == "fz") return "N";
+  if (name == "mx" || name == "my" || name == "mz") return "N m";
+  if (name == "penetration" || name == "dx" || name == "dy" || name == "dz") return "m";
+  if (name == "slip") return "m/s";
+  if (name == "ax" || name == "ay" || name == "az") return "rad";
+  if (name == "energy" || name == "work" || name == "dissipated") return "J";
+  if (name == "mode") return "-";
+  return "";
+}
+
 }  // namespace mechflow::mech

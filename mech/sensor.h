@@ -63,6 +63,9 @@ bool SensorDependsOnInputs(const Mechanism& mechanism, const SensorSpec& spec);
 // Throws InputError (starting with spec.origin, naming the sensor) when the
 // sensor's index, element sensor or component does not exist in `mechanism`.
 void CheckSensor(const Mechanism& mechanism, const SensorSpec& spec);
+// The SI unit of the sensor's values ("m", "rad/s", "N m", "J", "-" for
+// modes; "" when unknown), for results files and plot labels.
+std::string SensorUnit(const Mechanism& mechanism, const SensorSpec& spec);
 // Writes the sensor's value(s). For acceleration/reaction sensors the
 // workspace must hold a full EvaluateMechanism at the current state.
 void EvaluateSensor(const Mechanism& mechanism, const MechanismWorkspace& ws, std::span<const double> x,

@@ -100,7 +100,7 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
     // identifiers are case-insensitive, arguments are not: `U` would be ambiguous
     if (const int id = identifiers.Find(arguments_[i]); id >= 0)
       throw InputError(label_ + ": argument name '" + arguments_[i] + "' is also the name of the identifier '" +
-                       identifiers.name(id) + "' (" + identifiers.origin(id) + "); rename one of them");
+                       identifiers.spelling(id) + "' (" + identifiers.origin(id) + "); rename one of them");
   }
   lua_State* L = lua_.get();
   const int top = lua_gettop(L);

@@ -56,7 +56,7 @@ void CheckInputNames(const std::vector<std::string>& inputs, const IdentifierTab
     if (std::find(inputs.begin(), inputs.begin() + i, in) != inputs.begin() + i)
       throw InputError("input name '" + in + "' is given twice");
     if (const int id = identifiers.Find(in); id >= 0)
-      throw InputError("input name '" + in + "' is also the name of the identifier '" + identifiers.name(id) +
+      throw InputError("input name '" + in + "' is also the name of the identifier '" + identifiers.spelling(id) +
                        "' (" + identifiers.origin(id) + "); rename the input");
   }
 }

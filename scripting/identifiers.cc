@@ -144,6 +144,7 @@ void IdentifierTable::Add(const std::string& name, const std::string& definition
                      "; names are case-insensitive)");
   Item item;
   item.name = lower;
+  item.spelling = name;
   item.definition = Trim(definition);
   item.origin = origin;
   item.comment = comment;

@@ -77,6 +77,8 @@ class IdentifierTable {
 
   // The i-th identifier, 0 <= i < size(). Names are lower-case.
   const std::string& name(int i) const { return items_.at(i).name; }
+  // The name as the diagram wrote it (for what a user reads: tables, files).
+  const std::string& spelling(int i) const { return items_.at(i).spelling; }
   const std::string& definition(int i) const { return items_.at(i).definition; }
   double value(int i) const { return items_.at(i).value; }
   bool is_expression(int i) const { return items_.at(i).is_expression; }
@@ -87,7 +89,7 @@ class IdentifierTable {
 
  private:
   struct Item {
-    std::string name, definition, origin, comment, unit;
+    std::string name, spelling, definition, origin, comment, unit;
     bool is_expression = false;
     bool overridden = false;
     double value = 0.0;

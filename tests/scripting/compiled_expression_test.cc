@@ -153,7 +153,7 @@ TEST_F(CompiledExpressionTest, CompileErrorsNameTheExpressionAndChunk) {
   EXPECT_EQ(InputErrorOf([&] { CompiledExpression(lua_, "u", {"end"}, ids_, "=block 'f'"); }),
             "block 'f': argument name 'end' is not a Lua name");
   EXPECT_EQ(InputErrorOf([&] { CompiledExpression(lua_, "MASS", {"MASS"}, ids_, "=block 'f'"); }),
-            "block 'f': argument name 'MASS' is also the name of the identifier 'mass' (f:2); rename one of them");
+            "block 'f': argument name 'MASS' is also the name of the identifier 'Mass' (f:2); rename one of them");
   EXPECT_EQ(lua_gettop(lua_.get()), 0);
 }
 
