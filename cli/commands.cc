@@ -127,7 +127,8 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
 int CheckCommand(const Arguments& args, std::ostream& out, std::ostream&) {
   const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
   PrintCheck(loaded, out);
-  out << "\n" << args.file << ": ok\n";
+  const int unknown = PrintUnknownGlobals(loaded, out);
+  out << "\n" << args.file << ": ok" << (unknown ? " (" + std::to_string(unknown) + " warning" + (unknown == 1 ? "" : "s") + ")" : "") << "\n";
   return 0;
 }
 

@@ -1,6 +1,8 @@
 #include "cli/report.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -9,9 +11,11 @@
 #include <utility>
 
 #include "blocks/csv.h"
+#include "blocks/input_file.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/suggest.h"
 #include "mech/mechanism.h"
+#include "scripting/global_reads.h"
 
 namespace mechflow::cli {
 namespace {
@@ -166,6 +170,38 @@ void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks
           << block->name() << "." << m.element(i).name() << ": " << warning << "\n";
     }
   }
+}
+
+int PrintUnknownGlobals(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
+  // each chunk with the file its lines count in and the line of its first
+  struct Chunk {
+    std::string code, file;
+    int first_line;
+  };
+  std::vector<Chunk> chunks;
+  const diagrams::ScriptDesc& script = loaded.description.script;
+  if (script.present()) chunks.push_back({script.code, script.chunk_name.substr(1), 1});  // "@file": lines are the file's
+  for (const diagrams::BlockDesc& b : loaded.description.blocks) {
+    if (b.type != "lua") continue;
+    const auto src = std::find_if(b.params.begin(), b.params.end(), [](const auto& a) { return a.name == "src"; });
+    if (src != b.params.end()) {
+      const std::string path = (std::filesystem::path(b.loc.file).parent_path() / src->value).string();
+      chunks.push_back({blocks::ReadInputFile(path, "Lua file"), path, 1});
+    } else {
+      chunks.push_back({b.text, b.text_loc.file, b.text_loc.line});
+    }
+  }
+  std::vector<std::string> spellings;
+  for (int i = 0; i < loaded.identifiers->size(); ++i) spellings.push_back(loaded.identifiers->spelling(i));
+  int count = 0;
+  for (const Chunk& c : chunks)
+    for (const scripting::GlobalRead& g : scripting::UnknownGlobals(c.code, *loaded.identifiers, *loaded.lua)) {
+      out << c.file << ":" << c.first_line + g.line - 1 << ": warning: '" << g.name
+          << "' is read as a global but is no identifier, no Lua name and defined nowhere in the chunk"
+          << blocks::DidYouMean(g.name, spellings) << "\n";
+      ++count;
+    }
+  return count;
 }
 
 void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {

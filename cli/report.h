@@ -14,6 +14,11 @@ namespace mechflow::cli {
 void PrintStats(const blocks::SolverStats& stats, std::ostream& out);
 
 // Minimum and maximum of every logged column, with the times they occur.
+// `mechflow check`: warns of every global a Lua chunk (control script, Lua
+// block) reads that nothing defines (scripting/global_reads.h), naming
+// file:line; returns how many.
+int PrintUnknownGlobals(const diagrams::LoadedDiagram& loaded, std::ostream& out);
+
 void PrintSignalRanges(const blocks::Results& results, std::ostream& out);
 
 // The figures of the diagram's <report>s, one line each:

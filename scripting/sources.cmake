@@ -2,6 +2,7 @@
 set(MECHFLOW_SCRIPTING_SOURCES
   scripting/compiled_expression.cc
   scripting/expression_block.cc
+  scripting/global_reads.cc
   scripting/identifier_bindings.cc
   scripting/identifier_block.cc
   scripting/control_script.cc

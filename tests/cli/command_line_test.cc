@@ -108,5 +108,31 @@ TEST(CommandLineTest, VerboseLogsEveryEventWithItsElement) {
   EXPECT_THAT(quiet.out, ::testing::Not(HasSubstr("event: t = ")));
 }
 
+// check compiles every Lua chunk when loading and names the globals one
+// reads that nothing defines, at the chunk's file:line.
+TEST(CommandLineTest, CheckNamesGlobalsNothingDefines) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "check_globals";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "d.xml") << "<diagram name='d'>\n"
+                                  "<identifiers><identifier name='Kp' value='2'/></identifiers>\n"
+                                  "<blocks>\n"
+                                  "<block type='lua' name='f' outputs='y'><![CDATA[\n"
+                                  "function outputs(t) return kp * t + gian end\n"
+                                  "]]></block>\n"
+                                  "</blocks>\n"
+                                  "<script>\n"
+                                  "function step(sim) local phi = sim:get('f.y'); kp_gain = phi * Kpp end\n"
+                                  "</script>\n"
+                                  "<solver t_end='1'/></diagram>\n";
+  const auto run = testing::RunMechflow("check " + (dir / "d.xml").string());
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  const std::string file = (dir / "d.xml").string();
+  EXPECT_THAT(run.out, HasSubstr(file + ":9: warning: 'Kpp' is read as a global but is no identifier"));
+  EXPECT_THAT(run.out, HasSubstr("did you mean 'Kp'"));
+  EXPECT_THAT(run.out, HasSubstr(file + ":5: warning: 'gian' is read as a global"));
+  EXPECT_THAT(run.out, ::testing::Not(HasSubstr("'kp_gain'")));  // assigned, not read
+  EXPECT_THAT(run.out, HasSubstr(": ok (2 warnings)"));
+}
+
 }  // namespace
 }  // namespace mechflow::cli
