@@ -1,5 +1,11 @@
 #include "blocks/linearization.h"
 
+#include "mech/mechanism.h"
+
+#include "blocks/library/friction_from_normal_force.h"
+
+#include "blocks/library/mechanism_block.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,7 +15,10 @@
 #include <Eigen/QR>
 
 #include "blocks/evaluation.h"
+#include "blocks/library/friction_from_normal_force.h"
+#include "blocks/library/mechanism_block.h"
 #include "mech/errors.h"
+#include "mech/mechanism.h"
 
 namespace mechflow::blocks {
 namespace {
@@ -230,6 +239,39 @@ std::vector<std::string> StateNames(const Diagram& diagram) {
       names[diagram.layout(b).first_state + i] = block.name() + "." + block.state_name(i);
   }
   return names;
+}
+
+std::vector<std::string> DescribeLinearisedModes(const Diagram& diagram, const Context& ctx) {
+  std::vector<std::string> lines;
+  for (int b = 0; b < diagram.num_blocks(); ++b) {
+    const BlockLayout& layout = diagram.layout(b);
+    if (const auto* block = dynamic_cast<const MechanismBlock*>(&diagram.block(b))) {
+      const mech::Mechanism& m = block->mechanism();
+      for (int e = 0; e < m.num_elements(); ++e) {
+        const int n = m.element(e).num_modes();
+        if (n == 0) continue;
+        const std::span<const double> modes(ctx.discrete.data() + layout.first_discrete + m.mode_offset(e), n);
+        lines.push_back(block->name() + "." + m.element(e).name() + ": " + m.element(e).LinearisedAs(modes));
+      }
+    } else if (const auto* friction = dynamic_cast<const FrictionFromNormalForceBlock*>(&diagram.block(b))) {
+      const mech::FrictionLawParams& law = friction->law();
+      const double normal = ctx.signals[layout.input_offset[friction->FindInput("N")]];
+      const double v = ctx.signals[layout.input_offset[friction->FindInput("v")]];
+      std::ostringstream line;
+      if (std::abs(v) > 3 * law.regularisation_velocity) {
+        line << friction->name() << ": sliding (v = " << v
+             << "): the force follows v only through the Stribeck fall and the viscous term";
+        lines.push_back(line.str());
+        continue;
+      }
+      line << friction->name() << ": regularised near rest (v = " << v << ", v_reg = " << law.regularisation_velocity
+           << "): a viscous damper of slope mu_s N / v_reg + c_visc = "
+           << law.mu_static * std::max(normal, 0.0) / law.regularisation_velocity + law.viscous
+           << " per unit of v, where Coulomb friction would stick";
+      lines.push_back(line.str());
+    }
+  }
+  return lines;
 }
 
 }  // namespace mechflow::blocks

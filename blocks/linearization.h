@@ -109,4 +109,13 @@ StateRoles FindStateRoles(const Eigen::MatrixXd& A);
 // "block.state" names of the continuous states, in state order.
 std::vector<std::string> StateNames(const Diagram& diagram);
 
+// What the linearisation at the context's state (outputs evaluated, as
+// StateJacobian leaves them) took for each element that switches: one line
+// per mechanism element with modes ("m.friction: stuck, held exactly: ...")
+// and per friction_from_normal_force block: sliding, or regularised when
+// its velocity input lies within three regularisation velocities of 0 (its
+// tanh then acts as a viscous damper of slope mu_s N / v_reg). The
+// frequencies hold only while these modes last.
+std::vector<std::string> DescribeLinearisedModes(const Diagram& diagram, const Context& ctx);
+
 }  // namespace mechflow::blocks

@@ -165,6 +165,7 @@ int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   std::vector<bool> normalise_on = report.roles.coordinate;
   if (std::find(normalise_on.begin(), normalise_on.end(), true) == normalise_on.end()) normalise_on.clear();
   report.modes = blocks::ModalAnalysis(A, normalise_on);
+  report.switching = blocks::DescribeLinearisedModes(diagram, ctx);
 
   const auto count = [](std::size_t n, const char* what) {
     return std::to_string(n) + " " + what + (n == 1 ? "" : "s");

@@ -65,6 +65,13 @@ void PrintModes(const ModesReport& r, std::ostream& out) {
     out << line;
   }
 
+  // what the switching elements were taken as: the modes hold only while they last
+  if (!r.switching.empty()) {
+    out << "\nswitching elements, linearised in their modes at this state (the frequencies below hold only "
+           "while these modes last):\n";
+    for (const std::string& s : r.switching) out << "  " << s << "\n";
+  }
+
   // frequencies
   out << "\n mode   f damped [Hz]   f natural [Hz]   damping ratio   Re lambda [1/s]   Im lambda [rad/s]   kind\n";
   for (std::size_t k = 0; k < r.modes.size(); ++k) {

@@ -18,6 +18,7 @@ struct ModesReport {
   std::vector<double> x;                               // the state linearised at
   blocks::StateRoles roles;                            // coordinates and rates, per state
   std::vector<blocks::Mode> modes;                     // sorted by natural frequency
+  std::vector<std::string> switching;                  // blocks::DescribeLinearisedModes
 };
 
 // Prints where the diagram was linearised (state values and roles), the modes

@@ -31,6 +31,15 @@ CirclePlaneContact::CirclePlaneContact(std::string name, std::string origin, int
   DeclareCrossing(mech::Crossing::kRising);  // max_penetration passed
 }
 
+std::string CirclePlaneContact::LinearisedAs(std::span<const double> modes) const {
+  int touching = 0;
+  for (const double m : modes) touching += m != 0.0;
+  if (touching == 0) return "not touching: no contact stiffness";
+  return std::to_string(touching) + " of " + std::to_string(modes.size()) +
+         " point(s) touching: their contact stiffness acts, and below a slip of v_eps their regularised "
+         "friction acts as a steep viscous damper (mu N / v_eps per point)";
+}
+
 std::string CirclePlaneContact::CrossingWarning(int index, int direction) const {
   return index == 1 && direction > 0 ? PenetrationWarning(law_) : "";
 }

@@ -161,4 +161,10 @@ ElementCoordinate ElasticFriction2Force::Coordinate(const std::string& component
 
 std::string ElasticFriction2Force::CrossingName(int index, int) const { return SliderCrossingName(index); }
 
+std::string ElasticFriction2Force::LinearisedAs(std::span<const double> modes) const {
+  if (modes[0] == 0.0) return "stuck: c1 in series with c2 enters the modes (the slider held)";
+  return std::string("sliding ") + (modes[0] > 0 ? "forward" : "backward") +
+         ": the slider moves on its sliding solution, so the stiffness seen is not that of c1 with c2 held";
+}
+
 }  // namespace mechflow::mech

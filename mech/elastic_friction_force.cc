@@ -125,4 +125,10 @@ std::string SliderCrossingName(int index) {
 
 std::string ElasticFrictionForce::CrossingName(int index, int) const { return SliderCrossingName(index); }
 
+std::string ElasticFrictionForce::LinearisedAs(std::span<const double> modes) const {
+  if (modes[0] == 0.0) return "stuck: its elastic link (spring c with damper d in series) enters the modes";
+  return std::string("sliding ") + (modes[0] > 0 ? "forward" : "backward") +
+         ": a constant force across it; its link relaxes through the slider (a real mode, time constant d/c)";
+}
+
 }  // namespace mechflow::mech

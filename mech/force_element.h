@@ -198,6 +198,11 @@ class ForceElement {
     return "crossing " + std::to_string(index);
   }
 
+  // How the element enters a linearisation in these modes (its slice), for
+  // `mechflow modes`: "stuck, held exactly: ...". Empty for elements
+  // without modes.
+  virtual std::string LinearisedAs(std::span<const double> /*modes*/) const { return ""; }
+
   // Crossing `index` fired in `direction`: a warning for the user when the
   // event means "check the model" (e.g. a contact sinking deeper than its
   // bound), else empty. Called after a run, not at run time.

@@ -183,6 +183,17 @@ ElementCoordinate FrictionalForce::Coordinate(const std::string& component) cons
                        : ElementCoordinate::Line(body1_, point1_, body2_, point2_);
 }
 
+std::string FrictionalForce::LinearisedAs(std::span<const double> modes) const {
+  if (modes[0] != 0.0)
+    return std::string("sliding ") + (modes[0] > 0 ? "forward" : "backward") +
+           ": a constant friction force, no stiffness or damping across it";
+  if (p_.exact_stick)
+    return "stuck, held exactly: its relative motion is locked, one coordinate fewer (a zero eigenvalue below "
+           "is that lock, not a free motion)";
+  return "stuck on its stick spring: the spring's stiffness c and damping d enter the modes (frequencies of "
+         "the stick spring, not of free sliding)";
+}
+
 std::string FrictionalForce::CrossingName(int index, int) const {
   switch (index) {
     case kSlipPlusStops: return "slip+ ends: sticks (or turns, when the hold is beyond the limit)";

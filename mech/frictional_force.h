@@ -57,6 +57,7 @@ class FrictionalForce final : public ForceElement {
                 std::span<double> sensors) const override;
   ElementCoordinate Coordinate(const std::string& component) const override;
   std::string CrossingName(int index, int direction) const override;
+  std::string LinearisedAs(std::span<const double> modes) const override;
   void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
   void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
                   std::span<double> modes) const override;

@@ -78,6 +78,12 @@ void Gearing::Initialize(const ElementContext& ctx, std::span<double> state, std
   modes[0] = ModeFor(0.0, Geometry(ctx).rate);
 }
 
+std::string Gearing::LinearisedAs(std::span<const double> modes) const {
+  if (modes[0] == 0.0) return "in its backlash: the teeth are apart, no mesh stiffness couples the gears";
+  return std::string("in mesh on its ") + (modes[0] > 0 ? "positive" : "negative") +
+         " flank: the mesh stiffness and damping couple the gears";
+}
+
 bool Gearing::UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
   const double mode = ModeFor(state[0], Geometry(ctx).rate);
   const bool changed = mode != modes[0];

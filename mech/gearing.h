@@ -36,6 +36,7 @@ class Gearing final : public ForceElement {
                 std::span<double> sensors) const override;
   void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
   bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+  std::string LinearisedAs(std::span<const double> modes) const override;
 
  private:
   struct Mesh {

@@ -76,6 +76,7 @@ class PointsPlaneContact final : public ForceElement {
   bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
   // The last crossing is the deepest point passing max_penetration.
   std::string CrossingWarning(int index, int direction) const override;
+  std::string LinearisedAs(std::span<const double> modes) const override;
 
 
  private:

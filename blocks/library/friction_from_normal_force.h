@@ -25,6 +25,7 @@ namespace mechflow::blocks {
 class FrictionFromNormalForceBlock : public Block {
  public:
   FrictionFromNormalForceBlock(const std::string& name, const mech::FrictionLawParams& law);
+  const mech::FrictionLawParams& law() const { return law_; }
 
  protected:
   void DoCalcOutput(int port, const BlockContext& ctx) const override;

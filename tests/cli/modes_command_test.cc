@@ -258,6 +258,28 @@ TEST(ModesCommandTest, BadInputExitsWithTwo) {
   EXPECT_THAT(blocked.err, StartsWith("cannot create output folder 'file/sub'"));
 }
 
+// A diagram with switching elements says which mode each was linearised in
+// (issue 15, item 6): a locked friction damper is not a free motion.
+TEST(ModesCommandTest, SwitchingElementsAreNamedWithTheirModes) {
+  const fs::path dir = FreshDir("switching");
+  const Outcome car = Mechflow("modes " + Example("quarter_car.xml"), dir);
+  ASSERT_EQ(car.exit_code, 0) << car.err;
+  EXPECT_THAT(car.out, HasSubstr("switching elements, linearised in their modes at this state"));
+  EXPECT_THAT(car.out, HasSubstr("car.damper: stuck, held exactly: its relative motion is locked"));
+  // locked: wheel and body move as one on the tyre, sqrt(k_tyre / 440 kg) / 2 pi
+  char f[32];
+  std::snprintf(f, sizeof f, "%.6f", std::sqrt(2e5 / 440) / (2 * kPi));
+  EXPECT_THAT(car.out, HasSubstr(f));
+  const Outcome leaf = Mechflow("modes " + Example("leaf_spring.xml"), dir);
+  EXPECT_THAT(leaf.out, HasSubstr("m.friction: stuck on its stick spring"));
+  EXPECT_THAT(leaf.out, HasSubstr("friction_force: regularised near rest (v = 0"));
+  const Outcome belt = Mechflow("modes " + Example("stick_slip_blocks.xml"), dir);
+  EXPECT_THAT(belt.out, HasSubstr("friction: sliding (v = -0.1)"));
+  // none in a smooth diagram
+  EXPECT_THAT(Mechflow("modes " + Example("frequencies.xml"), dir).out,
+              ::testing::Not(HasSubstr("switching elements")));
+}
+
 TEST(ModesCommandTest, Help) {
   const fs::path dir = FreshDir("help");
   const Outcome help = Mechflow("help modes", dir);
