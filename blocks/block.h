@@ -164,6 +164,9 @@ class Block {
   // After a failed run: what the block knows about why (e.g. a mechanism at
   // a singular position), as a sentence; empty when it knows nothing.
   virtual std::string FailureNote() const { return {}; }
+  // What zero crossing `index` firing in `direction` meant, for the event
+  // log (`mechflow run --verbose`); "" when the block has no words for it.
+  virtual std::string CrossingName(int /*index*/, int /*direction*/) const { return {}; }
   // The unit of an output's values ("m", "N"), "" when the block cannot know.
   virtual std::string OutputUnit(int /*port*/) const { return {}; }
 

@@ -136,19 +136,12 @@ void PrintEventLog(const blocks::Diagram& diagram, const std::vector<blocks::Eve
                    std::ostream& out) {
   for (const blocks::EventRecord& e : events) {
     out << "event: t = " << Format("%.9g", e.time) << " s: ";
-    const auto* block = dynamic_cast<const blocks::MechanismBlock*>(&diagram.block(e.block));
-    bool named = false;
-    if (block) {
-      const mech::Mechanism& m = block->mechanism();
-      for (int i = 0; i < m.num_elements() && !named; ++i) {
-        const int local = e.crossing - m.crossing_offset(i);
-        if (local < 0 || local >= m.element(i).num_crossings()) continue;
-        out << block->name() << "." << m.element(i).name() << ": " << m.element(i).CrossingName(local, e.direction);
-        named = true;
-      }
-    }
-    if (!named)
-      out << "block '" << diagram.block(e.block).name() << "' zero crossing " << e.crossing
+    const blocks::Block& block = diagram.block(e.block);
+    const std::string name = block.CrossingName(e.crossing, e.direction);
+    if (!name.empty())
+      out << block.name() << (block.type() == "mechanism" ? "." : ": ") << name;
+    else
+      out << "block '" << block.name() << "' zero crossing " << e.crossing
           << (e.direction > 0 ? " rising" : e.direction < 0 ? " falling" : "");
     out << "\n";
   }

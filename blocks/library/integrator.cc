@@ -114,6 +114,12 @@ void IntegratorBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
   if (reset_crossing_ >= 0) g[reset_crossing_] = ctx.input_scalar(1);
 }
 
+std::string IntegratorBlock::CrossingName(int index, int direction) const {
+  if (index == reset_crossing_) return std::string("reset trigger ") + (direction > 0 ? "rises" : "falls");
+  const std::string x = initial_.size() > 1 ? "x[" + std::to_string(index / 2) + "]" : "x";
+  return x + (index % 2 == 0 ? ": upper" : ": lower") + " limit reached or left";
+}
+
 void IntegratorBlock::DoZeroCrossing(int index, int direction, const BlockContext& ctx) const {
   if (index == reset_crossing_) {
     // inputs hold their values just before the event: x0 is read there

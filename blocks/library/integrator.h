@@ -54,6 +54,7 @@ class IntegratorBlock : public Block {
 
  protected:
   void DoInitialize(const BlockContext& ctx) const override;
+  std::string CrossingName(int index, int direction) const override;
   void DoCalcOutput(int port, const BlockContext& ctx) const override;
   void DoCalcDerivatives(const BlockContext& ctx) const override;
   void DoCalcZeroCrossings(const BlockContext& ctx) const override;

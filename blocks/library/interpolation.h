@@ -133,6 +133,10 @@ class AxisModes {
   // inputs u[k] along axis k; modes and crossings as declared above
   void Initialize(std::span<double> modes) const;
   void Crossings(std::span<const double> u, std::span<const double> modes, std::span<double> g) const;
+  // For the event log: "u rises past a breakpoint" (`inputs`: port names).
+  std::string CrossingName(int i, const std::vector<std::string>& inputs) const {
+    return inputs.at(moded_.at(i / 2)) + (CrossingRises(i) ? " rises" : " falls") + " past a breakpoint";
+  }
   // Crossing i fired: move to the next region (SimulationError into a
   // forbidden one).
   void Cross(int i, std::span<const double> u, std::span<double> modes) const;

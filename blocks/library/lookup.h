@@ -26,6 +26,7 @@ class LookupBlock final : public Block {
  public:
   LookupBlock(const std::string& name, Axis axis, std::vector<double> values);
 
+  std::string CrossingName(int index, int) const override { return modes_.CrossingName(index, {"u"}); }
  private:
   void DoInitialize(const BlockContext& ctx) const override;
   void DoCalcOutput(int port, const BlockContext& ctx) const override;
@@ -43,6 +44,7 @@ class Lookup2DBlock final : public Block {
   // values[i][j] = f(x_i, y_j)
   Lookup2DBlock(const std::string& name, Axis x, Axis y, const std::vector<std::vector<double>>& values);
 
+  std::string CrossingName(int index, int) const override { return modes_.CrossingName(index, {"u1", "u2"}); }
  private:
   void DoInitialize(const BlockContext& ctx) const override;
   void DoCalcOutput(int port, const BlockContext& ctx) const override;

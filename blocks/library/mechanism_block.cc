@@ -238,6 +238,15 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
   positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
 }
 
+std::string MechanismBlock::CrossingName(int index, int direction) const {
+  for (int i = 0; i < mechanism_->num_elements(); ++i) {
+    const int local = index - mechanism_->crossing_offset(i);
+    if (local >= 0 && local < mechanism_->element(i).num_crossings())
+      return mechanism_->element(i).name() + ": " + mechanism_->element(i).CrossingName(local, direction);
+  }
+  return {};
+}
+
 std::string MechanismBlock::FailureNote() const {
   if (mechanism_->constraints().empty()) return {};
   return mech::SingularPositionNote(mechanism_->model(), mechanism_->constraints(), ws_.constraint);

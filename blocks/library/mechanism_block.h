@@ -62,6 +62,8 @@ class MechanismBlock final : public Block {
   // Names the loop constraint that became dependent when the run failed at
   // a singular position.
   std::string FailureNote() const override;
+  // "element: what its crossing meant" (mech::ForceElement::CrossingName)
+  std::string CrossingName(int index, int direction) const override;
   std::string OutputUnit(int port) const override { return mech::SensorUnit(*mechanism_, sensors_.at(port)); }
 
  private:

@@ -45,6 +45,7 @@ class MotionTableBlock final : public Block {
  public:
   MotionTableBlock(const std::string& name, Axis axis, std::vector<double> values, double start, double speed);
 
+  std::string CrossingName(int index, int) const override { return modes_.CrossingName(index, {"s"}); }
  private:
   void DoInitialize(const BlockContext& ctx) const override;
   void DoCalcOutput(int port, const BlockContext& ctx) const override;

@@ -1,5 +1,7 @@
 #include "blocks/library/piecewise_linear.h"
 
+#include <cstdio>
+
 #include "blocks/library/hysteresis.h"
 
 namespace mechflow::blocks {
@@ -58,6 +60,14 @@ void PiecewiseLinearBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
       const double band = CornerBand(corners_[k]);
       g[i * n + k] = u[i] - corners_[k] + (modes[i] > static_cast<double>(k) ? band : -band);
     }
+}
+
+std::string PiecewiseLinearBlock::CrossingName(int index, int direction) const {
+  const int n = static_cast<int>(corners_.size());
+  const std::string u = input_port(0).width > 1 ? "u[" + std::to_string(index / n) + "]" : "u";
+  char corner[32];
+  std::snprintf(corner, sizeof corner, "%g", corners_[index % n]);
+  return u + (direction > 0 ? " rises past " : " falls past ") + corner;
 }
 
 void PiecewiseLinearBlock::DoZeroCrossing(int index, int direction, const BlockContext& ctx) const {

@@ -35,6 +35,7 @@ class PiecewiseLinearBlock : public Block {
   virtual double Piece(int mode, double u) const = 0;
   void DoInitialize(const BlockContext& ctx) const override;
   void DoCalcOutput(int port, const BlockContext& ctx) const override;
+  std::string CrossingName(int index, int direction) const override;
   void DoCalcZeroCrossings(const BlockContext& ctx) const override;
   void DoZeroCrossing(int index, int direction, const BlockContext& ctx) const override;
   bool DoUpdateModes(const BlockContext& ctx) const override;

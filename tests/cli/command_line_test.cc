@@ -134,5 +134,21 @@ TEST(CommandLineTest, CheckNamesGlobalsNothingDefines) {
   EXPECT_THAT(run.out, HasSubstr(": ok (2 warnings)"));
 }
 
+// --verbose names what every block's event meant, not only mechanisms'.
+TEST(CommandLineTest, VerboseNamesBlockEvents) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "verbose_blocks";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "d.xml") << "<diagram name='d'><blocks><block type='sine' name='s'/><block type='abs' name='a'/>"
+                                  "<block type='lookup' name='f' points='0 0; 0.5 1; 1 0'/></blocks><connections>"
+                                  "<connect from='s.y' to='a.u'/><connect from='s.y' to='f.u'/></connections>"
+                                  "<solver t_end='1'/><output interval='0.1'><log signal='a.y'/><log signal='f.y'/>"
+                                  "</output></diagram>";
+  const auto run = testing::RunMechflow("run " + (dir / "d.xml").string() + " --verbose --out " + (dir / "out").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("s: a: u falls past 0\n"));  // sin(2 pi t) at t = 0.5
+  EXPECT_THAT(run.out, HasSubstr("s: f: u rises past a breakpoint\n"));
+  EXPECT_THAT(run.out, ::testing::Not(HasSubstr("zero crossing")));
+}
+
 }  // namespace
 }  // namespace mechflow::cli
