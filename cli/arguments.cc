@@ -167,7 +167,8 @@ std::string HelpText(const std::string& command) {
   if (command == "psd") return PsdHelp();
   if (command == "sweep")
     return "usage: mechflow sweep FILE --vary NAME=V1,V2,... [--vary ...] [--variant NAME]...\n"
-           "                      [--set NAME=VALUE]... [--t-end T] [--jobs N] [--out DIR] [--unsafe-lua]\n"
+           "                      [--set NAME=VALUE]... [--t-end T] [--jobs N] [--out DIR] [--quiet | --verbose]\n"
+           "                      [--unsafe-lua]\n"
            "\n"
            "Runs the diagram FILE once for every combination of the varied identifiers'\n"
            "values (the cartesian product; the last --vary changes fastest), N runs at a\n"
@@ -178,7 +179,9 @@ std::string HelpText(const std::string& command) {
            "results file, then each <report> figure's value and time. A run that fails\n"
            "(solver failure, a value the model refuses) is a row with its error; the\n"
            "sweep goes on. NAME.sweep.png draws every run over one another, a panel per\n"
-           "logged group, each curve labelled by its values.\n"
+           "logged group, each curve labelled by its values. Ctrl-C or SIGTERM ends the\n"
+           "runs under way (their rows written), starts no more, writes the summary\n"
+           "(`not run` rows) and exits 130 or 143.\n"
            "\n"
            "  --vary NAME=V1,V2,...  values of an identifier defined by a number (repeatable);\n"
            "                    NAME=A:B:N gives N values evenly from A to B, NAME=A:B:N:log\n"
@@ -186,6 +189,8 @@ std::string HelpText(const std::string& command) {
            "  --jobs N          runs at a time (default: the number of cores)\n"
            "  --variant, --set, --t-end, --rtol, --atol, --interval, --results, --quiet,\n"
            "  --unsafe-lua      as for mechflow run, for every run\n"
+           "  --verbose         write each run's event log beside its results\n"
+           "                    (NAME.runK.ID=VALUE....events.txt)\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
            "\n"
            "Built with MPI (cmake -DMECHFLOW_MPI=ON), `mpirun -n K mechflow sweep ...`\n"
@@ -282,7 +287,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.results = value(arg);
     } else if (arg == "--quiet" && runs) {
       a.quiet = true;
-    } else if (arg == "--verbose" && a.command == "run") {
+    } else if (arg == "--verbose" && runs) {
       a.verbose = true;
     } else if (arg == "--equilibrium" && a.command == "modes") {
       a.equilibrium = true;

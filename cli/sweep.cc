@@ -27,6 +27,7 @@
 #include "cli/output_folder.h"
 #include "cli/results_file.h"
 #include "cli/ranks.h"
+#include "cli/report.h"
 #include "diagrams/loader.h"
 #include "mech/errors.h"
 
@@ -75,6 +76,7 @@ struct Plan {
   std::string csv_file;                    // the diagram's results file name
   std::vector<diagrams::PlotGroup> groups; // logged groups, for the overlay plot
   std::vector<std::string> columns;        // the results' column names
+  bool event_logs = false;                 // --verbose: each run's event log beside its results
 };
 
 // The values of run `index`: mixed radix, the last identifier fastest.
@@ -151,6 +153,11 @@ RunRow RunOne(const Plan& plan, int index) {
     figures = sim.results().figures();
     if (const std::string problem = file.Close(); !problem.empty()) throw WriteError(problem);
     results_file = name;
+    if (plan.event_logs) {
+      std::ostringstream log;
+      PrintEventLog(*loaded.diagram, sim.events(), log);
+      plan.folder->Write(fs::path(name).replace_extension(".events.txt").string(), log.str());
+    }
   } catch (const std::exception& e) {
     ok = false;
     error += (error.empty() ? "" : "; ") + std::string(e.what());
@@ -187,6 +194,7 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.common.variants = args.variants;
   plan.common.overrides = args.overrides;
   plan.common.expression_overrides = args.set_expressions;
+  plan.event_logs = args.verbose;
   plan.common.t_end = args.t_end;
   plan.common.rtol = args.rtol;
   plan.common.atol = args.atol;

@@ -138,7 +138,8 @@ TEST(CommandLineTest, CheckNamesGlobalsNothingDefines) {
 TEST(CommandLineTest, VerboseNamesBlockEvents) {
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "verbose_blocks";
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "d.xml") << "<diagram name='d'><blocks><block type='sine' name='s'/><block type='abs' name='a'/>"
+  std::ofstream(dir / "d.xml") << "<diagram name='d'><identifiers><identifier name='A' value='1'/></identifiers>"
+                                  "<blocks><block type='sine' name='s' amplitude='A'/><block type='abs' name='a'/>"
                                   "<block type='lookup' name='f' points='0 0; 0.5 1; 1 0'/></blocks><connections>"
                                   "<connect from='s.y' to='a.u'/><connect from='s.y' to='f.u'/></connections>"
                                   "<solver t_end='1'/><output interval='0.1'><log signal='a.y'/><log signal='f.y'/>"
@@ -148,6 +149,11 @@ TEST(CommandLineTest, VerboseNamesBlockEvents) {
   EXPECT_THAT(run.out, HasSubstr("s: a: u falls past 0\n"));  // sin(2 pi t) at t = 0.5
   EXPECT_THAT(run.out, HasSubstr("s: f: u rises past a breakpoint\n"));
   EXPECT_THAT(run.out, ::testing::Not(HasSubstr("zero crossing")));
+  // a sweep writes each run's log beside its results
+  const auto sweep = testing::RunMechflow("sweep " + (dir / "d.xml").string() + " --vary A=1,2 --verbose --out " +
+                                          (dir / "sweep").string());
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  EXPECT_THAT(testing::ReadFile(dir / "sweep" / "d.run2.A=2.events.txt"), HasSubstr("s: a: u falls past 0\n"));
 }
 
 }  // namespace
