@@ -670,8 +670,9 @@ std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const E
   for (const ElementDesc& e : m.children)
     if (e.tag == "sensor") sensors.push_back(ReadSensor(r, e, *mechanism));
   // Assemble once now, so that a loop that cannot close is bad input (exit 2)
-  // rather than a failed run.
-  {
+  // rather than a failed run -- unless signals drive segments: their values
+  // are known only once the diagram runs (the block assembles then).
+  if (model->drive_signals().empty()) {
     mech::MechanismWorkspace ws(*mechanism);
     std::vector<double> x(mechanism->num_states()), modes(mechanism->num_modes());
     std::vector<double> inputs(mechanism->num_inputs(), 0.0);
