@@ -268,6 +268,7 @@ void Simulator::Record(double t, double* x) {
   for (const SignalRef& s : logged_)
     for (int i = 0; i < s.width; ++i) row_[column++] = ctx_.signals[s.offset + i];
   results_.AddRow(row_.data());
+  if (observer_) observer_->OnRow(t, x, ctx_);
 }
 
 void Simulator::RefuseFrozenState() {

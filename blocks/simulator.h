@@ -108,6 +108,14 @@ struct EventRecord {
   int direction = 0;   // +1 rising, -1 falling
 };
 
+// Sees every row as it is recorded, with the continuous state and the
+// Context's signals at that time (an animation records the bodies' poses).
+class RowObserver {
+ public:
+  virtual ~RowObserver() = default;
+  virtual void OnRow(double t, const double* x, const Context& ctx) = 0;
+};
+
 struct RunOutcome {
   bool ok = true;
   double t_reached = 0.0;
@@ -152,6 +160,8 @@ class Simulator {
   // Rows go to `sink` (not owned) as they are recorded, and only the
   // columns in `keep` stay in memory (blocks/results.h). Call before Run.
   void StreamRows(RowSink* sink, std::vector<int> keep) { results_.Stream(sink, std::move(keep)); }
+  // `observer` (not owned) sees every row after it is recorded. Call before Run.
+  void SetRowObserver(RowObserver* observer) { observer_ = observer; }
   const SolverStats& stats() const { return stats_; }
   const std::vector<EventRecord>& events() const { return events_; }
   // The reports' figures so far (also in results().figures() after a run).
@@ -208,6 +218,7 @@ class Simulator {
   Results results_;
   SolverStats stats_;
   std::vector<EventRecord> events_;
+  RowObserver* observer_ = nullptr;
   Context ctx_;
   std::vector<double> row_;
   std::vector<double> frozen_y_, frozen_before_, frozen_slope_;  // CVODE's state at the last row, scratch

@@ -20,6 +20,7 @@ struct Arguments {
   std::optional<std::string> results;                     // --results NAME
   bool quiet = false;                                     // --quiet: errors only
   bool verbose = false;                                   // run --verbose: the event log
+  bool animate = false;                                   // run --animate: write NAME.html
   std::string out_dir = ".";                              // --out DIR
   bool unsafe_lua = false;                                // --unsafe-lua
   bool equilibrium = false;                               // modes --equilibrium

@@ -461,6 +461,13 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
     if (const std::string problem = OutputNameProblem(out.plot_file); !out.plot_file.empty() && !problem.empty())
       throw InputError(plot->loc.str() + ": plot file '" + out.plot_file + "' " + problem);
   }
+  if (const Attribute* animation = FindAttribute(d.output, "animation")) {
+    out.animation_file = Trim(animation->value);
+    if (std::filesystem::path(out.animation_file).extension() != ".html")
+      throw InputError(animation->loc.str() + ": animation file '" + out.animation_file + "' must end in .html");
+    if (const std::string problem = OutputNameProblem(out.animation_file); !problem.empty())
+      throw InputError(animation->loc.str() + ": animation file '" + out.animation_file + "' " + problem);
+  }
   if (!d.xy_plots.empty() && out.plot_file.empty())
     throw InputError(d.xy_plots.front().loc.str() + ": <xy> is a panel of the plot, and there is none: name it with "
                                                     "<output plot=\"NAME.png\">");

@@ -80,6 +80,7 @@ struct LoadedDiagram {
   std::vector<XYPlotRequest> xy_plots;         // <xy>s, panels after the time ones
   std::string csv_file;   // relative to the output folder; never empty
   std::string plot_file;  // relative to the output folder; empty: no plot
+  std::string animation_file;  // <output animation=...>: relative to the output folder; empty: none
 };
 
 LoadedDiagram LoadDiagram(const std::string& path, const LoadOptions& options = {});
