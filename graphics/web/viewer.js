@@ -5,6 +5,7 @@
 // MECHFLOW_POSES: { times: [t...], data: base64 of float32, per frame and
 // body x y z qx qy qz qw }. World axes are mechflow's: z up.
 //
+// "#t=1.5" in the URL opens the page at that time.
 // Test interface (tests/graphics/browser_test.cc): window.mechflowTest.seek(t)
 // shows time t; .transforms() gives every body's world position and
 // quaternion; with "#test=t1,t2,..." in the URL the page seeks to each time
@@ -155,7 +156,7 @@
     const box = new THREE.Box3().setFromObject(world);
     const centre = box.isEmpty() ? new THREE.Vector3() : box.getCenter(new THREE.Vector3());
     const size = box.isEmpty() ? 1 : Math.max(box.getSize(new THREE.Vector3()).length(), 1e-3);
-    camera.position.copy(centre).add(new THREE.Vector3(0.9, -1.6, 0.8).multiplyScalar(size));
+    camera.position.copy(centre).add(new THREE.Vector3(1.5, -1.0, 0.7).multiplyScalar(size));
     camera.near = size / 1000;
     camera.far = size * 100;
     camera.updateProjectionMatrix();
@@ -235,7 +236,10 @@
     }
     report.errors = errors;
     document.getElementById('mechflow-test').textContent = JSON.stringify(report);
+    requestAnimationFrame(() => renderer.render(world, camera));  // the page shows the last time seen
   } else {
+    const start = /#t=([0-9.eE+-]+)/.exec(window.location.hash);  // a link to a time: NAME.html#t=1.5
+    if (start) show(Number(start[1]));
     requestAnimationFrame(tick);
   }
 })();
