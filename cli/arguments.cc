@@ -98,7 +98,7 @@ std::string HelpText(const std::string& command) {
   if (command == "run")
     return "usage: mechflow run FILE [--variant NAME]... [--set NAME=VALUE]... [--t-end T] [--out DIR]\n"
            "                    [--rtol R] [--atol A] [--interval DT] [--results NAME] [--quiet | --verbose]\n"
-           "                    [--animate] [--unsafe-lua]\n"
+           "                    [--animate] [--gltf] [--unsafe-lua]\n"
            "\n"
            "Simulates the diagram FILE and writes its logged signals as CSV (and the plot\n"
            "named in <output plot=...>) into DIR. Prints solver counters and the range of\n"
@@ -118,6 +118,8 @@ std::string HelpText(const std::string& command) {
            "  --quiet           print nothing but errors\n"
            "  --animate         write the animation NAME.html (the <shape>s of the bodies in 3D;\n"
            "                    <output animation=\"...\"> names it in the diagram)\n"
+           "  --gltf            write the same scene and motion as glTF binary NAME.glb (Blender\n"
+           "                    and other viewers; <output gltf=\"...\"> names it)\n"
            "  --verbose         also print the event log: every event's time, block, and for\n"
            "                    a mechanism the element and what it switched to\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
@@ -289,6 +291,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.results = value(arg);
     } else if (arg == "--animate" && a.command == "run") {
       a.animate = true;
+    } else if (arg == "--gltf" && a.command == "run") {
+      a.gltf = true;
     } else if (arg == "--quiet" && runs) {
       a.quiet = true;
     } else if (arg == "--verbose" && runs) {

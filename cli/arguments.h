@@ -21,6 +21,7 @@ struct Arguments {
   bool quiet = false;                                     // --quiet: errors only
   bool verbose = false;                                   // run --verbose: the event log
   bool animate = false;                                   // run --animate: write NAME.html
+  bool gltf = false;                                      // run --gltf: write NAME.glb
   std::string out_dir = ".";                              // --out DIR
   bool unsafe_lua = false;                                // --unsafe-lua
   bool equilibrium = false;                               // modes --equilibrium

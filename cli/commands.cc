@@ -21,7 +21,7 @@
 #include "blocks/library/mechanism_block.h"
 #include "blocks/linearization.h"
 #include "diagrams/loader.h"
-#include "graphics/animation.h"
+#include "cli/animation_output.h"
 #include "graphics/scene.h"
 #include "mech/errors.h"
 
@@ -80,18 +80,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   sim.SetControl(loaded.control.get());
   sim.SetInterruptFlag(InterruptFlag());
   const std::unique_ptr<ResultsFile> results_file = StreamResults(loaded, &sim, folder);
-  // the animation: shapes checked now (bad geometry is bad input), poses recorded as rows are
-  const graphics::Scene scene = graphics::BuildScene(loaded);
-  const std::string animation =
-      !loaded.animation_file.empty() ? loaded.animation_file : args.animate ? loaded.description.name + ".html" : "";
-  if (!animation.empty() && scene.empty())
-    throw InputError(args.file + ": nothing to animate: no <shape> on any body; give the bodies shapes "
-                                 "(diagrams/FORMAT.md, Graphics)");
-  std::unique_ptr<graphics::PoseRecorder> poses;
-  if (!animation.empty()) {
-    poses = std::make_unique<graphics::PoseRecorder>(*loaded.diagram, scene, 1.0 / 120);
-    sim.SetRowObserver(poses.get());
-  }
+  const AnimationOutput animation(loaded, args, &sim);  // shapes checked now: bad geometry is bad input
   const InterruptHandlers handlers;  // Ctrl-C, SIGTERM: cli/interrupt.h
 
   const auto wall_start = std::chrono::steady_clock::now();
@@ -130,17 +119,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
 
   // results are written whether or not the run finished
   bool all_written = WriteRunOutputs(loaded, sim, folder, results_file.get(), out, err);
-  if (poses) {
-    try {
-      const std::string html = graphics::AnimationHtml(scene, *poses, loaded.description.name);
-      folder.Write(animation, html);
-      out << "wrote " << folder.PathOf(animation) << " (" << poses->times().size() << " frames of "
-          << poses->num_bodies() << " bodies, " << html.size() / 1024 << " KiB)\n";
-    } catch (const WriteError& e) {
-      err << e.what() << "\n";
-      all_written = false;
-    }
-  }
+  all_written = animation.Write(folder, out, err) && all_written;
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);
   if (args.verbose) PrintEventLog(*loaded.diagram, sim.events(), out);

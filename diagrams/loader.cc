@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <tuple>
 
 #include "blocks/block_factory.h"
 #include "blocks/diagram_builder.h"
@@ -461,12 +462,16 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
     if (const std::string problem = OutputNameProblem(out.plot_file); !out.plot_file.empty() && !problem.empty())
       throw InputError(plot->loc.str() + ": plot file '" + out.plot_file + "' " + problem);
   }
-  if (const Attribute* animation = FindAttribute(d.output, "animation")) {
-    out.animation_file = Trim(animation->value);
-    if (std::filesystem::path(out.animation_file).extension() != ".html")
-      throw InputError(animation->loc.str() + ": animation file '" + out.animation_file + "' must end in .html");
-    if (const std::string problem = OutputNameProblem(out.animation_file); !problem.empty())
-      throw InputError(animation->loc.str() + ": animation file '" + out.animation_file + "' " + problem);
+  // the animation as HTML and as glTF binary
+  for (const auto& [attribute, extension, file] :
+       {std::tuple{"animation", ".html", &out.animation_file}, std::tuple{"gltf", ".glb", &out.gltf_file}}) {
+    const Attribute* a = FindAttribute(d.output, attribute);
+    if (!a) continue;
+    *file = Trim(a->value);
+    if (std::filesystem::path(*file).extension() != extension)
+      throw InputError(a->loc.str() + ": " + attribute + " file '" + *file + "' must end in " + extension);
+    if (const std::string problem = OutputNameProblem(*file); !problem.empty())
+      throw InputError(a->loc.str() + ": " + attribute + " file '" + *file + "' " + problem);
   }
   if (!d.xy_plots.empty() && out.plot_file.empty())
     throw InputError(d.xy_plots.front().loc.str() + ": <xy> is a panel of the plot, and there is none: name it with "

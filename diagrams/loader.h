@@ -81,6 +81,7 @@ struct LoadedDiagram {
   std::string csv_file;   // relative to the output folder; never empty
   std::string plot_file;  // relative to the output folder; empty: no plot
   std::string animation_file;  // <output animation=...>: relative to the output folder; empty: none
+  std::string gltf_file;       // <output gltf=...>: the same as glTF binary (.glb)
 };
 
 LoadedDiagram LoadDiagram(const std::string& path, const LoadOptions& options = {});

@@ -43,7 +43,8 @@ const std::vector<ElementSchema>& Schema() {
       // graphics only (graphics/scene.h): no mass, no effect on the motion
       {"shape", {"type"},
        {"name", "body", "position", "rotation", "size", "radius", "length", "axis", "points", "body2", "point1",
-        "point2", "coils", "color", "opacity"},
+        "point2", "coils", "color", "opacity", "radius2", "teeth", "tooth_height", "width", "taper",
+        "x", "y", "z", "u", "v", "samples"},
        {}},
       {"gearing", {"name", "body1", "body2"},
        {"centre1", "axis1", "centre2", "axis2", "ratio", "clearance", "stiffness", "damping"}, {}},
@@ -76,7 +77,7 @@ const std::vector<ElementSchema>& Schema() {
       {"connections", {}, {}, {"connect"}},
       {"connect", {"from", "to"}, {}, {}},
       {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps", "linear_solver"}, {}},
-      {"output", {}, {"interval", "csv", "plot", "animation"}, {"log", "report", "spectrum", "xy"}},
+      {"output", {}, {"interval", "csv", "plot", "animation", "gltf"}, {"log", "report", "spectrum", "xy"}},
       {"xy", {"curves"}, {"title", "x_label", "y_label"}, {}},
       {"spectrum", {"signal"}, {"segment", "overlap", "window", "from", "peaks", "max_frequency"}, {}},
       {"report", {}, {"peak", "min", "peak_abs", "mean", "rms", "integral", "final", "crossing", "period", "level",

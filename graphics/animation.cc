@@ -1,28 +1,18 @@
 #include "graphics/animation.h"
 
 #include <cstdint>
-#include <cstring>
 #include <sstream>
 
 #include "blocks/csv.h"
+#include "graphics/mesh.h"
 #include "graphics/web_assets.h"
 
 namespace mechflow::graphics {
 namespace {
 
-std::string Base64(const unsigned char* data, std::size_t size) {
-  static const char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((size + 2) / 3 * 4);
-  for (std::size_t i = 0; i < size; i += 3) {
-    const std::uint32_t a = data[i], b = i + 1 < size ? data[i + 1] : 0, c = i + 2 < size ? data[i + 2] : 0;
-    const std::uint32_t v = a << 16 | b << 8 | c;
-    out += kDigits[v >> 18 & 63];
-    out += kDigits[v >> 12 & 63];
-    out += i + 1 < size ? kDigits[v >> 6 & 63] : '=';
-    out += i + 2 < size ? kDigits[v & 63] : '=';
-  }
-  return out;
+template <typename T>
+std::string Base64Of(const std::vector<T>& values) {
+  return "\"" + Base64(values.data(), values.size() * sizeof(T)) + "\"";
 }
 
 // JSON inside a <script>: "</" would end the element early.
@@ -42,16 +32,62 @@ std::string Escaped(const std::string& text) {
   return out;
 }
 
+std::string Json(const Vec3& v) {
+  return "[" + blocks::CsvNumber(v.x()) + "," + blocks::CsvNumber(v.y()) + "," + blocks::CsvNumber(v.z()) + "]";
+}
+
+// The viewer's data: MECHFLOW_DATA (graphics/web/viewer.js says what it holds).
+std::string DataJson(const Scene& scene, const AnimationRecorder& recording, const std::string& title) {
+  static_assert(sizeof(float) == 4, "float32 arrays");
+  std::ostringstream o;
+  o << "{\"title\":" << Quoted(title) << ",\"bodies\":[";
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) o << (i ? "," : "") << Quoted(scene.bodies[i].label);
+  o << "],\"shapes\":[";
+  for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
+    const Shape& s = scene.shapes[i];
+    const Mesh mesh = Tessellate(s);
+    o << (i ? "," : "") << "{\"kind\":" << Quoted(s.kind) << ",\"name\":" << Quoted(s.name) << ",\"body\":" << s.body
+      << ",\"color\":" << Quoted(s.color) << ",\"opacity\":" << blocks::CsvNumber(s.opacity)
+      << ",\"line\":" << (mesh.primitive == Mesh::Primitive::kLineStrip ? "true" : "false")
+      << ",\"doubleSided\":" << (mesh.double_sided ? "true" : "false") << ",\"positions\":" << Base64Of(mesh.positions)
+      << ",\"indices\":" << Base64Of(mesh.indices);
+    if (s.kind == "spring")
+      o << ",\"body2\":" << s.body2 << ",\"point1\":" << Json(s.point1) << ",\"point2\":" << Json(s.point2);
+    o << "}";
+  }
+  o << "],\"versions\":[";
+  for (std::size_t i = 0; i < recording.versions().size(); ++i) {
+    const ShapeVersion& v = recording.versions()[i];
+    o << (i ? "," : "") << "{\"shape\":" << v.shape << ",\"t\":" << blocks::CsvNumber(v.t)
+      << ",\"positions\":" << Base64Of(v.mesh.positions) << "}";
+  }
+  o << "],\"times\":[";
+  for (std::size_t i = 0; i < recording.times().size(); ++i) o << (i ? "," : "") << blocks::CsvNumber(recording.times()[i]);
+  o << "],\"poses\":" << Base64Of(recording.poses()) << ",\"columns\":[";
+  for (std::size_t i = 0; i < recording.columns().size(); ++i) o << (i ? "," : "") << Quoted(recording.columns()[i]);
+  o << "],\"signals\":" << Base64Of(recording.signals()) << "}";
+  return o.str();
+}
+
 }  // namespace
 
-std::string AnimationHtml(const Scene& scene, const PoseRecorder& recording, const std::string& title) {
-  std::ostringstream times;
-  for (std::size_t i = 0; i < recording.times().size(); ++i)
-    times << (i ? "," : "") << blocks::CsvNumber(recording.times()[i]);
-  const std::vector<float>& poses = recording.poses();
-  static_assert(sizeof(float) == 4, "poses are float32");
-  const std::string data = Base64(reinterpret_cast<const unsigned char*>(poses.data()), poses.size() * sizeof(float));
+std::string Base64(const void* bytes, std::size_t size) {
+  static const char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto* data = static_cast<const unsigned char*>(bytes);
+  std::string out;
+  out.reserve((size + 2) / 3 * 4);
+  for (std::size_t i = 0; i < size; i += 3) {
+    const std::uint32_t a = data[i], b = i + 1 < size ? data[i + 1] : 0, c = i + 2 < size ? data[i + 2] : 0;
+    const std::uint32_t v = a << 16 | b << 8 | c;
+    out += kDigits[v >> 18 & 63];
+    out += kDigits[v >> 12 & 63];
+    out += i + 1 < size ? kDigits[v >> 6 & 63] : '=';
+    out += i + 2 < size ? kDigits[v & 63] : '=';
+  }
+  return out;
+}
 
+std::string AnimationHtml(const Scene& scene, const AnimationRecorder& recording, const std::string& title) {
   std::ostringstream html;
   html << "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << Escaped(title)
        << "</title>\n<style>\n"
@@ -61,17 +97,23 @@ std::string AnimationHtml(const Scene& scene, const PoseRecorder& recording, con
           "#bar { position: absolute; bottom: 0; left: 0; right: 0; height: 44px; display: flex; gap: 10px;"
           " align-items: center; padding: 0 10px; background: #e4e4e8; }\n"
           "#time { flex: 1; }\n#title { position: absolute; top: 8px; left: 10px; color: #333; }\n"
+          "#hover { position: absolute; pointer-events: none; background: #fffff0; border: 1px solid #999;"
+          " padding: 2px 5px; display: none; }\n"
+          "#plot { position: absolute; right: 10px; bottom: 54px; width: 320px; height: 150px;"
+          " background: rgba(255,255,255,0.85); border: 1px solid #bbb; display: none; }\n"
           "#mechflow-test { display: none; }\n"
-          "</style>\n</head>\n<body>\n<div id=\"view\"></div>\n<div id=\"title\"></div>\n"
+          "</style>\n</head>\n<body>\n<div id=\"view\"></div>\n<div id=\"title\"></div>\n<div id=\"hover\"></div>\n"
+          "<canvas id=\"plot\" width=\"320\" height=\"150\"></canvas>\n"
           "<div id=\"bar\"><button id=\"play\">play</button>"
           "<label>speed <select id=\"speed\"><option>0.1</option><option>0.25</option><option>0.5</option>"
           "<option selected>1</option><option>2</option></select></label>"
           "<label><input type=\"checkbox\" id=\"loop\" checked> loop</label>"
           "<input type=\"range\" id=\"time\" min=\"0\" max=\"1000\" value=\"0\"><span id=\"clock\"></span>"
+          "<label>trace <select id=\"trace\"><option value=\"\">none</option></select></label>"
+          "<label>plot <select id=\"signal\"><option value=\"\">none</option></select></label>"
           "<button id=\"reset\">reset view</button></div>\n<pre id=\"mechflow-test\"></pre>\n"
        << "<script>\n" << kThreeJs << "\n</script>\n<script>\n" << kOrbitControlsJs << "\n</script>\n"
-       << "<script>\nconst MECHFLOW_SCENE = " << ScriptSafe(SceneJson(scene, title)) << ";\n"
-       << "const MECHFLOW_POSES = {times: [" << times.str() << "], data: \"" << data << "\"};\n</script>\n"
+       << "<script>\nconst MECHFLOW_DATA = " << ScriptSafe(DataJson(scene, recording, title)) << ";\n</script>\n"
        << "<script>\n" << kViewerJs << "\n</script>\n</body>\n</html>\n";
   return html.str();
 }

@@ -1,16 +1,21 @@
 #pragma once
 // The animation file: one self-contained HTML page (three.js and the viewer
-// inlined, no network access when it is opened) with the scene and the
-// recorded body poses. Controls: play/pause, speed, loop, a time slider and
-// the clock, orbit/pan/zoom with the mouse, reset view.
+// inlined, no network access when it is opened) with the scene's meshes, the
+// recorded body poses, the shapes' later versions and the logged signals.
+// Controls: play/pause, speed, loop, a time slider and the clock,
+// orbit/pan/zoom with the mouse, reset view, names on hover, the path of a
+// chosen point, a plot of a chosen signal with a cursor at the time shown.
 
 #include <string>
 
-#include "graphics/pose_recorder.h"
+#include "graphics/recorder.h"
 #include "graphics/scene.h"
 
 namespace mechflow::graphics {
 
-std::string AnimationHtml(const Scene& scene, const PoseRecorder& recording, const std::string& title);
+std::string AnimationHtml(const Scene& scene, const AnimationRecorder& recording, const std::string& title);
+
+// Standard base64 (RFC 4648) of `size` bytes.
+std::string Base64(const void* data, std::size_t size);
 
 }  // namespace mechflow::graphics

@@ -260,8 +260,14 @@ double IdentifierTable::EvaluateExpression(LuaState& lua, const std::string& tex
 }
 
 void IdentifierTable::NoteFixedUses(const std::string& text, const std::string& what) const {
-  // every name in the text that is an identifier; a field name after '.' or
-  // ':' is none (strings are not told apart: noting too much is safe)
+  for (const int id : NamedIn(text)) {
+    auto& uses = items_[id].fixed_uses;
+    if (std::find(uses.begin(), uses.end(), what) == uses.end()) uses.push_back(what);
+  }
+}
+
+std::vector<int> IdentifierTable::NamedIn(const std::string& text) const {
+  std::vector<int> named;
   for (std::size_t i = 0; i < text.size();) {
     const unsigned char c = text[i];
     if (!std::isalpha(c) && c != '_') {
@@ -272,12 +278,11 @@ void IdentifierTable::NoteFixedUses(const std::string& text, const std::string& 
         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_", i);
     const std::size_t stop = end == std::string::npos ? text.size() : end;
     const bool field = i > 0 && (text[i - 1] == '.' || text[i - 1] == ':');
-    if (const int id = field ? -1 : Find(text.substr(i, stop - i)); id >= 0) {
-      auto& uses = items_[id].fixed_uses;
-      if (std::find(uses.begin(), uses.end(), what) == uses.end()) uses.push_back(what);
-    }
+    if (const int id = field ? -1 : Find(text.substr(i, stop - i)); id >= 0)
+      if (std::find(named.begin(), named.end(), id) == named.end()) named.push_back(id);
     i = stop;
   }
+  return named;
 }
 
 std::vector<double> IdentifierTable::Values() const {

@@ -52,6 +52,16 @@ class IdentifierTable {
   // InputError starting with `what` (e.g. "d.xml:12: block 'k' parameter 'k'").
   double EvaluateExpression(LuaState& lua, const std::string& text, const std::string& what) const;
 
+  // As EvaluateExpression, without noting fixed uses: for a caller that
+  // evaluates the text again when identifiers change (the shapes of the
+  // animation follow a control script's changes).
+  double EvaluateFollowing(LuaState& lua, const std::string& text, const std::string& what) const {
+    return Eval(lua, text, size(), -1, what);
+  }
+  // The indices of the identifiers `text` names (a field after '.' or ':' is
+  // none; strings are not told apart, so this may name too many, never too few).
+  std::vector<int> NamedIn(const std::string& text) const;
+
   // Fixed uses: places that took an identifier's value once, when the diagram
   // was built (a block parameter, a mass, a time function). A control script
   // may not change such an identifier during a run, since the change could

@@ -1,15 +1,25 @@
-// mechflow's animation viewer: builds the scene of MECHFLOW_SCENE with
-// three.js (THREE, inlined before this script) and plays the body poses of
-// MECHFLOW_POSES. Runs offline from one HTML file (graphics/animation.h).
+// mechflow's animation viewer: builds the scene of MECHFLOW_DATA with
+// three.js (THREE, inlined before this script) and plays it. Runs offline
+// from one HTML file (graphics/animation.h).
 //
-// MECHFLOW_POSES: { times: [t...], data: base64 of float32, per frame and
-// body x y z qx qy qz qw }. World axes are mechflow's: z up.
+// MECHFLOW_DATA (arrays of numbers are base64 of float32 / uint32):
+//   bodies   labels "mechanism.body" of the moving bodies
+//   shapes   {name, kind, body (-1: ground), color, opacity, line, doubleSided,
+//             positions, indices} in the body's frame; a spring's mesh is a
+//             helix of unit length along +y placed onto point1 (on body) and
+//             point2 (on body2) at every frame
+//   versions {shape, t, positions}: a shape's geometry from t on (shapes that
+//            follow identifiers a control script changes)
+//   times, poses  frames; per frame and body x y z qx qy qz qw
+//   columns, signals  the logged signals per frame, for the plot
+// World axes are mechflow's: z up.
 //
 // "#t=1.5" in the URL opens the page at that time.
-// Test interface (tests/graphics/browser_test.cc): window.mechflowTest.seek(t)
-// shows time t; .transforms() gives every body's world position and
-// quaternion; with "#test=t1,t2,..." in the URL the page seeks to each time
-// after loading and writes what it saw as JSON into <pre id="mechflow-test">.
+// Test interface (tests/graphics/browser_test.cc): window.mechflowTest; with
+// "#test=t1,t2,..." in the URL the page seeks to each time after loading and
+// writes what it saw as JSON into <pre id="mechflow-test">; with
+// "#frametime=N" it draws N frames of a playing animation and reports the
+// time each took.
 (function () {
   'use strict';
   const errors = [];
@@ -17,13 +27,14 @@
   const consoleError = console.error.bind(console);
   console.error = (...args) => { errors.push(args.map(String).join(' ')); consoleError(...args); };
 
-  const scene = MECHFLOW_SCENE;
-  const times = MECHFLOW_POSES.times;
-  const poses = (() => {
-    const bytes = Uint8Array.from(atob(MECHFLOW_POSES.data), (c) => c.charCodeAt(0));
-    return new Float32Array(bytes.buffer);
-  })();
-  const nb = scene.bodies.length;
+  const data = MECHFLOW_DATA;
+  const bytes = (b64) => Uint8Array.from(atob(b64), (c) => c.charCodeAt(0)).buffer;
+  const floats = (b64) => new Float32Array(bytes(b64));
+  const times = data.times;
+  const poses = floats(data.poses);
+  const signals = floats(data.signals);
+  const nb = data.bodies.length, nc = data.columns.length;
+  const last = times.length - 1;
 
   // --- the three.js scene ---------------------------------------------------
   const canvasHolder = document.getElementById('view');
@@ -41,8 +52,9 @@
   const controls = new THREE.OrbitControls(camera, renderer.domElement);
 
   const ground = new THREE.Group();
+  ground.name = 'Base0';
   world.add(ground);
-  const bodies = scene.bodies.map((label) => {
+  const bodies = data.bodies.map((label) => {
     const g = new THREE.Group();
     g.name = label;
     world.add(g);
@@ -50,59 +62,34 @@
   });
   const holder = (index) => (index < 0 ? ground : bodies[index]);
 
-  function material(s) {
-    return new THREE.MeshStandardMaterial({
-      color: new THREE.Color(s.color), transparent: s.opacity < 1, opacity: s.opacity,
-      roughness: 0.6, metalness: 0.1,
-    });
-  }
-  function placed(object, s) {
-    const r = s.rotation;  // row-major: the shape's axes in the body frame
-    const m = new THREE.Matrix4().set(r[0], r[1], r[2], s.position[0], r[3], r[4], r[5], s.position[1],
-                                      r[6], r[7], r[8], s.position[2], 0, 0, 0, 1);
-    const holderOfShape = new THREE.Group();
-    holderOfShape.applyMatrix4(m);
-    holderOfShape.add(object);
-    return holderOfShape;
-  }
-
-  const springs = [];
-  for (const s of scene.shapes) {
+  const shapes = data.shapes.map((s) => {
+    const geometry = new THREE.BufferGeometry();
+    const original = floats(s.positions);
+    geometry.setAttribute('position', new THREE.BufferAttribute(original.slice(), 3));
     let object;
-    if (s.kind === 'box') {
-      object = new THREE.Mesh(new THREE.BoxGeometry(s.size[0], s.size[1], s.size[2]), material(s));
-    } else if (s.kind === 'sphere') {
-      object = new THREE.Mesh(new THREE.SphereGeometry(s.radius, 32, 16), material(s));
-    } else if (s.kind === 'cylinder') {
-      object = new THREE.Mesh(new THREE.CylinderGeometry(s.radius, s.radius, s.length, 32), material(s));
-      object.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), new THREE.Vector3(...s.axis));
-    } else if (s.kind === 'polyline') {
-      const geometry = new THREE.BufferGeometry().setFromPoints(s.points.map((p) => new THREE.Vector3(...p)));
-      object = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: s.color, transparent: s.opacity < 1,
-                                                                      opacity: s.opacity }));
-    } else if (s.kind === 'spring') {
-      // a helix of unit length along +y, stretched and turned onto its two points each frame
-      const points = [];
-      const n = 24 * s.coils;
-      for (let i = 0; i <= n; ++i) {
-        const a = 2 * Math.PI * s.coils * i / n;
-        points.push(new THREE.Vector3(s.radius * Math.cos(a), i / n, s.radius * Math.sin(a)));
-      }
-      object = new THREE.Line(new THREE.BufferGeometry().setFromPoints(points),
-                              new THREE.LineBasicMaterial({ color: s.color }));
-      world.add(object);
-      springs.push({ shape: s, object });
-      object.name = s.name;
-      continue;
+    const opacity = { transparent: s.opacity < 1, opacity: s.opacity };
+    if (s.line) {
+      object = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: s.color, ...opacity }));
+    } else {
+      geometry.setIndex(new THREE.BufferAttribute(new Uint32Array(bytes(s.indices)), 1));
+      geometry.computeVertexNormals();
+      object = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({
+        color: new THREE.Color(s.color), roughness: 0.6, metalness: 0.1,
+        side: s.doubleSided ? THREE.DoubleSide : THREE.FrontSide, ...opacity,
+      }));
     }
     object.name = s.name;
-    holder(s.body).add(placed(object, s));
-  }
+    object.userData.owner = s.kind === 'spring' ? s.name : s.name + ' on ' + (s.body < 0 ? 'Base0' : data.bodies[s.body]);
+    (s.kind === 'spring' ? world : holder(s.body)).add(object);
+    return { spec: s, object, original, versions: [], shown: -1 };
+  });
+  for (const v of data.versions) shapes[v.shape].versions.push({ t: v.t, positions: floats(v.positions) });
+  const springs = shapes.filter((s) => s.spec.kind === 'spring');
+  const changing = shapes.filter((s) => s.versions.length > 0);
 
-  // --- poses ----------------------------------------------------------------
-  const position = new THREE.Vector3(), q0 = new THREE.Quaternion(), q1 = new THREE.Quaternion();
+  // --- poses and shape versions ----------------------------------------------
   function frameAt(t) {  // the frame at or before t
-    let lo = 0, hi = times.length - 1;
+    let lo = 0, hi = last;
     if (t <= times[0]) return 0;
     if (t >= times[hi]) return hi;
     while (hi - lo > 1) {
@@ -111,36 +98,158 @@
     }
     return lo;
   }
-  function pose(frame, b, out, quaternion) {
+  function pose(frame, b, position, quaternion) {
     const k = 7 * (frame * nb + b);
-    out.set(poses[k], poses[k + 1], poses[k + 2]);
+    position.set(poses[k], poses[k + 1], poses[k + 2]);
     quaternion.set(poses[k + 3], poses[k + 4], poses[k + 5], poses[k + 6]);
   }
+  // a changing shape's geometry at t: its versions interpolated
+  function reshape(shape, t) {
+    const v = shape.versions;
+    let i = -1;
+    while (i + 1 < v.length && v[i + 1].t <= t) ++i;
+    const from = i < 0 ? shape.original : v[i].positions;
+    const next = i + 1 < v.length ? v[i + 1] : null;
+    const w = next && i >= 0 ? (t - v[i].t) / (next.t - v[i].t) : 0;
+    const key = i + w;
+    if (key === shape.shown) return;
+    const out = shape.object.geometry.attributes.position;
+    for (let k = 0; k < from.length; ++k) out.array[k] = w > 0 ? from[k] + w * (next.positions[k] - from[k]) : from[k];
+    out.needsUpdate = true;
+    if (!shape.spec.line) shape.object.geometry.computeVertexNormals();
+    shape.object.geometry.computeBoundingSphere();
+    shape.shown = key;
+  }
+  const p0 = new THREE.Vector3(), p1 = new THREE.Vector3(), q0 = new THREE.Quaternion(), q1 = new THREE.Quaternion();
+  const unitY = new THREE.Vector3(0, 1, 0);
+  let current = times[0], currentFrame = 0;
   function show(t) {
     const f = frameAt(t);
-    const g = Math.min(f + 1, times.length - 1);
+    const g = Math.min(f + 1, last);
     const w = g > f ? Math.min(1, Math.max(0, (t - times[f]) / (times[g] - times[f]))) : 0;
-    const p1 = new THREE.Vector3();
     for (let b = 0; b < nb; ++b) {
-      pose(f, b, position, q0);
+      pose(f, b, p0, q0);
       pose(g, b, p1, q1);
-      bodies[b].position.copy(position.lerp(p1, w));
+      bodies[b].position.copy(p0.lerp(p1, w));
       bodies[b].quaternion.copy(q0.slerp(q1, w));
     }
     world.updateMatrixWorld(true);
-    for (const { shape: s, object } of springs) {
+    for (const { spec: s, object } of springs) {
       const a = new THREE.Vector3(...s.point1).applyMatrix4(holder(s.body).matrixWorld);
-      const b = new THREE.Vector3(...s.point2).applyMatrix4(holder(s.body2).matrixWorld);
-      const d = b.clone().sub(a);
+      const d = new THREE.Vector3(...s.point2).applyMatrix4(holder(s.body2).matrixWorld).sub(a);
       const length = Math.max(d.length(), 1e-9);
       object.position.copy(a);
-      object.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), d.divideScalar(length));
+      object.quaternion.setFromUnitVectors(unitY, d.divideScalar(length));
       object.scale.set(1, length, 1);
     }
+    for (const shape of changing) reshape(shape, t);
     current = t;
+    currentFrame = f;
     clock.textContent = 't = ' + t.toFixed(3) + ' s';
-    slider.value = String(Math.round(1000 * (t - times[0]) / Math.max(times[times.length - 1] - times[0], 1e-12)));
+    slider.value = String(Math.round(1000 * (t - times[0]) / Math.max(times[last] - times[0], 1e-12)));
+    updateTrace();
+    drawPlot();
   }
+
+  // --- path trace: a point of a body over the whole run, drawn up to now ------
+  const traceSelect = document.getElementById('trace');
+  data.bodies.forEach((label, b) => traceSelect.add(new Option(label, String(b))));
+  let trace = null;  // {body, point, line}
+  function setTrace(body, point) {
+    if (trace) world.remove(trace.line);
+    trace = null;
+    if (body < 0) return;
+    const path = new Float32Array(3 * times.length);
+    const m = new THREE.Matrix4(), x = new THREE.Vector3(), q = new THREE.Quaternion(), one = new THREE.Vector3(1, 1, 1);
+    for (let f = 0; f < times.length; ++f) {
+      pose(f, body, x, q);
+      const y = point.clone().applyMatrix4(m.compose(x, q, one));
+      path.set([y.x, y.y, y.z], 3 * f);
+    }
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(path, 3));
+    trace = { body, point: point.clone(), line: new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0xd02090 })) };
+    world.add(trace.line);
+    traceSelect.value = String(body);
+    updateTrace();
+  }
+  function updateTrace() { if (trace) trace.line.geometry.setDrawRange(0, currentFrame + 1); }
+  traceSelect.onchange = () => setTrace(traceSelect.value === '' ? -1 : Number(traceSelect.value), new THREE.Vector3());
+
+  // --- names on hover; a double click traces the point clicked ---------------
+  const hover = document.getElementById('hover');
+  const raycaster = new THREE.Raycaster();
+  function picked(event) {
+    const r = renderer.domElement.getBoundingClientRect();
+    const at = new THREE.Vector2(((event.clientX - r.left) / r.width) * 2 - 1, -((event.clientY - r.top) / r.height) * 2 + 1);
+    raycaster.params.Line.threshold = camera.position.distanceTo(controls.target) / 200;
+    raycaster.setFromCamera(at, camera);
+    const hits = raycaster.intersectObjects(shapes.map((s) => s.object), false);
+    return hits.length ? hits[0] : null;
+  }
+  renderer.domElement.addEventListener('pointermove', (event) => {
+    const hit = picked(event);
+    hover.style.display = hit ? 'block' : 'none';
+    if (!hit) return;
+    hover.textContent = hit.object.userData.owner;
+    hover.style.left = (event.clientX + 12) + 'px';
+    hover.style.top = (event.clientY + 12) + 'px';
+  });
+  renderer.domElement.addEventListener('dblclick', (event) => {
+    const hit = picked(event);
+    const body = hit ? bodies.indexOf(hit.object.parent) : -1;
+    if (body >= 0) setTrace(body, bodies[body].worldToLocal(hit.point.clone()));
+  });
+
+  // --- a plot of one logged signal with a cursor at the time shown -----------
+  const plot = document.getElementById('plot');
+  const signalSelect = document.getElementById('signal');
+  data.columns.forEach((name, c) => signalSelect.add(new Option(name, String(c))));
+  let curve = null;  // {column, image, lo, hi}
+  function setSignal(column) {
+    curve = null;
+    plot.style.display = column < 0 ? 'none' : 'block';
+    if (column < 0) return;
+    let lo = Infinity, hi = -Infinity;
+    for (let f = 0; f < times.length; ++f) { const y = signals[f * nc + column]; lo = Math.min(lo, y); hi = Math.max(hi, y); }
+    if (!(hi > lo)) { lo -= 1; hi += 1; }
+    const image = document.createElement('canvas');
+    image.width = plot.width; image.height = plot.height;
+    const c = image.getContext('2d');
+    c.font = '11px sans-serif';
+    c.fillStyle = '#333';
+    c.fillText(data.columns[column], 6, 12);
+    c.fillText(hi.toPrecision(4), 6, 26);
+    c.fillText(lo.toPrecision(4), 6, plot.height - 6);
+    c.strokeStyle = '#1f5fbf';
+    c.beginPath();
+    for (let f = 0; f < times.length; ++f) {
+      const [x, y] = plotPoint(f, column, lo, hi);
+      if (f === 0) c.moveTo(x, y); else c.lineTo(x, y);
+    }
+    c.stroke();
+    curve = { column, image, lo, hi };
+    signalSelect.value = String(column);
+    drawPlot();
+  }
+  function plotPoint(f, column, lo, hi) {
+    const x = 4 + (plot.width - 8) * (times[f] - times[0]) / Math.max(times[last] - times[0], 1e-12);
+    const y = plot.height - 4 - (plot.height - 34) * (signals[f * nc + column] - lo) / (hi - lo);
+    return [x, y];
+  }
+  function drawPlot() {
+    if (!curve) return;
+    const c = plot.getContext('2d');
+    c.clearRect(0, 0, plot.width, plot.height);
+    c.drawImage(curve.image, 0, 0);
+    const [x, y] = plotPoint(currentFrame, curve.column, curve.lo, curve.hi);
+    c.strokeStyle = '#d02020';
+    c.beginPath(); c.moveTo(x, 30); c.lineTo(x, plot.height); c.stroke();
+    c.fillStyle = '#d02020';
+    c.fillRect(x - 2, y - 2, 5, 5);
+    c.fillText(signals[currentFrame * nc + curve.column].toPrecision(5), Math.min(x + 4, plot.width - 60), 26);
+  }
+  signalSelect.onchange = () => setSignal(signalSelect.value === '' ? -1 : Number(signalSelect.value));
 
   // --- controls -------------------------------------------------------------
   const clock = document.getElementById('clock');
@@ -148,9 +257,9 @@
   const playButton = document.getElementById('play');
   const speed = document.getElementById('speed');
   const loop = document.getElementById('loop');
-  let current = times[0], playing = false, last = null;
-  playButton.onclick = () => { playing = !playing; playButton.textContent = playing ? 'pause' : 'play'; last = null; };
-  slider.oninput = () => show(times[0] + (times[times.length - 1] - times[0]) * Number(slider.value) / 1000);
+  let playing = false, lastNow = null;
+  playButton.onclick = () => { playing = !playing; playButton.textContent = playing ? 'pause' : 'play'; lastNow = null; };
+  slider.oninput = () => show(times[0] + (times[last] - times[0]) * Number(slider.value) / 1000);
   function fitView() {
     show(current);
     const box = new THREE.Box3().setFromObject(world);
@@ -171,19 +280,19 @@
     camera.updateProjectionMatrix();
   }
   window.addEventListener('resize', resize);
-
+  // the time after `t` when playing for `seconds` of wall time
+  function advance(t, seconds) {
+    let next = t + Number(speed.value) * seconds;
+    if (next > times[last]) {
+      if (loop.checked) next = times[0];
+      else { next = times[last]; playing = false; playButton.textContent = 'play'; }
+    }
+    return next;
+  }
   function tick(now) {
     if (playing) {
-      if (last !== null) {
-        let t = current + Number(speed.value) * (now - last) / 1000;
-        const end = times[times.length - 1];
-        if (t > end) {
-          if (loop.checked) t = times[0];
-          else { t = end; playing = false; playButton.textContent = 'play'; }
-        }
-        show(t);
-      }
-      last = now;
+      if (lastNow !== null) show(advance(current, (now - lastNow) / 1000));
+      lastNow = now;
     }
     controls.update();
     renderer.render(world, camera);
@@ -192,8 +301,8 @@
 
   resize();
   fitView();
-  document.title = scene.title;
-  document.getElementById('title').textContent = scene.title;
+  document.title = data.title;
+  document.getElementById('title').textContent = data.title;
 
   // --- test interface -------------------------------------------------------
   window.mechflowTest = {
@@ -212,33 +321,79 @@
     pixels(body) {
       const gl = renderer.getContext();
       const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
-      const data = new Uint8Array(4 * w * h);
-      gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, data);
+      const rgba = new Uint8Array(4 * w * h);
+      gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
       let differing = 0;
-      for (let i = 0; i < data.length; i += 4)
-        if (Math.abs(data[i] - 242) + Math.abs(data[i + 1] - 242) + Math.abs(data[i + 2] - 242) > 30) ++differing;
-      const g = bodies[scene.bodies.indexOf(body)];
+      for (let i = 0; i < rgba.length; i += 4)
+        if (Math.abs(rgba[i] - 242) + Math.abs(rgba[i + 1] - 242) + Math.abs(rgba[i + 2] - 242) > 30) ++differing;
+      const g = bodies[data.bodies.indexOf(body)];
       const at = new THREE.Vector3().setFromMatrixPosition(g.matrixWorld).project(camera);
       const x = Math.round((at.x + 1) / 2 * (w - 1)), y = Math.round((at.y + 1) / 2 * (h - 1));
       const k = 4 * (y * w + x);
-      return { share: differing / (w * h), colour: [data[k], data[k + 1], data[k + 2]] };
+      return { share: differing / (w * h), colour: [rgba[k], rgba[k + 1], rgba[k + 2]] };
+    },
+    // the body-frame vertices of the changing shapes as shown now
+    geometry() {
+      const out = {};
+      for (const s of changing) out[s.spec.name] = Array.from(s.object.geometry.attributes.position.array);
+      return out;
+    },
+    trace(body, point) { setTrace(data.bodies.indexOf(body), new THREE.Vector3(...point)); },
+    // the traced path's vertices drawn now
+    traced() {
+      if (!trace) return [];
+      const a = trace.line.geometry.attributes.position.array;
+      return Array.from(a.slice(0, 3 * Math.min(trace.line.geometry.drawRange.count, times.length)));
+    },
+    plot(column) { setSignal(data.columns.indexOf(column)); },
+    // the plot's cursor: the frame's time and the signal's value there
+    cursor() { return curve ? [times[currentFrame], signals[currentFrame * nc + curve.column]] : null; },
+    // what hovering at the screen position of body's origin names
+    hoverName(body) {
+      const g = bodies[data.bodies.indexOf(body)];
+      const at = new THREE.Vector3().setFromMatrixPosition(g.matrixWorld).project(camera);
+      raycaster.setFromCamera(new THREE.Vector2(at.x, at.y), camera);
+      const hits = raycaster.intersectObjects(shapes.map((s) => s.object), false);
+      return hits.length ? hits[0].object.userData.owner : '';
     },
     errors,
   };
-  const test = /#test=([^&]*)/.exec(window.location.hash);
+  const hash = window.location.hash;
+  const test = /#test=([^&]*)/.exec(hash);
+  const frametime = /#frametime=([0-9]+)/.exec(hash);
   if (test) {
     const report = { frames: times.length, seen: [] };
     for (const t of test[1].split(',').map(Number)) {
       window.mechflowTest.seek(t);
-      const seen = { t, transforms: window.mechflowTest.transforms(), pixels: {} };
-      for (const label of scene.bodies) seen.pixels[label] = window.mechflowTest.pixels(label);
+      const seen = { t, transforms: window.mechflowTest.transforms(), pixels: {}, hover: {},
+                     geometry: window.mechflowTest.geometry() };
+      for (const label of data.bodies) {
+        seen.pixels[label] = window.mechflowTest.pixels(label);
+        seen.hover[label] = window.mechflowTest.hoverName(label);
+      }
       report.seen.push(seen);
     }
     report.errors = errors;
     document.getElementById('mechflow-test').textContent = JSON.stringify(report);
     requestAnimationFrame(() => renderer.render(world, camera));  // the page shows the last time seen
+  } else if (frametime) {
+    // frames of the animation playing at speed 1 and 60 frames per second,
+    // each timed from the new time to the finished image (gl.finish)
+    const n = Number(frametime[1]), gl = renderer.getContext(), spent = [];
+    let t = times[0];
+    for (let i = 0; i < n; ++i) {
+      const start = performance.now();
+      t = advance(t, 1 / 60);
+      show(t);
+      renderer.render(world, camera);
+      gl.finish();
+      spent.push(performance.now() - start);
+    }
+    spent.sort((a, b) => a - b);
+    document.getElementById('mechflow-test').textContent = JSON.stringify({
+      frames: n, median_ms: spent[n >> 1], p95_ms: spent[Math.floor(0.95 * (n - 1))], max_ms: spent[n - 1], errors });
   } else {
-    const start = /#t=([0-9.eE+-]+)/.exec(window.location.hash);  // a link to a time: NAME.html#t=1.5
+    const start = /#t=([0-9.eE+-]+)/.exec(hash);  // a link to a time: NAME.html#t=1.5
     if (start) show(Number(start[1]));
     requestAnimationFrame(tick);
   }

@@ -40,7 +40,24 @@ TEST(SceneTest, ShapesReadTheirGeometryAndExpressions) {
   EXPECT_EQ(scene.shapes[3].body, 0);
   EXPECT_EQ(scene.shapes[3].body2, -1);
   EXPECT_EQ(scene.shapes[3].coils, 5);
-  EXPECT_THAT(SceneJson(scene, "d"), HasSubstr("\"kind\":\"sphere\",\"name\":\"sphere 1\",\"body\":0"));
+  EXPECT_EQ(scene.shapes[0].name, "sphere 1");
+  EXPECT_EQ(scene.shapes[0].identifiers, std::vector<int>{0});  // r
+  EXPECT_TRUE(scene.shapes[2].identifiers.empty());
+}
+
+TEST(SceneTest, ParametricShapesAreSampledFromTheirExpressions) {
+  const Scene scene = Build(
+      "<shape type='curve' x='r*cos(u)' y='r*sin(u)' z='0.1*u' u='0 2*pi' samples='8'/>"
+      "<shape type='surface' body='B' x='u' y='v' z='u*v*r' u='0 1' v='-1 1' samples='4 2'/>");
+  const Parametric& curve = scene.shapes[0].parametric;
+  ASSERT_EQ(curve.points.size(), 9u);
+  EXPECT_NEAR(curve.points[2].x(), 0.0, 1e-15);  // u = pi/2
+  EXPECT_NEAR(curve.points[2].y(), 0.2, 1e-15);
+  EXPECT_NEAR(curve.points[8].z(), 0.2 * 3.14159265358979, 1e-12);
+  const Parametric& surface = scene.shapes[1].parametric;
+  ASSERT_EQ(surface.points.size(), 15u);  // (4 + 1) x (2 + 1), u fastest
+  EXPECT_EQ(surface.points[5 * 2 + 4], Vec3(1, 1, 0.2));
+  EXPECT_EQ(scene.shapes[1].identifiers, std::vector<int>{0});
 }
 
 TEST(SceneTest, BadGeometryIsRefusedAtItsLine) {
@@ -52,11 +69,19 @@ TEST(SceneTest, BadGeometryIsRefusedAtItsLine) {
   EXPECT_THAT(error("<shape type='cylinder' body='B' axis='0 0 0'/>"), HasSubstr("the axis is zero"));
   EXPECT_THAT(error("<shape type='box' body='C'/>"), HasSubstr("mechanism 'm' has no body 'C'"));
   EXPECT_THAT(error("<shape type='cube' body='B'/>"), HasSubstr("unknown shape type 'cube'"));
-  EXPECT_THAT(error("<shape type='box' body='B' size='1 0 1'/>"), HasSubstr("every edge must be > 0"));
+  EXPECT_THAT(error("<shape type='box' body='B' size='1 0 1'/>"), HasSubstr("every one must be > 0"));
   EXPECT_THAT(error("<shape type='box' color='red'/>"), HasSubstr("expected \"#rrggbb\""));
   EXPECT_THAT(error("<shape type='polyline' points='0 0 0'/>"), HasSubstr("at least two points"));
   EXPECT_THAT(error("<shape type='box' opacity='2'/>"), HasSubstr("must lie in [0, 1]"));
-  EXPECT_THAT(error("<shape type='box' radius2='1'/>"), HasSubstr("radius2"));
+  EXPECT_THAT(error("<shape type='box' radius2='1'/>"), HasSubstr("a box has no 'radius2'; it takes size and"));
+  EXPECT_THAT(error("<shape type='gear' teeth='2.5'/>"), HasSubstr("'teeth': a whole number from 3 to 1000"));
+  EXPECT_THAT(error("<shape type='gear' radius='0.1' tooth_height='0.3'/>"), HasSubstr("below twice the radius"));
+  EXPECT_THAT(error("<shape type='plane' size='1'/>"), HasSubstr("expected two edges > 0"));
+  EXPECT_THAT(error("<shape type='cone' radius2='-1'/>"), HasSubstr("'radius2': must be >= 0"));
+  EXPECT_THAT(error("<shape type='curve' x='u' y='0' z='0'/>"), HasSubstr("needs the range 'u'"));
+  EXPECT_THAT(error("<shape type='curve' x='u' y='0' u='0 1'/>"), HasSubstr("needs 'z', an expression of u"));
+  EXPECT_THAT(error("<shape type='curve' x='w' y='0' z='0' u='0 1'/>"), HasSubstr("unknown name 'w'"));
+  EXPECT_THAT(error("<shape type='surface' x='u' y='v' z='0' u='1 0' v='0 1'/>"), HasSubstr("from < to"));
 }
 
 TEST(SceneTest, AnAnimationOfNothingIsRefused) {

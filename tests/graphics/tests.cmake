@@ -1,3 +1,4 @@
 # graphics/: the scene, the animation file, and the animation in a real browser.
 mechflow_test(browser_test unit tests/graphics/browser_test.cc)
 mechflow_test(scene_test unit tests/graphics/scene_test.cc)
+mechflow_test(mesh_test unit tests/graphics/mesh_test.cc)

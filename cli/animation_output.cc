@@ -1,0 +1,45 @@
+#include "cli/animation_output.h"
+
+#include "graphics/animation.h"
+#include "graphics/gltf.h"
+#include "mech/errors.h"
+
+namespace mechflow::cli {
+
+AnimationOutput::AnimationOutput(const diagrams::LoadedDiagram& loaded, const Arguments& args, blocks::Simulator* sim)
+    : loaded_(loaded), scene_(graphics::BuildScene(loaded)) {
+  const std::string& name = loaded.description.name;
+  html_ = !loaded.animation_file.empty() ? loaded.animation_file : args.animate ? name + ".html" : "";
+  glb_ = !loaded.gltf_file.empty() ? loaded.gltf_file : args.gltf ? name + ".glb" : "";
+  if (html_.empty() && glb_.empty()) return;
+  if (scene_.empty())
+    throw InputError(args.file + ": nothing to animate: no <shape> on any body; give the bodies shapes "
+                                 "(diagrams/FORMAT.md, Shapes)");
+  const std::vector<std::string>& columns = sim->results().columns();  // time first
+  recording_ = std::make_unique<graphics::AnimationRecorder>(
+      loaded, scene_, std::vector<std::string>(columns.begin() + 1, columns.end()));
+  sim->SetRowObserver(recording_.get());
+}
+
+bool AnimationOutput::Write(const OutputFolder& folder, std::ostream& out, std::ostream& err) const {
+  if (!recording_) return true;
+  for (const std::string& warning : recording_->warnings())
+    err << "warning: a shape keeps its last geometry " << warning << "\n";
+  bool written = true;
+  const auto write = [&](const std::string& file, const std::string& bytes) {
+    try {
+      folder.Write(file, bytes);
+      out << "wrote " << folder.PathOf(file) << " (" << recording_->times().size() << " frames of "
+          << recording_->num_bodies() << " bodies, " << bytes.size() / 1024 << " KiB)\n";
+    } catch (const WriteError& e) {
+      err << e.what() << "\n";
+      written = false;
+    }
+  };
+  const std::string& title = loaded_.description.name;
+  if (!html_.empty()) write(html_, graphics::AnimationHtml(scene_, *recording_, title));
+  if (!glb_.empty()) write(glb_, graphics::GltfBinary(scene_, *recording_, title));
+  return written;
+}
+
+}  // namespace mechflow::cli

@@ -1,0 +1,37 @@
+#pragma once
+// The animation files of one `mechflow run`: NAME.html (<output
+// animation>, --animate) and NAME.glb (<output gltf>, --gltf), from the
+// shapes of the diagram and what an AnimationRecorder saw during the run.
+
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include "blocks/simulator.h"
+#include "cli/arguments.h"
+#include "cli/output_folder.h"
+#include "diagrams/loader.h"
+#include "graphics/recorder.h"
+#include "graphics/scene.h"
+
+namespace mechflow::cli {
+
+class AnimationOutput {
+ public:
+  // Reads the shapes (bad geometry is bad input, before the run) and, when
+  // an animation file is asked for, records the run. Refuses (InputError)
+  // an animation of a diagram without shapes.
+  AnimationOutput(const diagrams::LoadedDiagram& loaded, const Arguments& args, blocks::Simulator* sim);
+
+  // Writes the files, saying each on `out`; false when one could not be
+  // written (said on `err`).
+  bool Write(const OutputFolder& folder, std::ostream& out, std::ostream& err) const;
+
+ private:
+  const diagrams::LoadedDiagram& loaded_;
+  graphics::Scene scene_;
+  std::string html_, glb_;
+  std::unique_ptr<graphics::AnimationRecorder> recording_;
+};
+
+}  // namespace mechflow::cli
