@@ -95,7 +95,6 @@ std::string GltfBinary(const Scene& scene, const AnimationRecorder& recording, c
   Buffer buffer;
   std::ostringstream meshes, materials, nodes, channels, samplers;
   const int num_bodies = static_cast<int>(scene.bodies.size());
-  // nodes: 0 the root, 1 the ground, 2.. the bodies, then the springs
   std::vector<std::string> primitives(num_bodies + 1);  // per holder: ground first
   std::vector<std::string> spring_nodes;
   int num_materials = 0, num_meshes = 0;
@@ -130,11 +129,14 @@ std::string GltfBinary(const Scene& scene, const AnimationRecorder& recording, c
   const auto holder_node = [&](int h, const std::string& name) {
     return "{\"name\":" + Quoted(name) + (mesh_of[h] >= 0 ? ",\"mesh\":" + std::to_string(mesh_of[h]) : "") + "}";
   };
+  // nodes: 0 the root, then the ground (when it has shapes), the bodies, the springs
+  const bool ground = mesh_of[0] >= 0;
+  const int first_body = ground ? 2 : 1, first_spring = first_body + num_bodies;
   nodes << "{\"name\":" << Quoted(title + " (z up)") << ",\"rotation\":[-0.7071067811865476,0,0,0.7071067811865476]"
         << ",\"children\":[";
-  const int num_children = 1 + num_bodies + static_cast<int>(spring_nodes.size());
-  for (int k = 0; k < num_children; ++k) nodes << (k ? "," : "") << k + 1;
-  nodes << "]}," << holder_node(0, "Base0");
+  for (int k = 1; k < first_spring + static_cast<int>(spring_nodes.size()); ++k) nodes << (k > 1 ? "," : "") << k;
+  nodes << "]}";
+  if (ground) nodes << "," << holder_node(0, "Base0");
   for (int b = 0; b < num_bodies; ++b) nodes << "," << holder_node(b + 1, scene.bodies[b].label);
   for (const std::string& node : spring_nodes) nodes << "," << node;
 
@@ -158,8 +160,8 @@ std::string GltfBinary(const Scene& scene, const AnimationRecorder& recording, c
       Append(&translation, pose.p);
       Append(&rotation, Eigen::Quaterniond(pose.R));
     }
-    channel(2 + b, "translation", translation, "VEC3");
-    channel(2 + b, "rotation", rotation, "VEC4");
+    channel(first_body + b, "translation", translation, "VEC3");
+    channel(first_body + b, "rotation", rotation, "VEC4");
   }
   int spring = 0;
   for (const Shape& s : scene.shapes) {
@@ -171,7 +173,7 @@ std::string GltfBinary(const Scene& scene, const AnimationRecorder& recording, c
       Append(&rotation, placed.rotation);
       Append(&scale, Vec3(1, placed.length, 1));
     }
-    const int node = 2 + num_bodies + spring++;
+    const int node = first_spring + spring++;
     channel(node, "translation", translation, "VEC3");
     channel(node, "rotation", rotation, "VEC4");
     channel(node, "scale", scale, "VEC3");

@@ -2,9 +2,10 @@
 // The scene and its motion as a glTF 2.0 binary (.glb), for Blender and
 // other viewers.
 //
-// One node per moving body, holding a mesh with a primitive per shape (the
-// same tessellation as the HTML viewer: graphics/mesh.h), the ground's
-// shapes in a node of their own, and a node per spring. One animation
+// Below a root node: the ground's shapes (node "Base0", when there are
+// any), one node per moving body holding a mesh with a primitive per shape
+// (the same tessellation as the HTML viewer: graphics/mesh.h), and a node
+// per spring, in this order. One animation
 // "motion" moves them: translation and rotation of every body, and
 // translation, rotation and scale of every spring's unit helix, at the
 // recorded frames (LINEAR). glTF's y is up; a root node turns mechflow's

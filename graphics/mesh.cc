@@ -199,7 +199,7 @@ std::vector<float> VertexNormals(const Mesh& mesh) {
   std::vector<float> normals;
   normals.reserve(3 * sum.size());
   for (const Vec3& n : sum) {
-    const Vec3 u = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
+    const Vec3 u = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitZ();
     normals.insert(normals.end(), {float(u.x()), float(u.y()), float(u.z())});
   }
   return normals;

@@ -25,8 +25,8 @@ struct Mesh {
 
 Mesh Tessellate(const Shape& shape);
 
-// Area-weighted vertex normals of a triangle mesh (unit; zero where no
-// triangle has area), three per vertex.
+// Area-weighted vertex normals of a triangle mesh, three per vertex, unit
+// (+z where the triangles around a vertex have no area or cancel out).
 std::vector<float> VertexNormals(const Mesh& mesh);
 
 // Where a spring's unit helix goes: origin at point1 in the world, +y scaled

@@ -16,7 +16,8 @@
 //
 // "#t=1.5" in the URL opens the page at that time.
 // Test interface (tests/graphics/browser_test.cc): window.mechflowTest; with
-// "#test=t1,t2,..." in the URL the page seeks to each time after loading and
+// "#test=t1,t2,...[&trace=BODY][&plot=COLUMN]" in the URL the page traces
+// BODY's origin and plots COLUMN, seeks to each time after loading and
 // writes what it saw as JSON into <pre id="mechflow-test">; with
 // "#frametime=N" it draws N frames of a playing animation and reports the
 // time each took.
@@ -363,10 +364,15 @@
   const frametime = /#frametime=([0-9]+)/.exec(hash);
   if (test) {
     const report = { frames: times.length, seen: [] };
+    const traced = /&trace=([^&]*)/.exec(hash), plotted = /&plot=([^&]*)/.exec(hash);
+    if (traced) window.mechflowTest.trace(decodeURIComponent(traced[1]), [0, 0, 0]);
+    if (plotted) window.mechflowTest.plot(decodeURIComponent(plotted[1]));
     for (const t of test[1].split(',').map(Number)) {
       window.mechflowTest.seek(t);
+      const path = window.mechflowTest.traced();
       const seen = { t, transforms: window.mechflowTest.transforms(), pixels: {}, hover: {},
-                     geometry: window.mechflowTest.geometry() };
+                     geometry: window.mechflowTest.geometry(), cursor: window.mechflowTest.cursor(),
+                     traced: path.length / 3, traceEnd: path.slice(-3) };
       for (const label of data.bodies) {
         seen.pixels[label] = window.mechflowTest.pixels(label);
         seen.hover[label] = window.mechflowTest.hoverName(label);
