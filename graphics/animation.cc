@@ -96,7 +96,7 @@ std::string AnimationHtml(const Scene& scene, const AnimationRecorder& recording
           "#view canvas { width: 100%; height: 100%; display: block; }\n"
           "#bar { position: absolute; bottom: 0; left: 0; right: 0; height: 44px; display: flex; gap: 10px;"
           " align-items: center; padding: 0 10px; background: #e4e4e8; }\n"
-          "#time { flex: 1; }\n#bar label, #clock { white-space: nowrap; }\n#title { position: absolute; top: 8px; left: 10px; color: #333; }\n"
+          "#time { flex: 1; }\n#bar label, #clock { white-space: nowrap; }\n#bar select { max-width: 10em; }\n#title { position: absolute; top: 8px; left: 10px; color: #333; }\n"
           "#hover { position: absolute; pointer-events: none; background: #fffff0; border: 1px solid #999;"
           " padding: 2px 5px; display: none; }\n"
           "#plot { position: absolute; right: 10px; bottom: 54px; width: 320px; height: 150px;"

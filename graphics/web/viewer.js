@@ -266,7 +266,7 @@
     const box = new THREE.Box3().setFromObject(world);
     const centre = box.isEmpty() ? new THREE.Vector3() : box.getCenter(new THREE.Vector3());
     const size = box.isEmpty() ? 1 : Math.max(box.getSize(new THREE.Vector3()).length(), 1e-3);
-    camera.position.copy(centre).add(new THREE.Vector3(1.5, -1.0, 0.7).multiplyScalar(size));
+    camera.position.copy(centre).add(new THREE.Vector3(1.1, -0.75, 0.5).multiplyScalar(size));
     camera.near = size / 1000;
     camera.far = size * 100;
     camera.updateProjectionMatrix();
