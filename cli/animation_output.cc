@@ -11,6 +11,7 @@ AnimationOutput::AnimationOutput(const diagrams::LoadedDiagram& loaded, const Ar
   const std::string& name = loaded.description.name;
   html_ = !loaded.animation_file.empty() ? loaded.animation_file : args.animate ? name + ".html" : "";
   glb_ = !loaded.gltf_file.empty() ? loaded.gltf_file : args.gltf ? name + ".glb" : "";
+  if (args.no_animate) html_.clear(), glb_.clear();
   if (html_.empty() && glb_.empty()) return;
   if (scene_.empty())
     throw InputError(args.file + ": nothing to animate: no <shape> on any body; give the bodies shapes "

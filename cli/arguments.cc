@@ -98,7 +98,7 @@ std::string HelpText(const std::string& command) {
   if (command == "run")
     return "usage: mechflow run FILE [--variant NAME]... [--set NAME=VALUE]... [--t-end T] [--out DIR]\n"
            "                    [--rtol R] [--atol A] [--interval DT] [--results NAME] [--quiet | --verbose]\n"
-           "                    [--animate] [--gltf] [--unsafe-lua]\n"
+           "                    [--animate] [--gltf] [--no-animate] [--unsafe-lua]\n"
            "\n"
            "Simulates the diagram FILE and writes its logged signals as CSV (and the plot\n"
            "named in <output plot=...>) into DIR. Prints solver counters and the range of\n"
@@ -120,6 +120,7 @@ std::string HelpText(const std::string& command) {
            "                    <output animation=\"...\"> names it in the diagram)\n"
            "  --gltf            write the same scene and motion as glTF binary NAME.glb (Blender\n"
            "                    and other viewers; <output gltf=\"...\"> names it)\n"
+           "  --no-animate      write neither, whatever the diagram's <output> asks (batch runs)\n"
            "  --verbose         also print the event log: every event's time, block, and for\n"
            "                    a mechanism the element and what it switched to\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
@@ -293,6 +294,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.animate = true;
     } else if (arg == "--gltf" && a.command == "run") {
       a.gltf = true;
+    } else if (arg == "--no-animate" && a.command == "run") {
+      a.no_animate = true;
     } else if (arg == "--quiet" && runs) {
       a.quiet = true;
     } else if (arg == "--verbose" && runs) {
@@ -315,6 +318,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       std::vector<std::string> options = {"--set", "--set-file", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
       if (runs) options.insert(options.end(), {"--rtol", "--atol", "--interval", "--results", "--quiet"});
       if (a.command == "modes") options.push_back("--equilibrium");
+      if (a.command == "run") options.insert(options.end(), {"--animate", "--gltf", "--no-animate"});
       if (a.command == "sweep") options.insert(options.end(), {"--vary", "--jobs"});
       if (a.command == "force-analysis") options.push_back("--vary");
       options.insert(options.end(), CommandOptions(a.command).begin(), CommandOptions(a.command).end());
@@ -328,6 +332,9 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
   }
   if (!a.help && a.file.empty()) throw UsageError("mechflow " + a.command + " needs a diagram FILE");
   if (a.quiet && a.verbose) throw UsageError("--quiet and --verbose contradict each other; give one");
+  if (a.no_animate && (a.animate || a.gltf))
+    throw UsageError(std::string("--no-animate and ") + (a.animate ? "--animate" : "--gltf") +
+                     " contradict each other; give one");
   if (!a.help && a.command == "sweep" && a.vary.empty())
     throw UsageError("mechflow sweep needs at least one --vary NAME=V1,V2,...");
   return a;

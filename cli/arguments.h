@@ -22,6 +22,7 @@ struct Arguments {
   bool verbose = false;                                   // run --verbose: the event log
   bool animate = false;                                   // run --animate: write NAME.html
   bool gltf = false;                                      // run --gltf: write NAME.glb
+  bool no_animate = false;                                // run --no-animate: neither, whatever <output> says
   std::string out_dir = ".";                              // --out DIR
   bool unsafe_lua = false;                                // --unsafe-lua
   bool equilibrium = false;                               // modes --equilibrium

@@ -75,6 +75,7 @@ struct Plan {
   std::vector<std::string> figure_labels;  // the header's figure columns
   std::string csv_file;                    // the diagram's results file name
   std::vector<diagrams::PlotGroup> groups; // logged groups, for the overlay plot
+  bool animated = false;                    // <output animation> or <output gltf>: not written by a sweep
   std::vector<std::string> columns;        // the results' column names
   bool event_logs = false;                 // --verbose: each run's event log beside its results
 };
@@ -229,6 +230,7 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.width = std::to_string(plan.runs);
   for (const blocks::ReportRequest& r : base.reports) plan.figure_labels.push_back(r.label);
   plan.csv_file = base.csv_file;
+  plan.animated = !base.animation_file.empty() || !base.gltf_file.empty();
   plan.groups = base.groups;
   plan.columns = {"time"};
   for (const blocks::SignalRef& s : base.logged)
@@ -340,6 +342,9 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     out << "mechflow sweep " << args.file << ": " << plan.runs << " run" << (plan.runs == 1 ? "" : "s") << ", "
         << jobs << " at a time" << (ranks->size() > 1 ? " in each of " + std::to_string(ranks->size()) + " processes" : "")
         << "\n"
+        << (plan.animated ? "note: a sweep writes no animation; animate one case with `mechflow run " + args.file +
+                                " --set NAME=VALUE`\n"
+                          : "")
         << std::flush;
   const auto wall_start = std::chrono::steady_clock::now();
   std::vector<RunRow> rows(mine.size());

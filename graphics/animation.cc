@@ -91,12 +91,12 @@ std::string AnimationHtml(const Scene& scene, const AnimationRecorder& recording
   std::ostringstream html;
   html << "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << Escaped(title)
        << "</title>\n<style>\n"
-          "html, body { margin: 0; height: 100%; font: 14px sans-serif; }\n"
+          "html, body { margin: 0; height: 100%; font: 14px sans-serif; overflow: hidden; }\n"
           "#view { position: absolute; top: 0; bottom: 44px; left: 0; right: 0; }\n"
           "#view canvas { width: 100%; height: 100%; display: block; }\n"
           "#bar { position: absolute; bottom: 0; left: 0; right: 0; height: 44px; display: flex; gap: 10px;"
           " align-items: center; padding: 0 10px; background: #e4e4e8; }\n"
-          "#time { flex: 1; }\n#bar label, #clock { white-space: nowrap; }\n#bar select { max-width: 10em; }\n#title { position: absolute; top: 8px; left: 10px; color: #333; }\n"
+          "#time { flex: 1; min-width: 60px; }\n#bar label, #clock { white-space: nowrap; }\n#bar select { max-width: 10em; }\n#title { position: absolute; top: 8px; left: 10px; color: #333; }\n"
           "#hover { position: absolute; pointer-events: none; background: #fffff0; border: 1px solid #999;"
           " padding: 2px 5px; display: none; }\n"
           "#plot { position: absolute; right: 10px; bottom: 54px; width: 320px; height: 150px;"

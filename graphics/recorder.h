@@ -30,7 +30,7 @@ namespace mechflow::graphics {
 
 struct RecorderOptions {
   double frame_spacing = 1.0 / 120;
-  double shape_spacing = 1.0 / 30;
+  double shape_spacing = 1.0 / 15;
 };
 
 // A shape's geometry from time t on.

@@ -14,6 +14,7 @@ namespace mechflow::graphics {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 std::string Diagram(const std::string& shapes) {
   return "<diagram name='d'><identifiers><identifier name='r' value='0.2'/></identifiers>\n"
@@ -90,6 +91,26 @@ TEST(SceneTest, AnAnimationOfNothingIsRefused) {
   const auto run = mechflow::testing::RunMechflow("run " + path + " --animate --out " + ::testing::TempDir() + "ns");
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("nothing to animate: no <shape> on any body"));
+}
+
+TEST(SceneTest, NoAnimateSkipsTheDiagramsAnimationAndSweepsSaySoToo) {
+  const std::string path = ::testing::TempDir() + "animated.xml";
+  std::ofstream(path) << "<diagram name='a'><identifiers><identifier name='c' value='1'/></identifiers>"
+                         "<mechanism name='m'><body name='B' mass='1' inertia='1 1 1'/>"
+                         "<joint name='j' type='translational' body1='Base0' body2='B' axis='0 0 1'/>"
+                         "<shape type='sphere' body='B'/></mechanism><solver t_end='0.1'/>"
+                         "<output animation='a.html' gltf='a.glb'/></diagram>";
+  const std::string out = ::testing::TempDir() + "animated_out";
+  const auto with = mechflow::testing::RunMechflow("run " + path + " --out " + out);
+  EXPECT_THAT(with.out, HasSubstr("a.html ("));
+  EXPECT_THAT(with.out, HasSubstr("a.glb ("));
+  const auto without = mechflow::testing::RunMechflow("run " + path + " --no-animate --out " + out + "2");
+  EXPECT_EQ(without.exit_code, 0) << without.err;
+  EXPECT_THAT(without.out, Not(HasSubstr(".html")));
+  EXPECT_THAT(without.out, Not(HasSubstr(".glb")));
+  EXPECT_EQ(mechflow::testing::RunMechflow("run " + path + " --no-animate --gltf").exit_code, 2);
+  const auto sweep = mechflow::testing::RunMechflow("sweep " + path + " --vary c=1,2 --out " + out + "3");
+  EXPECT_THAT(sweep.out, HasSubstr("note: a sweep writes no animation"));
 }
 
 }  // namespace
