@@ -1,5 +1,6 @@
 #include "graphics/recorder.h"
 
+#include <algorithm>
 #include <limits>
 
 #include <Eigen/Geometry>
@@ -41,6 +42,7 @@ void AnimationRecorder::OnRow(double t, const double* x, const blocks::Context& 
     poses_.resize(poses_.size() - 7 * bodies_.size());
     signals_.resize(signals_.size() - columns_.size());
   } else {
+    if (times_.size() >= options_.max_frames) HalveFrames();
     times_.push_back(t);
   }
   const blocks::Diagram& diagram = *loaded_.diagram;
@@ -83,10 +85,39 @@ void AnimationRecorder::RecordShapeChanges(double t) {
     try {
       versions_.push_back(
           {f.shape, t, Tessellate(ShapeBuilder(loaded_).Read(*source.mechanism, *source.element, source.number, &bodies))});
+      version_bytes_ += versions_.back().mesh.positions.size() * sizeof(float);
+      if (version_bytes_ > options_.max_version_bytes) HalveVersions();
     } catch (const InputError& e) {  // the run goes on; the shape keeps its last geometry
       if (warnings_.size() < 10) warnings_.push_back("at t = " + std::to_string(t) + " s: " + e.what());
     }
   }
+}
+
+void AnimationRecorder::HalveFrames() {
+  const std::size_t nb = 7 * bodies_.size(), nc = columns_.size();
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < times_.size(); f += 2, ++kept) {
+    times_[kept] = times_[f];
+    std::copy_n(poses_.begin() + f * nb, nb, poses_.begin() + kept * nb);
+    std::copy_n(signals_.begin() + f * nc, nc, signals_.begin() + kept * nc);
+  }
+  times_.resize(kept);
+  poses_.resize(kept * nb);
+  signals_.resize(kept * nc);
+  options_.frame_spacing *= 2;
+}
+
+void AnimationRecorder::HalveVersions() {
+  std::vector<ShapeVersion> kept;
+  std::vector<int> seen(scene_.shapes.size(), 0);  // each shape keeps its 1st, 3rd, ... version
+  version_bytes_ = 0;
+  for (ShapeVersion& v : versions_)
+    if (seen[v.shape]++ % 2 == 0) {
+      version_bytes_ += v.mesh.positions.size() * sizeof(float);
+      kept.push_back(std::move(v));
+    }
+  versions_ = std::move(kept);
+  options_.shape_spacing *= 2;
 }
 
 mech::Pose AnimationRecorder::Pose(int f, int b) const {

@@ -13,6 +13,8 @@
 // A shape naming identifiers is read again (ShapeBuilder::Read) when their
 // values differ from those of its last version, at most once per
 // `shape_spacing` seconds: each version is its tessellation at that time.
+// Past `max_frames` frames (`max_version_bytes` of versions) every other one
+// is dropped and the spacing doubled.
 //
 // Poses come from the mechanism's kinematics at the row's state (and the
 // drives' values among the signals), computed in a workspace of its own.
@@ -31,6 +33,11 @@ namespace mechflow::graphics {
 struct RecorderOptions {
   double frame_spacing = 1.0 / 120;
   double shape_spacing = 1.0 / 15;
+  // Bounds for long runs: past them every other frame (version) is dropped
+  // and the spacing doubles, so memory and the file stay bounded whatever
+  // t_end is.
+  std::size_t max_frames = 100000;
+  std::size_t max_version_bytes = std::size_t{32} << 20;
 };
 
 // A shape's geometry from time t on.
@@ -75,6 +82,8 @@ class AnimationRecorder final : public blocks::RowObserver {
     double t = 0.0;
   };
   void RecordShapeChanges(double t);
+  void HalveFrames();
+  void HalveVersions();
 
   const diagrams::LoadedDiagram& loaded_;
   const Scene& scene_;
@@ -88,6 +97,7 @@ class AnimationRecorder final : public blocks::RowObserver {
   std::vector<float> poses_;
   std::vector<float> signals_;
   std::vector<ShapeVersion> versions_;
+  std::size_t version_bytes_ = 0;
   std::vector<std::string> warnings_;
 };
 

@@ -2,3 +2,4 @@
 mechflow_test(browser_test unit tests/graphics/browser_test.cc)
 mechflow_test(scene_test unit tests/graphics/scene_test.cc)
 mechflow_test(mesh_test unit tests/graphics/mesh_test.cc)
+mechflow_test(recorder_test unit tests/graphics/recorder_test.cc)
