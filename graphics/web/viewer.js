@@ -266,7 +266,11 @@
     const box = new THREE.Box3().setFromObject(world);
     const centre = box.isEmpty() ? new THREE.Vector3() : box.getCenter(new THREE.Vector3());
     const size = box.isEmpty() ? 1 : Math.max(box.getSize(new THREE.Vector3()).length(), 1e-3);
-    camera.position.copy(centre).add(new THREE.Vector3(1.1, -0.75, 0.5).multiplyScalar(size));
+    // far enough that the bounding sphere fits the narrower field of view
+    const half = THREE.MathUtils.degToRad(camera.fov) / 2;
+    const narrower = Math.min(half, Math.atan(Math.tan(half) * camera.aspect));
+    const distance = 1.2 * (size / 2) / Math.sin(narrower);
+    camera.position.copy(centre).add(new THREE.Vector3(1.1, -0.75, 0.5).normalize().multiplyScalar(distance));
     camera.near = size / 1000;
     camera.far = size * 100;
     camera.updateProjectionMatrix();
