@@ -175,27 +175,28 @@ TEST_F(BrowserTest, TheQuarterCarsAnimationShowsTheSimulatedPoses) {
 // r = |dx|^n + |dy|^n + |dz|^n, n = mdeg, which the control script changes.
 TEST_F(BrowserTest, TheMoleculesSurfaceFollowsMdeg) {
   const fs::path dir = RunExample("molecule");
-  // the shape's versions: from mdeg's first change (0.01 s) every 0.04 s (at
-  // least 1/30 s apart on the 0.01 s grid); between them the viewer interpolates
-  const std::string report = BrowserReport("file://" + (dir / "molecule.html").string() + "#test=0.41,1.21");
+  // the shape's versions: from mdeg's first change (0.01 s) every 0.07 s (at
+  // least 1/15 s apart on the 0.01 s grid); between them the viewer interpolates
+  const std::string report = BrowserReport("file://" + (dir / "molecule.html").string() + "#test=0.43,1.27");
   ASSERT_FALSE(report.empty());
   EXPECT_THAT(report, HasSubstr("\"errors\":[]"));
   const Csv csv = ReadCsv(dir / "molecule.csv");
   std::size_t from = 0;
   std::vector<double> degrees;
-  for (const double t : {0.41, 1.21}) {
+  for (const double t : {0.43, 1.27}) {
     from = report.find("{\"t\":", from + 1);
     const double n = csv.At(t, 0.01)[csv.Column("mdeg")];
     degrees.push_back(n);
     const std::vector<double> x = ArrayAfter(report, "molecule", from);
-    ASSERT_EQ(x.size(), 3u * 37 * 19);  // samples "36 18"
+    constexpr int nu = 32, nv = 16;  // samples "32 16"
+    ASSERT_EQ(x.size(), 3u * (nu + 1) * (nv + 1));
     double worst = 0;
-    for (int j = 0; j <= 18; ++j)
-      for (int i = 0; i <= 36; ++i) {
-        const double u = 2 * kPi * i / 36, v = kPi * j / 18;
+    for (int j = 0; j <= nv; ++j)
+      for (int i = 0; i <= nu; ++i) {
+        const double u = 2 * kPi * i / nu, v = kPi * j / nv;
         const double d[3] = {std::sin(v) * std::cos(u), std::sin(v) * std::sin(u), std::cos(v)};
         const double r = std::pow(std::abs(d[0]), n) + std::pow(std::abs(d[1]), n) + std::pow(std::abs(d[2]), n);
-        for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(x[3 * (j * 37 + i) + k] - r * d[k]));
+        for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(x[3 * (j * (nu + 1) + i) + k] - r * d[k]));
       }
     EXPECT_LT(worst, 1e-5) << "at t = " << t << ", mdeg = " << n;
   }
