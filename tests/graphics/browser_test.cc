@@ -107,9 +107,11 @@ Csv ReadCsv(const fs::path& path) {
   return csv;
 }
 
-// Runs an example into a fresh folder of its own.
+// Runs an example into a fresh folder of its own: one per test and example,
+// since CTest runs the tests of this file side by side.
 fs::path RunExample(const std::string& name, const std::string& options = "") {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("browser_" + name);
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const fs::path dir = fs::path(::testing::TempDir()) / ("browser_" + test + "_" + name);
   fs::remove_all(dir);
   const auto run = testing::RunMechflow("run " + std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + name +
                                         ".xml " + options + " --out " + dir.string());
