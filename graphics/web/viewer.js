@@ -180,13 +180,16 @@
   // --- names on hover; a double click traces the point clicked ---------------
   const hover = document.getElementById('hover');
   const raycaster = new THREE.Raycaster();
-  function picked(event) {
-    const r = renderer.domElement.getBoundingClientRect();
-    const at = new THREE.Vector2(((event.clientX - r.left) / r.width) * 2 - 1, -((event.clientY - r.top) / r.height) * 2 + 1);
+  // the nearest shape under a point of the view (-1..1 both ways)
+  function hitAt(at) {
     raycaster.params.Line.threshold = camera.position.distanceTo(controls.target) / 200;
     raycaster.setFromCamera(at, camera);
     const hits = raycaster.intersectObjects(shapes.map((s) => s.object), false);
     return hits.length ? hits[0] : null;
+  }
+  function picked(event) {
+    const r = renderer.domElement.getBoundingClientRect();
+    return hitAt(new THREE.Vector2(((event.clientX - r.left) / r.width) * 2 - 1, -((event.clientY - r.top) / r.height) * 2 + 1));
   }
   renderer.domElement.addEventListener('pointermove', (event) => {
     const hit = picked(event);
@@ -357,9 +360,8 @@
     hoverName(body) {
       const g = bodies[data.bodies.indexOf(body)];
       const at = new THREE.Vector3().setFromMatrixPosition(g.matrixWorld).project(camera);
-      raycaster.setFromCamera(new THREE.Vector2(at.x, at.y), camera);
-      const hits = raycaster.intersectObjects(shapes.map((s) => s.object), false);
-      return hits.length ? hits[0].object.userData.owner : '';
+      const hit = hitAt(new THREE.Vector2(at.x, at.y));
+      return hit ? hit.object.userData.owner : '';
     },
     errors,
   };
