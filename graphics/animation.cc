@@ -1,9 +1,9 @@
 #include "graphics/animation.h"
 
-#include <cstdint>
 #include <sstream>
 
 #include "blocks/csv.h"
+#include "graphics/encoding.h"
 #include "graphics/mesh.h"
 #include "graphics/web_assets.h"
 
@@ -71,22 +71,6 @@ std::string DataJson(const Scene& scene, const AnimationRecorder& recording, con
 
 }  // namespace
 
-std::string Base64(const void* bytes, std::size_t size) {
-  static const char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  const auto* data = static_cast<const unsigned char*>(bytes);
-  std::string out;
-  out.reserve((size + 2) / 3 * 4);
-  for (std::size_t i = 0; i < size; i += 3) {
-    const std::uint32_t a = data[i], b = i + 1 < size ? data[i + 1] : 0, c = i + 2 < size ? data[i + 2] : 0;
-    const std::uint32_t v = a << 16 | b << 8 | c;
-    out += kDigits[v >> 18 & 63];
-    out += kDigits[v >> 12 & 63];
-    out += i + 1 < size ? kDigits[v >> 6 & 63] : '=';
-    out += i + 2 < size ? kDigits[v & 63] : '=';
-  }
-  return out;
-}
-
 std::string AnimationHtml(const Scene& scene, const AnimationRecorder& recording, const std::string& title) {
   std::ostringstream html;
   html << "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << Escaped(title)
@@ -96,7 +80,7 @@ std::string AnimationHtml(const Scene& scene, const AnimationRecorder& recording
           "#view canvas { width: 100%; height: 100%; display: block; }\n"
           "#bar { position: absolute; bottom: 0; left: 0; right: 0; height: 44px; display: flex; gap: 10px;"
           " align-items: center; padding: 0 10px; background: #e4e4e8; }\n"
-          "#time { flex: 1; min-width: 60px; }\n#bar label, #clock { white-space: nowrap; }\n#bar select { max-width: 10em; }\n#title { position: absolute; top: 8px; left: 10px; color: #333; }\n"
+          "#time { flex: 1; min-width: 60px; }\n#bar label, #clock { white-space: nowrap; }\n#bar select { max-width: 7em; }\n#title { position: absolute; top: 8px; left: 10px; color: #333; }\n"
           "#hover { position: absolute; pointer-events: none; background: #fffff0; border: 1px solid #999;"
           " padding: 2px 5px; display: none; }\n"
           "#plot { position: absolute; right: 10px; bottom: 54px; width: 320px; height: 150px;"

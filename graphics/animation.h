@@ -15,7 +15,4 @@ namespace mechflow::graphics {
 
 std::string AnimationHtml(const Scene& scene, const AnimationRecorder& recording, const std::string& title);
 
-// Standard base64 (RFC 4648) of `size` bytes.
-std::string Base64(const void* data, std::size_t size);
-
 }  // namespace mechflow::graphics

@@ -2,12 +2,12 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <sstream>
 
 #include <Eigen/Geometry>
 
 #include "blocks/csv.h"
+#include "graphics/encoding.h"
 #include "graphics/mesh.h"
 
 namespace mechflow::graphics {

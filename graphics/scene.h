@@ -94,7 +94,4 @@ struct Scene {
 // The scene of every <shape> in the loaded diagram's mechanisms.
 Scene BuildScene(const diagrams::LoadedDiagram& loaded);
 
-// JSON string literal.
-std::string Quoted(const std::string& s);
-
 }  // namespace mechflow::graphics

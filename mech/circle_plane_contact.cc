@@ -32,12 +32,7 @@ CirclePlaneContact::CirclePlaneContact(std::string name, std::string origin, int
 }
 
 std::string CirclePlaneContact::LinearisedAs(std::span<const double> modes) const {
-  int touching = 0;
-  for (const double m : modes) touching += m != 0.0;
-  if (touching == 0) return "not touching: no contact stiffness";
-  return std::to_string(touching) + " of " + std::to_string(modes.size()) +
-         " point(s) touching: their contact stiffness acts, and below a slip of v_eps their regularised "
-         "friction acts as a steep viscous damper (mu N / v_eps per point)";
+  return ContactLinearisedAs(modes);
 }
 
 std::string CirclePlaneContact::CrossingWarning(int index, int direction) const {

@@ -53,6 +53,15 @@ std::string PenetrationWarning(const ContactLaw& law) {
          " m (is the contact too soft, or is a body passing through the plane?)";
 }
 
+std::string ContactLinearisedAs(std::span<const double> modes) {
+  int touching = 0;
+  for (const double m : modes) touching += m != 0.0;
+  if (touching == 0) return "not touching: no contact stiffness";
+  return std::to_string(touching) + " of " + std::to_string(modes.size()) +
+         " point(s) touching: their contact stiffness acts, and below a slip of v_eps their regularised "
+         "friction acts as a steep viscous damper (mu N / v_eps per point)";
+}
+
 PointContactLoad ApplyPointContact(const Kinematics& kin, const ContactLaw& law, int body1, int body2,
                                    const Vec3& p, const Vec3& n, double delta, Loads* loads) {
   const Vec3 w = MaterialVelocityAt(kin, body1, p) - MaterialVelocityAt(kin, body2, p);
@@ -90,12 +99,7 @@ PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int
 }
 
 std::string PointsPlaneContact::LinearisedAs(std::span<const double> modes) const {
-  int touching = 0;
-  for (const double m : modes) touching += m != 0.0;
-  if (touching == 0) return "not touching: no contact stiffness";
-  return std::to_string(touching) + " of " + std::to_string(modes.size()) +
-         " point(s) touching: their contact stiffness acts, and below a slip of v_eps their regularised "
-         "friction acts as a steep viscous damper (mu N / v_eps per point)";
+  return ContactLinearisedAs(modes);
 }
 
 std::string PointsPlaneContact::CrossingWarning(int index, int direction) const {

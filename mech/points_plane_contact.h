@@ -59,6 +59,9 @@ double ContactEnergy(const ContactLaw& law, double delta);
 void CheckContactLaw(const ContactLaw& law, const std::string& where);
 // The warning of a contact whose penetration crossed its bound (rising).
 std::string PenetrationWarning(const ContactLaw& law);
+// What `mechflow modes` says of a contact linearised with these point modes
+// (nonzero: touching).
+std::string ContactLinearisedAs(std::span<const double> modes);
 
 class PointsPlaneContact final : public ForceElement {
  public:

@@ -1,21 +1,15 @@
 #include "blocks/library/interpolation.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 
+#include "blocks/csv.h"
 #include "blocks/library/hysteresis.h"
 #include "mech/errors.h"
 
 namespace mechflow::blocks {
 namespace {
-
-std::string Format(double v) {
-  char buffer[32];
-  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return error == std::errc() ? std::string(buffer, end) : std::to_string(v);
-}
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
@@ -40,10 +34,10 @@ Axis::Axis(std::vector<double> x, Interpolation interpolation, Extrapolation ext
   if (x_.size() < 2)
     throw InputError(what_ + ": a table needs at least two breakpoints, got " + std::to_string(x_.size()));
   for (std::size_t i = 0; i < x_.size(); ++i) {
-    if (!std::isfinite(x_[i])) throw InputError(what_ + ": breakpoint " + Format(x_[i]) + " is not finite");
+    if (!std::isfinite(x_[i])) throw InputError(what_ + ": breakpoint " + CsvNumber(x_[i]) + " is not finite");
     if (i > 0 && !(x_[i] > x_[i - 1]))
-      throw InputError(what_ + ": breakpoints must increase strictly, but " + Format(x_[i]) + " follows " +
-                       Format(x_[i - 1]));
+      throw InputError(what_ + ": breakpoints must increase strictly, but " + CsvNumber(x_[i]) + " follows " +
+                       CsvNumber(x_[i - 1]));
   }
   if (interpolation_ == Interpolation::kStep && extrapolation_ == Extrapolation::kLinear)
     throw InputError(what_ + ": a step table has no slope to extrapolate; use extrapolation=\"hold\" or \"error\"");
@@ -85,8 +79,8 @@ int Axis::SegmentIn(double u, int region) const {
 }
 
 void Axis::ThrowBeyond(double u) const {
-  throw SimulationError(what_ + ": input " + Format(u) + " lies outside the table [" + Format(x_.front()) + ", " +
-                        Format(x_.back()) + "] and extrapolation is \"error\"; extend the table or choose " +
+  throw SimulationError(what_ + ": input " + CsvNumber(u) + " lies outside the table [" + CsvNumber(x_.front()) + ", " +
+                        CsvNumber(x_.back()) + "] and extrapolation is \"error\"; extend the table or choose " +
                         "extrapolation=\"hold\" or \"linear\"");
 }
 
@@ -133,7 +127,7 @@ Curve::Curve(const Axis& axis, std::vector<double> y) : y_(std::move(y)) {
     throw InputError(axis.what() + ": " + std::to_string(y_.size()) + " values for " + std::to_string(axis.size()) +
                      " breakpoints");
   for (const double v : y_)
-    if (!std::isfinite(v)) throw InputError(axis.what() + ": value " + Format(v) + " is not finite");
+    if (!std::isfinite(v)) throw InputError(axis.what() + ": value " + CsvNumber(v) + " is not finite");
   if (axis.interpolation() == Interpolation::kCubic) {
     m_.resize(y_.size());
     std::vector<double> scratch(y_.size());

@@ -5,28 +5,22 @@
 #include <cmath>
 #include <sstream>
 
+#include "blocks/csv.h"
 #include "blocks/input_file.h"
 #include "mech/errors.h"
 
 namespace mechflow::blocks {
 namespace {
 
-// A number as a user would write it (shortest form that reads back exactly).
-std::string Format(double v) {
-  char buffer[32];
-  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return error == std::errc() ? std::string(buffer, end) : std::to_string(v);
-}
-
 // Checks one point against the points before it; `where` starts the message
 // and `previous` names the row before ("row 2", "line 7").
 void CheckPoint(double t, double y, const std::vector<double>& times, const std::string& where,
                 const std::string& previous, const std::string& x) {
   if (!std::isfinite(t) || !std::isfinite(y))
-    throw InputError(where + ": point (" + Format(t) + ", " + Format(y) + ") is not finite");
+    throw InputError(where + ": point (" + CsvNumber(t) + ", " + CsvNumber(y) + ") is not finite");
   if (!times.empty() && !(t > times.back()))
     throw InputError(where + ": " + (x == "t" ? "times" : "breakpoints") + " must increase strictly, but " + x +
-                     " = " + Format(t) + " follows " + x + " = " + Format(times.back()) + " (" + previous + ")");
+                     " = " + CsvNumber(t) + " follows " + x + " = " + CsvNumber(times.back()) + " (" + previous + ")");
 }
 
 void CheckCount(const std::vector<double>& times, const std::string& source) {

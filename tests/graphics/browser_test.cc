@@ -20,7 +20,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "graphics/animation.h"
+#include "graphics/encoding.h"
 #include "tests/cli/mechflow_command.h"
 
 namespace mechflow {
