@@ -80,6 +80,18 @@ void Block::DeclarePeriodicSampleTime(double period, double offset) {
   sample_time_ = {period, offset};
 }
 
+void Block::DeclareRatePair(int position, int rate) {
+  const int n = num_states();
+  if (position < 0 || position >= n || rate < 0 || rate >= n || position == rate)
+    throw std::logic_error("block '" + name_ + "': rate pair (" + std::to_string(position) + ", " +
+                           std::to_string(rate) + ") is not two of its states");
+  for (const auto& [p, r] : rate_pairs_)
+    if (p == position || p == rate || r == position)
+      throw std::logic_error("block '" + name_ + "': state " + std::to_string(position) +
+                             " is in two rate pairs, or a position is another pair's rate");
+  rate_pairs_.emplace_back(position, rate);
+}
+
 void Block::DeclareSparsity(BlockSparsity sparsity) {
   const auto in_range = [](const std::vector<std::vector<int>>& lists, int limit) {
     for (const auto& list : lists)

@@ -106,6 +106,11 @@ class Block {
   CrossingDirection crossing_direction(int i) const { return crossings_.at(i); }
   const SampleTime& sample_time() const { return sample_time_; }
   bool has_projection() const { return has_projection_; }
+  // Pairs (position, rate) of this block's states whose derivative is the
+  // other state itself, x_position' = x_rate exactly (a joint coordinate and
+  // its velocity). The Newton system is then solved in fewer unknowns
+  // (blocks/second_order_solver.h).
+  const std::vector<std::pair<int, int>>& rate_pairs() const { return rate_pairs_; }
   // The declared sparsity, or nullptr: every derivative then reads every
   // state and input, and every output every state (the safe default). A
   // block whose sparsity is costly to find may find it here, on first use
@@ -184,6 +189,9 @@ class Block {
   int DeclareZeroCrossing(CrossingDirection direction);
   void DeclarePeriodicSampleTime(double period, double offset);
   void DeclareProjection() { has_projection_ = true; }
+  // Declares x_position' = x_rate, exactly, at every evaluation (see
+  // rate_pairs()); a position may not be another pair's rate.
+  void DeclareRatePair(int position, int rate);
   // After the ports and states are declared: sizes must match them
   // (std::logic_error otherwise).
   void DeclareSparsity(BlockSparsity sparsity);
@@ -210,6 +218,7 @@ class Block {
   std::vector<CrossingDirection> crossings_;
   SampleTime sample_time_;
   bool has_projection_ = false;
+  std::vector<std::pair<int, int>> rate_pairs_;
   BlockSparsity sparsity_;
 };
 

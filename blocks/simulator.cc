@@ -12,6 +12,7 @@
 #include "blocks/coloured_jacobian.h"
 #include "blocks/evaluation.h"
 #include "blocks/flush_denormals.h"
+#include "blocks/second_order_solver.h"
 #include "blocks/sparsity.h"
 #include "blocks/sundials.h"
 #include "mech/errors.h"
@@ -36,20 +37,34 @@ std::string SolverOptions::Problem() const {
 }
 
 // The SUNDIALS objects of one run; y is the solver's state vector. One of
-// dense and sparse is made.
+// sparse, second-order (dense, with rate pairs) and dense is made.
 struct Simulator::Solver {
-  Solver(sunindextype n, const ColouredJacobian* jacobian) : y(n, ctx), weights(n, ctx), cvode(ctx) {
-    if (jacobian) sparse = std::make_unique<sundials::SparseSolver>(y, jacobian->pattern(), ctx);
-    else dense = std::make_unique<sundials::DenseSolver>(y, ctx);
+  Solver(sunindextype n, const ColouredJacobian* jacobian, const std::vector<std::pair<int, int>>& rate_pairs)
+      : y(n, ctx), weights(n, ctx), cvode(ctx) {
+    if (jacobian) {
+      sparse = std::make_unique<sundials::SparseSolver>(y, jacobian->pattern(), ctx);
+    } else if (!rate_pairs.empty()) {
+      second_order = std::make_unique<SecondOrderSolver>(y, rate_pairs, [this] {
+        double gamma = 0.0;  // called by CVODE: no exception may pass
+        return CVodeGetCurrentGamma(cvode.get(), &gamma) < 0 ? std::nan("") : gamma;
+      }, ctx);
+    } else {
+      dense = std::make_unique<sundials::DenseSolver>(y, ctx);
+    }
   }
-  SUNMatrix matrix() const { return sparse ? sparse->matrix() : dense->matrix(); }
-  SUNLinearSolver linear_solver() const { return sparse ? sparse->solver() : dense->solver(); }
+  SUNMatrix matrix() const {
+    return sparse ? sparse->matrix() : second_order ? second_order->matrix() : dense->matrix();
+  }
+  SUNLinearSolver linear_solver() const {
+    return sparse ? sparse->solver() : second_order ? second_order->solver() : dense->solver();
+  }
   sundials::Context ctx;
   sundials::Vector y;
   sundials::Vector weights;  // sparse: CVODE's error weights, for the increments
+  sundials::Cvode cvode;
   std::unique_ptr<sundials::DenseSolver> dense;
   std::unique_ptr<sundials::SparseSolver> sparse;
-  sundials::Cvode cvode;
+  std::unique_ptr<SecondOrderSolver> second_order;
 };
 
 namespace {
@@ -109,6 +124,7 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
       increments_.assign(n, 0.0);
     }
   }
+  if (!jacobian_ && options_.second_order) rate_pairs_ = DiagramRatePairs(diagram_);
 }
 
 Simulator::~Simulator() {
@@ -561,7 +577,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   const double t0 = options_.t_start, t_end = options_.t_end;
   const sunindextype n = std::max(1, diagram_.num_states());
   const FlushDenormals flush_denormals;  // for the whole run (see the header)
-  solver_ = std::make_unique<Solver>(n, jacobian_.get());
+  solver_ = std::make_unique<Solver>(n, jacobian_.get(), rate_pairs_);
   double* y = solver_->y.data();
   std::fill(y, y + n, 0.0);
   void* mem = solver_->cvode.get();
@@ -574,6 +590,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     stats_.colours = jacobian_->num_colours();
     stats_.nonzeros = jacobian_->pattern().nonzeros();
   }
+  stats_.newton_size = solver_->second_order ? solver_->second_order->reduced_size() : static_cast<int>(n);
   callback_failures_ = 0;
   callback_failure_.clear();
   stop_requested_ = false;

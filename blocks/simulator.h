@@ -73,6 +73,11 @@ struct SolverOptions {
   long max_steps = 500000;   // steps allowed between two output times
   double output_interval = 0.0;  // [s], 0: (t_end - t_start) / 1000
   LinearSolverKind linear_solver = LinearSolverKind::kAuto;
+  // Dense runs of diagrams with rate pairs (x_q' = x_v, Block::rate_pairs)
+  // eliminate the positions from each Newton system
+  // (blocks/second_order_solver.h); false solves the whole system, as
+  // before (for comparisons).
+  bool second_order = true;
 
   // Empty when usable, otherwise what is wrong (e.g. "rtol must be > 0").
   std::string Problem() const;
@@ -95,6 +100,7 @@ struct SolverStats {
   long projections = 0;          // projection calls (0 unless a block declares one)
   long projection_failures = 0;  // failed projections (each retries its step smaller)
   bool sparse = false;           // sparse Jacobian and KLU (otherwise dense)
+  int newton_size = 0;           // unknowns of each Newton system solved (fewer than states with rate pairs)
   int colours = 0;               // sparse: column groups, right-hand sides per Jacobian
   long nonzeros = 0;             // sparse: entries of the structural pattern
 };
@@ -268,6 +274,7 @@ class Simulator {
   std::vector<double> evaluated_x_, evaluated_g_;
   std::unique_ptr<ColouredJacobian> jacobian_;  // sparse runs only
   std::vector<double> increments_;              // sparse: per state, for each fill
+  std::vector<std::pair<int, int>> rate_pairs_;  // dense: eliminated from the Newton systems
   std::unique_ptr<Solver> solver_;
   class Point;  // the ControlPoint the control sees
   RunControl* control_ = nullptr;

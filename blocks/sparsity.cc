@@ -36,6 +36,15 @@ bool SparsityPattern::Contains(int row, int column) const {
   return std::binary_search(first, last, row);
 }
 
+std::vector<std::pair<int, int>> DiagramRatePairs(const Diagram& d) {
+  std::vector<std::pair<int, int>> pairs;
+  for (int b = 0; b < d.num_blocks(); ++b) {
+    const int first = d.layout(b).first_state;
+    for (const auto& [position, rate] : d.block(b).rate_pairs()) pairs.emplace_back(first + position, first + rate);
+  }
+  return pairs;
+}
+
 SparsityPattern DiagramSparsity(const Diagram& d) {
   // the output port that drives each input port
   struct Port {

@@ -33,6 +33,10 @@ struct SparsityPattern {
 // stateless diagram has the simulator's one placeholder state).
 SparsityPattern DiagramSparsity(const Diagram& diagram);
 
+// The rate pairs of every block (Block::rate_pairs), as indices into the
+// diagram's continuous states: x_position' = x_rate exactly.
+std::vector<std::pair<int, int>> DiagramRatePairs(const Diagram& diagram);
+
 // Greedy column colouring (Curtis, Powell and Reid): columns that share no
 // row get the same colour, so one difference quotient fills all of them.
 // Columns are taken in order, each getting the smallest colour none of its

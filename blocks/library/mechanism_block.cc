@@ -1,5 +1,3 @@
-#include <cstdio>
-#include <cstdlib>
 #include "blocks/library/mechanism_block.h"
 
 #include <algorithm>
@@ -68,6 +66,9 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
   }
   const std::vector<std::string> names = StateNames(*mechanism_);
   for (const std::string& state : names) DeclareContinuousStates(1, state);
+  // a joint coordinate's rate is its velocity (mech::CoordinateRates)
+  for (const mech::Dof& dof : mechanism_->model().dofs())
+    DeclareRatePair(dof.q_index, mechanism_->model().nq() + dof.v_index);
   DeclareDiscreteStates(mechanism_->num_modes());
   for (int e = 0; e < mechanism_->num_elements(); ++e)
     for (int k = 0; k < mechanism_->element(e).num_crossings(); ++k) {
