@@ -60,6 +60,7 @@ struct Outcome {
   double seconds = 0.0;
   long steps = 0, rhs = 0, jac_rhs = 0, jac_evals = 0;
   Eigen::VectorXd theta, omega;  // absolute angles [rad] and rates [rad/s] at t_end
+  long linear_iters = 0;         // Krylov iterations
   long all_rhs() const { return rhs + jac_rhs; }
 };
 
@@ -109,9 +110,10 @@ std::string ChainDiagram(int n) {
   return x.str();
 }
 
-std::function<Outcome()> PrepareMechflow(int n) {
-  auto loaded = std::make_shared<const mechflow::diagrams::LoadedDiagram>(
+std::function<Outcome()> PrepareMechflow(int n, mechflow::blocks::LinearSolverKind kind) {
+  auto loaded = std::make_shared<mechflow::diagrams::LoadedDiagram>(
       mechflow::diagrams::LoadDiagramDescription(mechflow::diagrams::ReadDiagramText(ChainDiagram(n), "chain.xml")));
+  loaded->solver.linear_solver = kind;
   return [loaded, n] {
     const auto start = Clock::now();
     mechflow::blocks::Simulator sim(*loaded->diagram, loaded->solver, loaded->logged);
@@ -124,13 +126,22 @@ std::function<Outcome()> PrepareMechflow(int n) {
     Eigen::VectorXd q(n), w(n);  // logged as q1, w1, q2, w2, ... after time
     for (int i = 0; i < n; ++i) q(i) = r.at(last, 1 + 2 * i), w(i) = r.at(last, 2 + 2 * i);
     return Outcome{seconds,        st.steps, st.rhs_evals, st.jac_rhs_evals, st.jac_evals,
-                   mechflow::bench::RelativeToAbsolute(q), mechflow::bench::RelativeToAbsolute(w)};
+                   mechflow::bench::RelativeToAbsolute(q), mechflow::bench::RelativeToAbsolute(w), st.linear_iters};
   };
 }
 
+// Dense contenders (their Jacobians cost N^2, their LU N^3) run up to this N.
+int dense_max = 200;
+
 // The contenders; the first is the reference the others are compared with.
 std::vector<Contender> Contenders() {
-  return {{"reference", PrepareReference}, {"mechflow", PrepareMechflow}};
+  using mechflow::blocks::LinearSolverKind;
+  const auto dense_only = [](auto prepare) {
+    return [prepare](int n) { return n <= dense_max ? prepare(n) : std::function<Outcome()>(); };
+  };
+  return {{"reference", dense_only(PrepareReference)},
+          {"mechflow", dense_only([](int n) { return PrepareMechflow(n, LinearSolverKind::kDense); })},
+          {"mf-krylov", [](int n) { return PrepareMechflow(n, LinearSolverKind::kKrylov); }}};
 }
 
 // ---------------------------------------------------------------------------
@@ -154,7 +165,8 @@ double Slope(const std::vector<double>& x, const std::vector<double>& y) {
 }
 
 int Usage(const char* argv0) {
-  std::fprintf(stderr, "usage: %s [--repeat K] [--sizes 2,10,50]   (K >= 1, default 5)\n", argv0);
+  std::fprintf(stderr, "usage: %s [--repeat K] [--sizes 2,10,50] [--dense-max N]   (K >= 1, default 5; N default 200)\n",
+               argv0);
   return 2;
 }
 
@@ -168,6 +180,8 @@ int main(int argc, char** argv) {
     if (arg == "--repeat" && i + 1 < argc) {
       repeat = std::atoi(argv[++i]);
       if (repeat < 1) return Usage(argv[0]);
+    } else if (arg == "--dense-max" && i + 1 < argc) {
+      dense_max = std::atoi(argv[++i]);
     } else if (arg == "--sizes" && i + 1 < argc) {
       sizes.clear();
       std::stringstream list(argv[++i]);
@@ -186,12 +200,11 @@ int main(int argc, char** argv) {
                 kRtol, kAtol, kTEnd, kOutputs, repeat);
     std::printf("us/RHS = median wall time / (integrator + Jacobian RHS evaluations); energy drift E(t_end) - E(0); "
                 "|dtheta| = max |theta_i - theta_i,reference| at t_end\n\n");
-    std::printf("%4s  %-10s %9s %9s %7s %8s %8s %5s %8s %11s %9s\n", "N", "contender", "wall [ms]", "fast [ms]",
-                "steps", "RHS int", "RHS jac", "Jac", "us/RHS", "drift [J]", "|dtheta|");
+    std::printf("%5s  %-10s %9s %9s %7s %8s %8s %5s %7s %8s %11s %9s\n", "N", "contender", "wall [ms]", "fast [ms]",
+                "steps", "RHS int", "RHS jac", "Jac", "lin it", "us/RHS", "drift [J]", "|dtheta|");
 
-    std::vector<double> ns;
-    std::vector<std::vector<double>> cost(nc);  // per contender, per N: cost per RHS evaluation [s]
-    std::vector<bool> measured(nc, true);
+    std::vector<std::vector<double>> cost(nc), wall(nc), sizes_of(nc);  // per contender, per N measured
+
     for (const int n : sizes) {
       const PendulumChain chain(n, kMass, kLength, kG);
       // set up (untimed) and warm up each contender
@@ -211,21 +224,21 @@ int main(int argc, char** argv) {
           seconds[c].push_back(last[c].seconds);
         }
 
-      ns.push_back(n);
       std::vector<double> median(nc, 0.0);
       for (std::size_t c = 0; c < nc; ++c) {
         if (!runs[c]) {
-          measured[c] = false;
-          std::printf("%4d  %-10s not measured\n", n, contenders[c].name.c_str());
+          std::printf("%5d  %-10s not measured\n", n, contenders[c].name.c_str());
           continue;
         }
         const Outcome& o = last[c];
         median[c] = Median(seconds[c]);
         cost[c].push_back(median[c] / o.all_rhs());
+        wall[c].push_back(median[c]);
+        sizes_of[c].push_back(n);
         const double drift = chain.Energy(o.theta, o.omega);  // E(0) = 0: horizontal, at rest
-        std::printf("%4d  %-10s %9.2f %9.2f %7ld %8ld %8ld %5ld %8.2f %11.2e", n, contenders[c].name.c_str(),
+        std::printf("%5d  %-10s %9.2f %9.2f %7ld %8ld %8ld %5ld %7ld %8.2f %11.2e", n, contenders[c].name.c_str(),
                     1e3 * median[c], 1e3 * *std::min_element(seconds[c].begin(), seconds[c].end()), o.steps, o.rhs,
-                    o.jac_rhs, o.jac_evals, 1e6 * cost[c].back(), drift);
+                    o.jac_rhs, o.jac_evals, o.linear_iters, 1e6 * cost[c].back(), drift);
         if (c > 0 && runs[0])
           std::printf(" %9.1e", (o.theta - last[0].theta).cwiseAbs().maxCoeff());
         std::printf("\n");
@@ -240,13 +253,13 @@ int main(int argc, char** argv) {
                   chain.EnergyScale());
     }
 
-    if (ns.size() >= 2) {
-      std::printf("\ngrowth of cost per RHS evaluation with N (log-log least-squares slope):");
+    // growth exponents over the sizes each contender ran (log-log least-squares slopes)
+    for (const auto& [what, values] : {std::pair{"cost per RHS evaluation", &cost}, std::pair{"wall time", &wall}}) {
+      std::printf("\ngrowth of %s with N:", what);
       for (std::size_t c = 0; c < nc; ++c)
-        if (measured[c])
-          std::printf(" %s %.2f%s", contenders[c].name.c_str(), Slope(ns, cost[c]), c + 1 < nc ? "," : "");
-        else
-          std::printf(" %s not measured%s", contenders[c].name.c_str(), c + 1 < nc ? "," : "");
+        if (sizes_of[c].size() >= 2)
+          std::printf(" %s %.2f (N %g..%g)%s", contenders[c].name.c_str(), Slope(sizes_of[c], (*values)[c]),
+                      sizes_of[c].front(), sizes_of[c].back(), c + 1 < nc ? "," : "");
       std::printf("\n");
     }
   } catch (const std::exception& e) {

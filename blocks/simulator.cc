@@ -39,9 +39,12 @@ std::string SolverOptions::Problem() const {
 // The SUNDIALS objects of one run; y is the solver's state vector. One of
 // sparse, second-order (dense, with rate pairs) and dense is made.
 struct Simulator::Solver {
-  Solver(sunindextype n, const ColouredJacobian* jacobian, const std::vector<std::pair<int, int>>& rate_pairs)
+  Solver(sunindextype n, const ColouredJacobian* jacobian, const std::vector<std::pair<int, int>>& rate_pairs,
+         bool krylov_solver)
       : y(n, ctx), weights(n, ctx), cvode(ctx) {
-    if (jacobian) {
+    if (krylov_solver) {
+      krylov = std::make_unique<sundials::KrylovSolver>(y, kKrylovDimension, ctx);
+    } else if (jacobian) {
       sparse = std::make_unique<sundials::SparseSolver>(y, jacobian->pattern(), ctx);
     } else if (!rate_pairs.empty()) {
       second_order = std::make_unique<SecondOrderSolver>(y, rate_pairs, [this] {
@@ -53,11 +56,16 @@ struct Simulator::Solver {
     }
   }
   SUNMatrix matrix() const {
-    return sparse ? sparse->matrix() : second_order ? second_order->matrix() : dense->matrix();
+    return krylov ? nullptr : sparse ? sparse->matrix() : second_order ? second_order->matrix() : dense->matrix();
   }
   SUNLinearSolver linear_solver() const {
-    return sparse ? sparse->solver() : second_order ? second_order->solver() : dense->solver();
+    return krylov         ? krylov->solver()
+           : sparse       ? sparse->solver()
+           : second_order ? second_order->solver()
+                          : dense->solver();
   }
+  // GMRES restarts after this many iterations (CVODE's default)
+  static constexpr int kKrylovDimension = 5;
   sundials::Context ctx;
   sundials::Vector y;
   sundials::Vector weights;  // sparse: CVODE's error weights, for the increments
@@ -65,6 +73,7 @@ struct Simulator::Solver {
   std::unique_ptr<sundials::DenseSolver> dense;
   std::unique_ptr<sundials::SparseSolver> sparse;
   std::unique_ptr<SecondOrderSolver> second_order;
+  std::unique_ptr<sundials::KrylovSolver> krylov;
 };
 
 namespace {
@@ -124,7 +133,12 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
       increments_.assign(n, 0.0);
     }
   }
-  if (!jacobian_ && options_.second_order) rate_pairs_ = DiagramRatePairs(diagram_);
+  if (!jacobian_) rate_pairs_ = DiagramRatePairs(diagram_);
+  // large mechanisms whose Jacobian is dense: matrix-free (see the header)
+  krylov_ = kind == LinearSolverKind::kKrylov ||
+            (kind == LinearSolverKind::kAuto && !jacobian_ && n >= kKrylovMinStates &&
+             4 * static_cast<int>(rate_pairs_.size()) >= n);
+  if (!krylov_ && !options_.second_order) rate_pairs_.clear();
 }
 
 Simulator::~Simulator() {
@@ -397,6 +411,18 @@ int Simulator::LinearSystem(double t, N_Vector y, N_Vector fy, SUNMatrix a, sunb
   return 0;
 }
 
+int Simulator::PreconditionRatePairs(double, N_Vector, N_Vector, N_Vector r, N_Vector z, double gamma, double,
+                                     int, void* user) {
+  // P = I - gamma [rows q' = v]: exact for the pairs, the identity elsewhere
+  const auto* self = static_cast<Simulator*>(user);
+  const double* in = N_VGetArrayPointer(r);
+  double* out = N_VGetArrayPointer(z);
+  const sunindextype n = N_VGetLength(r);
+  for (sunindextype i = 0; i < n; ++i) out[i] = in[i];
+  for (const auto& [position, rate] : self->rate_pairs_) out[position] = in[position] + gamma * in[rate];
+  return 0;
+}
+
 int Simulator::Project(double t, N_Vector y, N_Vector correction, double, N_Vector error, void* user) {
   auto* self = static_cast<Simulator*>(user);
   const Diagram& d = self->diagram_;
@@ -512,6 +538,7 @@ void Simulator::AccumulateStats() {
   if (linear_solver_attached_) {  // otherwise CVLS would complain on stderr
     add(CVodeGetNumLinRhsEvals(mem, &v), &stats_.jac_rhs_evals);
     add(CVodeGetNumJacEvals(mem, &v), &stats_.jac_evals);
+    add(CVodeGetNumLinIters(mem, &v), &stats_.linear_iters);
   }
   add(CVodeGetNumNonlinSolvIters(mem, &v), &stats_.newton_iters);
   add(CVodeGetNumNonlinSolvConvFails(mem, &v), &stats_.newton_failures);
@@ -577,7 +604,8 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   const double t0 = options_.t_start, t_end = options_.t_end;
   const sunindextype n = std::max(1, diagram_.num_states());
   const FlushDenormals flush_denormals;  // for the whole run (see the header)
-  solver_ = std::make_unique<Solver>(n, jacobian_.get(), rate_pairs_);
+  solver_ = std::make_unique<Solver>(n, jacobian_.get(), krylov_ ? std::vector<std::pair<int, int>>() : rate_pairs_,
+                                     krylov_);
   double* y = solver_->y.data();
   std::fill(y, y + n, 0.0);
   void* mem = solver_->cvode.get();
@@ -590,6 +618,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     stats_.colours = jacobian_->num_colours();
     stats_.nonzeros = jacobian_->pattern().nonzeros();
   }
+  stats_.krylov = krylov_;
   stats_.newton_size = solver_->second_order ? solver_->second_order->reduced_size() : static_cast<int>(n);
   callback_failures_ = 0;
   callback_failure_.clear();
@@ -635,6 +664,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     Check(CVodeSStolerances(mem, options_.rtol, options_.atol), "CVodeSStolerances");
     Check(CVodeSetLinearSolver(mem, solver_->linear_solver(), solver_->matrix()), "CVodeSetLinearSolver");
     if (jacobian_) Check(CVodeSetLinSysFn(mem, &Simulator::LinearSystem), "CVodeSetLinSysFn");
+    if (krylov_) Check(CVodeSetPreconditioner(mem, nullptr, &Simulator::PreconditionRatePairs), "CVodeSetPreconditioner");
     linear_solver_attached_ = true;
     Check(CVodeSetMaxNumSteps(mem, options_.max_steps), "CVodeSetMaxNumSteps");
     if (options_.max_step > 0.0) Check(CVodeSetMaxStep(mem, options_.max_step), "CVodeSetMaxStep");

@@ -3,18 +3,32 @@
 //
 // Method: CVODE BDF (variable order 1..5), Newton iteration with a direct
 // linear solver. This is the stiff workhorse: friction regularisation and
-// contact stiffness make the problems this tool is for stiff. Two Jacobians:
+// contact stiffness make the problems this tool is for stiff. Three linear
+// solvers:
 //   dense:  CVODE's dense matrix and difference-quotient Jacobian (n
-//           right-hand sides per Jacobian, O(n^3) factorisation);
+//           right-hand sides per Jacobian, O(n^3) factorisation); with rate
+//           pairs (q' = v) the positions are eliminated before the LU
+//           (blocks/second_order_solver.h);
 //   sparse: the diagram's structural pattern (blocks/sparsity.h), filled by
 //           coloured difference quotients (one right-hand side per colour,
 //           blocks/coloured_jacobian.h) into a compressed-column matrix that
 //           KLU factors. The Newton matrix I - gamma J is formed here
 //           (CVodeSetLinSysFn): CVODE's own construction of it for a sparse
-//           matrix costs O(n^2) (../shared/BENCH.md, known traps).
+//           matrix costs O(n^2) (../shared/BENCH.md, known traps);
+//   krylov: GMRES (SPGMR), matrix-free: each iteration one right-hand side
+//           for J v by a difference quotient, O(n) for a mechanism; the
+//           preconditioner solves the rows q' = v exactly (identity
+//           elsewhere). No Jacobian, no factorisation: for large mechanisms
+//           whose Jacobian is dense (a long serial chain: every acceleration
+//           reads every coordinate), where dense costs n^2 per Jacobian and
+//           n^3 per factorisation.
 // kAuto picks sparse when the diagram has at least kSparseMinStates states and
 // its pattern needs at most a quarter as many colours as states (so a fill
-// costs at most n/4 right-hand sides), dense otherwise. Measured on the P3
+// costs at most n/4 right-hand sides); otherwise krylov when it has at least
+// kKrylovMinStates states of which rate pairs are at least a quarter; dense
+// otherwise. The P4 chain (bench/README.md): krylov and dense break even
+// at 50 bodies (100 states), krylov is 2x faster at 200 and grows as
+// N^1.2 up to 2000 bodies. Measured on the P3
 // chain (../shared/BENCH.md, CPU time): sparse wins already at 20 states
 // (0.07 s against 0.14 s) and by 7x at 200 (1.4 s against 10.3 s); below 100
 // states both take well under a second, so small diagrams keep the dense
@@ -61,7 +75,7 @@ namespace mechflow::blocks {
 
 class ColouredJacobian;
 
-enum class LinearSolverKind { kAuto, kDense, kSparse };
+enum class LinearSolverKind { kAuto, kDense, kSparse, kKrylov };
 
 struct SolverOptions {
   double t_start = 0.0;      // [s]
@@ -90,6 +104,7 @@ struct SolverStats {
   long jac_rhs_evals = 0;    // by the difference-quotient Jacobian
   long jac_evals = 0;
   long newton_iters = 0;
+  long linear_iters = 0;     // Krylov iterations (0 with direct solvers)
   long newton_failures = 0;  // nonlinear convergence failures
   long error_test_failures = 0;
   long root_evals = 0;
@@ -99,7 +114,8 @@ struct SolverStats {
   long restarts = 0;         // after repeated error-test or convergence failures (a re-initialisation too)
   long projections = 0;          // projection calls (0 unless a block declares one)
   long projection_failures = 0;  // failed projections (each retries its step smaller)
-  bool sparse = false;           // sparse Jacobian and KLU (otherwise dense)
+  bool sparse = false;           // sparse Jacobian and KLU (otherwise dense or Krylov)
+  bool krylov = false;           // GMRES with difference-quotient products J v
   int newton_size = 0;           // unknowns of each Newton system solved (fewer than states with rate pairs)
   int colours = 0;               // sparse: column groups, right-hand sides per Jacobian
   long nonzeros = 0;             // sparse: entries of the structural pattern
@@ -179,6 +195,8 @@ class Simulator {
 
   // Smallest state count for which kAuto considers a sparse Jacobian.
   static constexpr int kSparseMinStates = 100;
+  // Smallest state count for which kAuto picks the Krylov solver.
+  static constexpr int kKrylovMinStates = 200;
 
  private:
   struct Solver;
@@ -186,6 +204,8 @@ class Simulator {
   static int LinearSystem(double t, N_Vector y, N_Vector fy, SUNMatrix A, sunbooleantype jok,
                           sunbooleantype* jcur, double gamma, void* self, N_Vector, N_Vector, N_Vector);
   static int Roots(double t, N_Vector y, double* g, void* self);
+  static int PreconditionRatePairs(double t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z, double gamma,
+                                   double delta, int side, void* self);
   static int Project(double t, N_Vector y, N_Vector correction, double tolerance, N_Vector error, void* self);
   static void ErrorHandler(int code, const char* module, const char* function, char* msg, void* self);
 
@@ -274,7 +294,8 @@ class Simulator {
   std::vector<double> evaluated_x_, evaluated_g_;
   std::unique_ptr<ColouredJacobian> jacobian_;  // sparse runs only
   std::vector<double> increments_;              // sparse: per state, for each fill
-  std::vector<std::pair<int, int>> rate_pairs_;  // dense: eliminated from the Newton systems
+  std::vector<std::pair<int, int>> rate_pairs_;  // dense: eliminated from the Newton systems; Krylov: preconditioner
+  bool krylov_ = false;                          // GMRES, matrix-free
   std::unique_ptr<Solver> solver_;
   class Point;  // the ControlPoint the control sees
   RunControl* control_ = nullptr;

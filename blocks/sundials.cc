@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include <sunlinsol/sunlinsol_klu.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 namespace mechflow::blocks::sundials {
@@ -64,6 +65,12 @@ SparseSolver::~SparseSolver() {
   SUNMatDestroy(a_);
 }
 double* SparseSolver::values() const { return SUNSparseMatrix_Data(a_); }
+
+KrylovSolver::KrylovSolver(const Vector& y, int max_krylov_dimension, const Context& ctx)
+    : ls_(SUNLinSol_SPGMR(y.get(), SUN_PREC_LEFT, max_krylov_dimension, ctx.get())) {
+  if (!ls_) throw std::runtime_error("SUNLinSol_SPGMR failed");
+}
+KrylovSolver::~KrylovSolver() { SUNLinSolFree(ls_); }
 
 Cvode::Cvode(const Context& ctx) : mem_(CVodeCreate(CV_BDF, ctx.get())) {
   if (!mem_) throw std::runtime_error("CVodeCreate failed");

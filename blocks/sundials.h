@@ -79,6 +79,21 @@ class SparseSolver {
   SUNLinearSolver ls_ = nullptr;
 };
 
+// GMRES with restarts (SPGMR), preconditioned from the left; matrix-free:
+// CVODE forms J v by a difference quotient, one right-hand side per
+// iteration.
+class KrylovSolver {
+ public:
+  KrylovSolver(const Vector& y, int max_krylov_dimension, const Context& ctx);
+  ~KrylovSolver();
+  KrylovSolver(const KrylovSolver&) = delete;
+  KrylovSolver& operator=(const KrylovSolver&) = delete;
+  SUNLinearSolver solver() const { return ls_; }
+
+ private:
+  SUNLinearSolver ls_ = nullptr;
+};
+
 // CVODE integrator memory (BDF).
 class Cvode {
  public:

@@ -89,7 +89,8 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
       if (a.value == "auto") solver->linear_solver = blocks::LinearSolverKind::kAuto;
       else if (a.value == "dense") solver->linear_solver = blocks::LinearSolverKind::kDense;
       else if (a.value == "sparse") solver->linear_solver = blocks::LinearSolverKind::kSparse;
-      else throw InputError(what + " is '" + a.value + "'; expected auto, dense or sparse");
+      else if (a.value == "krylov") solver->linear_solver = blocks::LinearSolverKind::kKrylov;
+      else throw InputError(what + " is '" + a.value + "'; expected auto, dense, sparse or krylov");
       continue;
     }
     const double v = eval.Number(a.value, what);

@@ -433,7 +433,7 @@ TEST(SparseSolverTest, DenseSettingWinsOverAuto) {
 TEST(SparseSolverTest, BadSettingNamesTheLine) {
   const std::string message = testing::InputErrorOf([] { testing::LoadXml(ChainXml(2, "linear_solver=\"banded\"")); });
   EXPECT_NE(message.find("test.xml:"), std::string::npos) << message;
-  EXPECT_NE(message.find("solver setting 'linear_solver' is 'banded'; expected auto, dense or sparse"),
+  EXPECT_NE(message.find("solver setting 'linear_solver' is 'banded'; expected auto, dense, sparse or krylov"),
             std::string::npos)
       << message;
 }
