@@ -39,6 +39,10 @@ struct Context {
   // Incremented whenever time or state may have changed, so a block may cache
   // work shared between its output ports (e.g. mechanism kinematics).
   std::uint64_t evaluation = 0;
+  // True while a right-hand side is evaluated: the derivatives follow the
+  // outputs in the same evaluation, so a block may do work they share while
+  // computing an output. False for output rows and root functions.
+  bool derivatives_follow = false;
 };
 
 class BlockContext {
@@ -47,6 +51,7 @@ class BlockContext {
 
   double time() const { return ctx_->time; }
   std::uint64_t evaluation() const { return ctx_->evaluation; }
+  bool derivatives_follow() const { return ctx_->derivatives_follow; }
 
   std::span<const double> input(int port) const {
     return {ctx_->signals.data() + layout_->input_offset[port],

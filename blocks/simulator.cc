@@ -351,8 +351,10 @@ int Simulator::EvaluateRhs(double t, double* x, double* xdot) {
     ctx.x = x;
     ctx.xdot = xdot;
     ++ctx.evaluation;
+    ctx.derivatives_follow = true;
     EvaluateOutputs(d, &ctx);
     EvaluateDerivatives(d, &ctx);
+    ctx.derivatives_follow = false;
   } catch (const std::exception& e) {
     // recoverable at first: CVODE retries with smaller steps, so a failing
     // run stops close to the failing instant; then final, so that a model

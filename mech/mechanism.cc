@@ -135,6 +135,18 @@ void FindStuck(const Mechanism& mechanism, double t, std::span<const double> x, 
   }
 }
 
+}  // namespace
+
+bool AnyStuckExactly(const Mechanism& mechanism, double t, std::span<const double> x, std::span<const double> modes,
+                     const MechanismWorkspace& ws) {
+  if (modes.empty()) return false;
+  for (int e : mechanism.exact_stick_elements())
+    if (mechanism.element(e).StuckExactly(MakeContext(mechanism, t, x, modes, ws, e))) return true;
+  return false;
+}
+
+namespace {
+
 // After EvaluateElements with the holding forces at zero: measures a0 and S
 // (mech/exact_stick.h), solves for the holding forces and lets the stuck
 // elements apply them (their sensors and rates are written again).

@@ -131,6 +131,11 @@ void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const dou
                        std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
                        std::span<double> xdot);
 
+// True when some element sticks exactly in these modes: its holding force,
+// and so its sensors and crossings, then need EvaluateMechanism.
+bool AnyStuckExactly(const Mechanism& mechanism, double t, std::span<const double> x, std::span<const double> modes,
+                     const MechanismWorkspace& ws);
+
 // The elements' zero-crossing values at the last EvaluateMechanism.
 void EvaluateCrossings(const Mechanism& mechanism, std::span<const double> x, std::span<const double> modes,
                        MechanismWorkspace* ws, std::span<double> values);

@@ -108,7 +108,7 @@ void MechanismBlock::DoInitialize(const BlockContext& ctx) const {
   std::fill(inputs_.begin(), inputs_.end(), 0.0);
   std::fill(ws_.kin.drives.begin(), ws_.kin.drives.end(), mech::Jet{});
   mech::InitialState(*mechanism_, inputs_, ctx.state(), ctx.discrete(), &ws_);
-  positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
+  ForgetEvaluations();
   worst_residual_ = 0.0;
   initial_state_pending_ = !ws_.kin.drives.empty();
 }
@@ -128,6 +128,18 @@ void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
   }
 }
 
+bool MechanismBlock::StuckExactly(const BlockContext& ctx) const {
+  return !mechanism_->exact_stick_elements().empty() &&
+         mech::AnyStuckExactly(*mechanism_, ctx.time(), ctx.state(), ctx.discrete(), ws_);
+}
+
+void MechanismBlock::EvaluateElementsWithInputs(const BlockContext& ctx) const {
+  const std::uint64_t now = ctx.evaluation();
+  if (full_at_ == now || elements_with_inputs_at_ == now) return;
+  mech::EvaluateElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
+  elements_with_inputs_at_ = elements_at_ = positions_at_ = now;
+}
+
 void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
   const mech::SensorSpec& sensor = sensors_[port];
   // Without inputs the full solve is valid at once, and the derivatives and
@@ -140,6 +152,12 @@ void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
       mech::EvaluateElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
       elements_at_ = positions_at_ = ctx.evaluation();
     }
+  } else if (sensor.kind == mech::SensorKind::kElement && !ctx.derivatives_follow() &&
+             !mech::SensorNeedsAccelerations(sensor) && !StuckExactly(ctx)) {
+    // An output row or a root check: no derivatives will reuse a solve, and
+    // no holding force needs one; the elements alone give the element's
+    // values (its inputs feed through, so they are computed).
+    EvaluateElementsWithInputs(ctx);
   } else {
     EnsureEvaluated(ctx, mech::SensorNeedsFullEvaluation(sensor));
   }
@@ -165,20 +183,15 @@ void MechanismBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
   // (of t and the inputs, all computed by now), not accelerations: evaluating
   // the elements is enough when no solve of this evaluation is at hand --
   // unless an element sticks exactly, whose holding force is a solve's.
-  const std::uint64_t now = ctx.evaluation();
-  if (!mechanism_->exact_stick_elements().empty()) {
-    EnsureEvaluated(ctx, true);
-  } else if (full_at_ != now) {
-    mech::EvaluateElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
-    elements_at_ = positions_at_ = now;
-  }
+  if (StuckExactly(ctx)) EnsureEvaluated(ctx, true);
+  else EvaluateElementsWithInputs(ctx);
   mech::EvaluateCrossings(*mechanism_, ctx.state(), ctx.discrete(), &ws_, ctx.zero_crossings());
 }
 
 void MechanismBlock::DoZeroCrossing(int index, int direction, const BlockContext& ctx) const {
   EnsureEvaluated(ctx, true);
   mech::ApplyCrossing(*mechanism_, index, direction, ctx.state(), ctx.discrete(), &ws_);
-  positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
+  ForgetEvaluations();
 }
 
 bool MechanismBlock::DoUpdateModes(const BlockContext& ctx) const {
@@ -187,14 +200,14 @@ bool MechanismBlock::DoUpdateModes(const BlockContext& ctx) const {
     // elements at the drives' starting values (DoInitialize saw zeros).
     initial_state_pending_ = false;
     mech::InitialState(*mechanism_, Inputs(ctx), ctx.state(), ctx.discrete(), &ws_);
-    positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
+    ForgetEvaluations();
     mech::UpdateElementModes(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_);
     return true;
   }
   if (mechanism_->num_modes() == 0) return false;
   const bool changed =
       mech::UpdateElementModes(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_);
-  positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
+  ForgetEvaluations();
   return changed;
 }
 
@@ -236,7 +249,7 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
       throw SimulationError("mechanism '" + name() + "': projection gave a non-finite state at t = " +
                             std::to_string(ctx.time()));
   }
-  positions_at_ = full_at_ = elements_at_ = ~std::uint64_t{0};
+  ForgetEvaluations();
 }
 
 std::string MechanismBlock::CrossingName(int index, int direction) const {

@@ -79,13 +79,22 @@ class MechanismBlock final : public Block {
   std::span<const double> Inputs(const BlockContext& ctx) const;
   void ReadDrives(const BlockContext& ctx) const;
   void EnsureEvaluated(const BlockContext& ctx, bool full) const;
+  // The elements' loads and sensors without the dynamics, with every input
+  // computed (once per evaluation).
+  void EvaluateElementsWithInputs(const BlockContext& ctx) const;
+  // After modes or states changed outside an evaluation: nothing cached holds.
+  void ForgetEvaluations() const {
+    positions_at_ = full_at_ = elements_at_ = elements_with_inputs_at_ = ~std::uint64_t{0};
+  }
+  // Some element sticks exactly: its holding force needs the dynamics.
+  bool StuckExactly(const BlockContext& ctx) const;
 
   std::shared_ptr<const mech::Mechanism> mechanism_;
   std::vector<mech::SensorSpec> sensors_;
   mutable mech::MechanismWorkspace ws_;
   mutable std::vector<double> inputs_, scratch_, xdot_;
   mutable std::uint64_t positions_at_ = ~std::uint64_t{0}, full_at_ = ~std::uint64_t{0},
-                        elements_at_ = ~std::uint64_t{0};
+                        elements_at_ = ~std::uint64_t{0}, elements_with_inputs_at_ = ~std::uint64_t{0};
   mutable double worst_residual_ = 0.0;
   mutable bool initial_state_pending_ = false;  // driven segments: redo InitialState with the drives
   mutable std::optional<std::optional<BlockSparsity>> sparsity_;  // outer: found yet
