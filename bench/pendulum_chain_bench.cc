@@ -1,7 +1,7 @@
 // Benchmark P4 of ../shared/BENCH.md: planar chain of N uniform rods (1 kg,
 // 1 m, I = 1/12 kg m^2 about the centre) on revolute joints, the first hinged
 // to the ground, gravity 9.81, released horizontal at rest, t_end = 5 s,
-// N = 2, 10, 50, rtol 1e-6, atol 1e-8, 1000 output times.
+// N = 2, 10, 50, 200, rtol 1e-6, atol 1e-8, 1000 output times.
 //
 // Contenders, each run in the same process on the same problem:
 //   reference  the chain's equations written directly against CVODE
@@ -10,8 +10,15 @@
 //              tests/mech/pendulum_chain_reference_test.cc);
 //   mechflow   a diagram with one mechanism (generated as XML text and loaded
 //              outside the timing), relative joint angles, articulated-body
-//              dynamics, run by blocks::Simulator.
-// Both use BDF + Newton + dense LU with CVODE's difference-quotient Jacobian.
+//              dynamics, run by blocks::Simulator with its dense solver
+//              (joint coordinates eliminated from the Newton systems);
+//   mf-krylov  the same with the Krylov solver (GMRES, matrix-free);
+//   simbody-rkm, simbody-bdf  Simbody (when built with it) with its own
+//              Runge-Kutta-Merson and CPODES integrators at accuracy rtol,
+//              each run in a process of its own that times itself
+//              (bench/pendulum_chain_simbody_main.cc says why).
+// reference and mechflow use BDF + Newton + CVODE's difference-quotient
+// Jacobian; they run up to --dense-max bodies.
 // A contender is a name and a set-up function that returns its timed run (see
 // Contenders() at the bottom); adding one is one entry there.
 //
@@ -25,7 +32,7 @@
 // end the growth exponent of the cost per RHS evaluation with N (least-squares
 // slope on log-log axes).
 //
-// Usage: bench_pendulum_chain [--repeat K] [--sizes 2,10,50]
+// Usage: bench_pendulum_chain [--repeat K] [--sizes 2,10,50,200] [--dense-max N]
 
 #include <algorithm>
 #include <chrono>
@@ -130,6 +137,31 @@ std::function<Outcome()> PrepareMechflow(int n, mechflow::blocks::LinearSolverKi
   };
 }
 
+// ---------------------------------------------------------------------------
+// Simbody with its own integrators (only when built with it)
+
+// bench_pendulum_chain_simbody, beside this program (see its source for why
+// a process of its own); it times its own run.
+std::string simbody_program;
+
+std::function<Outcome()> PrepareSimbody(int n, const std::string& integrator) {
+  if (kMass != 1.0 || kLength != 1.0 || kG != 9.81) throw std::logic_error("the Simbody program builds unit rods");
+  const std::string command = simbody_program + " " + std::to_string(n) + " " + integrator + " " +
+                              std::to_string(kRtol) + " " + std::to_string(kTEnd) + " " + std::to_string(kOutputs);
+  return [command, n] {
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) throw std::runtime_error("cannot run " + command);
+    Outcome o;
+    o.theta.resize(n);
+    o.omega.resize(n);
+    bool ok = std::fscanf(pipe, "%lf %ld %ld", &o.seconds, &o.steps, &o.rhs) == 3;
+    for (int i = 0; ok && i < n; ++i) ok = std::fscanf(pipe, "%lf", &o.theta(i)) == 1;
+    for (int i = 0; ok && i < n; ++i) ok = std::fscanf(pipe, "%lf", &o.omega(i)) == 1;
+    if (pclose(pipe) != 0 || !ok) throw std::runtime_error("failed: " + command);
+    return o;
+  };
+}
+
 // Dense contenders (their Jacobians cost N^2, their LU N^3) run up to this N.
 int dense_max = 200;
 
@@ -139,9 +171,17 @@ std::vector<Contender> Contenders() {
   const auto dense_only = [](auto prepare) {
     return [prepare](int n) { return n <= dense_max ? prepare(n) : std::function<Outcome()>(); };
   };
-  return {{"reference", dense_only(PrepareReference)},
-          {"mechflow", dense_only([](int n) { return PrepareMechflow(n, LinearSolverKind::kDense); })},
-          {"mf-krylov", [](int n) { return PrepareMechflow(n, LinearSolverKind::kKrylov); }}};
+  std::vector<Contender> contenders = {
+      {"reference", dense_only(PrepareReference)},
+      {"mechflow", dense_only([](int n) { return PrepareMechflow(n, LinearSolverKind::kDense); })},
+      {"mf-krylov", [](int n) { return PrepareMechflow(n, LinearSolverKind::kKrylov); }}};
+#ifdef MECHFLOW_HAVE_SIMBODY
+  contenders.push_back({"simbody-rkm", [](int n) { return PrepareSimbody(n, "rkm"); }});
+  contenders.push_back({"simbody-bdf", [](int n) { return PrepareSimbody(n, "bdf"); }});
+#else
+  contenders.push_back({"simbody", [](int) { return std::function<Outcome()>(); }});  // built without Simbody
+#endif
+  return contenders;
 }
 
 // ---------------------------------------------------------------------------
@@ -165,7 +205,7 @@ double Slope(const std::vector<double>& x, const std::vector<double>& y) {
 }
 
 int Usage(const char* argv0) {
-  std::fprintf(stderr, "usage: %s [--repeat K] [--sizes 2,10,50] [--dense-max N]   (K >= 1, default 5; N default 200)\n",
+  std::fprintf(stderr, "usage: %s [--repeat K] [--sizes 2,10,50,200] [--dense-max N]   (K >= 1, default 5; N default 200)\n",
                argv0);
   return 2;
 }
@@ -174,7 +214,13 @@ int Usage(const char* argv0) {
 
 int main(int argc, char** argv) {
   int repeat = 5;
-  std::vector<int> sizes = {2, 10, 50};
+  std::vector<int> sizes = {2, 10, 50, 200};
+  {
+    const std::string self = argv[0];
+    const std::size_t slash = self.rfind('/');
+    simbody_program = (slash == std::string::npos ? std::string(".") : self.substr(0, slash)) +
+                      "/bench_pendulum_chain_simbody";
+  }
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--repeat" && i + 1 < argc) {

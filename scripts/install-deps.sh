@@ -11,6 +11,7 @@ packages=(
   libeigen3-dev libsundials-dev libsuitesparse-dev libtinyxml2-dev liblua5.4-dev libgtest-dev
   gnuplot-nox libfftw3-dev
   libopenmpi-dev openmpi-bin
+  libsimbody-dev
   chromium
 )
 # Node.js and npm fetch three.js; a machine may have them from elsewhere
