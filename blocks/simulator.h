@@ -25,8 +25,8 @@
 // kAuto picks sparse when the diagram has at least kSparseMinStates states and
 // its pattern needs at most a quarter as many colours as states (so a fill
 // costs at most n/4 right-hand sides); otherwise krylov when it has at least
-// kKrylovMinStates states of which rate pairs are at least a quarter; dense
-// otherwise. The P4 chain (bench/README.md): krylov and dense break even
+// kKrylovMinStates states of which rate pairs are at least a quarter and no
+// block projects (closed loops, quaternions); dense otherwise. The P4 chain (bench/README.md): krylov and dense break even
 // at 50 bodies (100 states), krylov is 2x faster at 200 and grows as
 // N^1.2 up to 2000 bodies. Measured on the P3
 // chain (../shared/BENCH.md, CPU time): sparse wins already at 20 states
