@@ -13,7 +13,7 @@
 //       element (mu_d m g, ratio mu_s/mu_d = 1.5), pulled by a spring c 100
 //       from a leader with prescribed motion 0.1 t; t_end 20 s. Reports the
 //       period against the closed-form Coulomb period (CoulombStickSlip).
-//   P3  chain-N, N = 10, 100, 1000 (--sizes), t_end 1 s. Reports the growth
+//   P3  chain-N, N = 10, 100, 1000, 10000 (--sizes), t_end 1 s. Reports the growth
 //       exponent of the wall time with N.
 // P2's and P3's diagrams are generated (bench/friction_diagram.h) from the
 // same description the direct program integrates, loaded outside the timing.
@@ -358,7 +358,7 @@ int Usage(const char* argv0) {
 
 int main(int argc, char** argv) {
   int repeat = 5, dense_max = 100, mechflow_max = 1000;
-  std::vector<int> problems = {1, 2, 3}, sizes = {10, 100, 1000};
+  std::vector<int> problems = {1, 2, 3}, sizes = {10, 100, 1000, 10000};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (i + 1 >= argc) return Usage(argv[0]);
