@@ -69,11 +69,11 @@ struct Simulator::Solver {
   sundials::Context ctx;
   sundials::Vector y;
   sundials::Vector weights;  // sparse: CVODE's error weights, for the increments
-  sundials::Cvode cvode;
   std::unique_ptr<sundials::DenseSolver> dense;
   std::unique_ptr<sundials::SparseSolver> sparse;
   std::unique_ptr<SecondOrderSolver> second_order;
   std::unique_ptr<sundials::KrylovSolver> krylov;
+  sundials::Cvode cvode;  // last: freed first, before the solvers it uses
 };
 
 namespace {
