@@ -175,8 +175,9 @@ void ExpectAsAccurate(const std::string& example, blocks::LinearSolverKind kind 
   ASSERT_TRUE(reference.Run().ok);
   const int n = loaded.diagram->num_states();
   EXPECT_EQ(a.stats().newton_size, n);
-  if (kind == blocks::LinearSolverKind::kDense)
+  if (kind == blocks::LinearSolverKind::kDense) {
     EXPECT_EQ(b.stats().newton_size, n - static_cast<int>(blocks::DiagramRatePairs(*loaded.diagram).size()));
+  }
   EXPECT_EQ(b.stats().krylov, kind == blocks::LinearSolverKind::kKrylov);
   ASSERT_EQ(a.results().num_rows(), reference.results().num_rows());
   ASSERT_EQ(b.results().num_rows(), reference.results().num_rows());

@@ -62,7 +62,9 @@ TEST(RecorderTest, LongRunsKeepABoundedNumberOfFrames) {
   EXPECT_NEAR(rec.times().back(), 2.0, 1e-12);
   for (std::size_t f = 0; f < rec.times().size(); ++f) {
     EXPECT_NEAR(rec.Pose(static_cast<int>(f), 0).p.z(), rec.times()[f], 1e-6);
-    if (f > 0 && f + 1 < rec.times().size()) EXPECT_GE(rec.times()[f] - rec.times()[f - 1], 4 / 120.0 - 1e-9);
+    if (f > 0 && f + 1 < rec.times().size()) {
+      EXPECT_GE(rec.times()[f] - rec.times()[f - 1], 4 / 120.0 - 1e-9);
+    }
   }
 }
 
