@@ -26,12 +26,12 @@
 // forced dense), direct-band (banded LU with the analytic Jacobian) and
 // direct-band-ftz (the same with flush-to-zero, BENCH.md's trap). Dense
 // contenders are skipped above --dense-max (default 100: at N = 1000 a run
-// would take an hour or more), mechflow above --mechflow-max (1000).
+// would take an hour or more), mechflow above --mechflow-max (10000).
 // Final states are compared with a tight run of the direct program (rtol
 // 1e-10, atol 1e-12, untimed). One untimed warm-up of each contender, then
 // --repeat timed runs, the starting contender rotating.
 //
-// Usage: bench_friction [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000] [--dense-max N] [--mechflow-max N]
+// Usage: bench_friction [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000,10000] [--dense-max N] [--mechflow-max N]
 
 #include <algorithm>
 #include <chrono>
@@ -349,7 +349,7 @@ std::vector<int> List(const char* text) {
 }
 
 int Usage(const char* argv0) {
-  std::fprintf(stderr, "usage: %s [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000] [--dense-max N] [--mechflow-max N]\n",
+  std::fprintf(stderr, "usage: %s [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000,10000] [--dense-max N] [--mechflow-max N]\n",
                argv0);
   return 2;
 }
@@ -357,7 +357,7 @@ int Usage(const char* argv0) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int repeat = 5, dense_max = 100, mechflow_max = 1000;
+  int repeat = 5, dense_max = 100, mechflow_max = 10000;
   std::vector<int> problems = {1, 2, 3}, sizes = {10, 100, 1000, 10000};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

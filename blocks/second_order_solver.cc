@@ -3,7 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 
-
 namespace mechflow::blocks {
 
 SecondOrderSolver::SecondOrderSolver(const sundials::Vector& y, const std::vector<std::pair<int, int>>& pairs,

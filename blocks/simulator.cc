@@ -64,7 +64,9 @@ struct Simulator::Solver {
            : second_order ? second_order->solver()
                           : dense->solver();
   }
-  // GMRES restarts after this many iterations (CVODE's default)
+  // GMRES iterations per linear solve, without restarts (CVODE's default):
+  // CVODE takes a solve that has not converged by then as a failure and
+  // retries with a smaller step
   static constexpr int kKrylovDimension = 5;
   sundials::Context ctx;
   sundials::Vector y;

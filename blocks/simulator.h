@@ -26,9 +26,10 @@
 // its pattern needs at most a quarter as many colours as states (so a fill
 // costs at most n/4 right-hand sides); otherwise krylov when it has at least
 // kKrylovMinStates states of which rate pairs are at least a quarter and no
-// block projects (closed loops, quaternions); dense otherwise. The P4 chain (bench/README.md): krylov and dense break even
-// at 50 bodies (100 states), krylov is 2x faster at 200 and grows as
-// N^1.2 up to 2000 bodies. Measured on the P3
+// block projects (closed loops, quaternions); dense otherwise. On the P4
+// chain (bench/README.md) krylov and dense break even at 50 bodies (100
+// states), krylov is 2x faster at 200 and grows as N^1.2 up to 2000
+// bodies. Measured on the P3
 // chain (../shared/BENCH.md, CPU time): sparse wins already at 20 states
 // (0.07 s against 0.14 s) and by 7x at 200 (1.4 s against 10.3 s); below 100
 // states both take well under a second, so small diagrams keep the dense

@@ -79,9 +79,8 @@ class SparseSolver {
   SUNLinearSolver ls_ = nullptr;
 };
 
-// GMRES with restarts (SPGMR), preconditioned from the left; matrix-free:
-// CVODE forms J v by a difference quotient, one right-hand side per
-// iteration.
+// GMRES (SPGMR), preconditioned from the left; matrix-free: CVODE forms
+// J v by a difference quotient, one right-hand side per iteration.
 class KrylovSolver {
  public:
   KrylovSolver(const Vector& y, int max_krylov_dimension, const Context& ctx);

@@ -135,18 +135,6 @@ void FindStuck(const Mechanism& mechanism, double t, std::span<const double> x, 
   }
 }
 
-}  // namespace
-
-bool AnyStuckExactly(const Mechanism& mechanism, double t, std::span<const double> x, std::span<const double> modes,
-                     const MechanismWorkspace& ws) {
-  if (modes.empty()) return false;
-  for (int e : mechanism.exact_stick_elements())
-    if (mechanism.element(e).StuckExactly(MakeContext(mechanism, t, x, modes, ws, e))) return true;
-  return false;
-}
-
-namespace {
-
 // After EvaluateElements with the holding forces at zero: measures a0 and S
 // (mech/exact_stick.h), solves for the holding forces and lets the stuck
 // elements apply them (their sensors and rates are written again).
@@ -297,6 +285,14 @@ void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const dou
   CoordinateRates(model, x.subspan(0, model.nq()), x.subspan(model.nq(), model.nv()), xdot.subspan(0, model.nq()));
   for (int i = 0; i < model.nv(); ++i) xdot[model.nq() + i] = ws->vdot[i];
   if (mechanism.drive_work_state() >= 0) xdot[mechanism.drive_work_state()] = DrivePower(model, *ws);
+}
+
+bool AnyStuckExactly(const Mechanism& mechanism, double t, std::span<const double> x, std::span<const double> modes,
+                     const MechanismWorkspace& ws) {
+  if (modes.empty()) return false;
+  for (int e : mechanism.exact_stick_elements())
+    if (mechanism.element(e).StuckExactly(MakeContext(mechanism, t, x, modes, ws, e))) return true;
+  return false;
 }
 
 void EvaluateCrossings(const Mechanism& mechanism, std::span<const double> x, std::span<const double> modes,

@@ -129,8 +129,7 @@ void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
 }
 
 bool MechanismBlock::StuckExactly(const BlockContext& ctx) const {
-  return !mechanism_->exact_stick_elements().empty() &&
-         mech::AnyStuckExactly(*mechanism_, ctx.time(), ctx.state(), ctx.discrete(), ws_);
+  return mech::AnyStuckExactly(*mechanism_, ctx.time(), ctx.state(), ctx.discrete(), ws_);
 }
 
 void MechanismBlock::EvaluateElementsWithInputs(const BlockContext& ctx) const {
