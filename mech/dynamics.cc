@@ -64,6 +64,9 @@ void ForwardDynamics(const Model& model, const Kinematics& kin, std::span<const 
     const Mat6& Ia = ws->articulated_inertia[i];
     const Vec6& pa = ws->articulated_bias[i];
     const Vec6& c = kin.bias[i];
+    // What the segment passes to its parent; nothing is passed to the ground,
+    // so a root segment skips forming it.
+    const bool passes = seg.parent != kGround;
     Mat6 Ia_pass;
     Vec6 pa_pass;
     if (seg.motion == SegmentMotion::kFree) {
@@ -71,6 +74,7 @@ void ForwardDynamics(const Model& model, const Kinematics& kin, std::span<const 
       ws->D6[i].compute(Ia);
       if (ws->D6[i].info() != Eigen::Success || !(ws->D6[i].vectorD().minCoeff() > 0.0)) ThrowSingular(model, kin, i);
       for (int k = 0; k < 6; ++k) ws->u6[i](k) = tau[seg.v_index + k] - pa(k);
+      if (!passes) continue;
       Ia_pass.setZero();
       pa_pass = pa + ws->u6[i];  // = the joint force itself: a free joint passes nothing else
     } else if (seg.drive == SegmentDrive::kDof) {
@@ -80,16 +84,16 @@ void ForwardDynamics(const Model& model, const Kinematics& kin, std::span<const 
       const double scale = Ia.diagonal().cwiseAbs().maxCoeff();
       if (!(ws->D[i] > 1e-14 * scale) || !(ws->D[i] > 0.0)) ThrowSingular(model, kin, i);
       ws->u[i] = tau[seg.v_index] - S.dot(pa);
+      if (!passes) continue;
       Ia_pass = Ia - ws->U[i] * ws->U[i].transpose() / ws->D[i];
       pa_pass = pa + Ia_pass * c + ws->U[i] * (ws->u[i] / ws->D[i]);
     } else {  // prescribed: the joint passes everything on
+      if (!passes) continue;
       Ia_pass = Ia;
       pa_pass = pa + Ia * c;
     }
-    if (seg.parent != kGround) {
-      ws->articulated_inertia[seg.parent] += TransformInertiaToParent(kin.X[i], Ia_pass);
-      ws->articulated_bias[seg.parent] += kin.X[i].ForceToParent(pa_pass);
-    }
+    ws->articulated_inertia[seg.parent] += TransformInertiaToParent(kin.X[i], Ia_pass);
+    ws->articulated_bias[seg.parent] += kin.X[i].ForceToParent(pa_pass);
   }
   for (int i = 0; i < n; ++i) {
     const Segment& seg = segments[i];

@@ -29,12 +29,12 @@ void UpdateKinematics(const Model& model, double t, std::span<const double> q, s
   const auto& segments = model.segments();
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const Segment& seg = segments[i];
-    Pose joint;
+    Pose local;  // the segment in its parent: placement * joint motion
     Vec6 vJ = Vec6::Zero();
     Vec6 aJ = Vec6::Zero();  // prescribed joint acceleration
     if (seg.motion == SegmentMotion::kFree) {
-      joint = {QuaternionAt(q, seg.q_index).toRotationMatrix(),
-               Vec3(q[seg.q_index], q[seg.q_index + 1], q[seg.q_index + 2])};
+      local = seg.placement * Pose{QuaternionAt(q, seg.q_index).toRotationMatrix(),
+                                   Vec3(q[seg.q_index], q[seg.q_index + 1], q[seg.q_index + 2])};
       for (int k = 0; k < 6; ++k) vJ(k) = v[seg.v_index + k];
     } else {
       Jet s;
@@ -46,16 +46,15 @@ void UpdateKinematics(const Model& model, double t, std::span<const double> q, s
       }
       Vec6& S = kin->axis[i];
       if (seg.motion == SegmentMotion::kRevolute) {
-        joint = Pose::Rotation(AxisRotation(seg.axis, s.value));
+        local = {seg.placement.R * AxisRotation(seg.axis, s.value), seg.placement.p};
         S << seg.axis, Vec3::Zero();
-      } else {
-        joint = Pose::Translation(seg.axis * s.value);
+      } else {  // a translation leaves the placement's rotation as it is
+        local = {seg.placement.R, seg.placement.p + seg.placement.R * (seg.axis * s.value)};
         S << Vec3::Zero(), seg.axis;
       }
       vJ = S * s.rate;
       aJ = S * s.acceleration;
     }
-    const Pose local = seg.placement * joint;
     kin->X[i] = SpatialTransform::FromPose(local);
     if (seg.parent == kGround) {
       kin->pose[i] = local;
