@@ -78,6 +78,13 @@ inline bool SameInstant(double a, double b) {
   return std::abs(a - b) <= 1e-12 * std::max({1.0, std::abs(a), std::abs(b)});
 }
 
+// One entry of a block's analytic Jacobian: d derivative[row] / d state[column],
+// block-local indices.
+struct JacobianEntry {
+  int row, column;
+  double value;
+};
+
 class Block {
  public:
   Block(std::string type, std::string name);
@@ -165,6 +172,15 @@ class Block {
   // event, sample-hit or UpdateModes handler that changes them.
   void Project(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const {
     DoProject(ctx, correction, error);
+  }
+  // Analytic Jacobian (issue 17): empty when the block gives the exact
+  // derivatives of its state derivatives with respect to its own states, its
+  // inputs held (CalcStateJacobian); else why not, as a sentence.
+  virtual std::string StateJacobianUnavailable() const { return "a " + type() + " block computes none"; }
+  // Replaces `entries` with those derivatives at the context's time and
+  // state (repeated entries add), where the diagram's outputs were computed.
+  virtual void CalcStateJacobian(const BlockContext&, std::vector<JacobianEntry>* entries) const {
+    entries->clear();
   }
   // After a failed run: what the block knows about why (e.g. a mechanism at
   // a singular position), as a sentence; empty when it knows nothing.

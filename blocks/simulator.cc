@@ -7,8 +7,10 @@
 
 #include <cvode/cvode_ls.h>
 #include <cvode/cvode_proj.h>
+#include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "blocks/analytic_jacobian.h"
 #include "blocks/coloured_jacobian.h"
 #include "blocks/evaluation.h"
 #include "blocks/flush_denormals.h"
@@ -145,6 +147,14 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
             (kind == LinearSolverKind::kAuto && !jacobian_ && !projects && n >= kKrylovMinStates &&
              4 * static_cast<int>(rate_pairs_.size()) >= n);
   if (!krylov_ && !options_.second_order) rate_pairs_.clear();
+  if (options_.jacobian != JacobianKind::kDifferenceQuotient) {
+    std::string why = "the krylov linear solver uses no Jacobian";
+    const int block = krylov_ ? -1 : AnalyticJacobian::FindBlock(diagram_, &why);
+    if (block >= 0) analytic_ = std::make_unique<AnalyticJacobian>(diagram_, block);
+    else if (options_.jacobian == JacobianKind::kAnalytic)
+      throw InputError("solver jacobian=\"analytic\": " + why + "; use jacobian=\"auto\" or \"difference\"");
+  }
+  if (analytic_ && jacobian_) analytic_values_.assign(jacobian_->pattern().nonzeros(), 0.0);
 }
 
 Simulator::~Simulator() {
@@ -361,6 +371,11 @@ int Simulator::EvaluateRhs(double t, double* x, double* xdot) {
     EvaluateOutputs(d, &ctx);
     EvaluateDerivatives(d, &ctx);
     ctx.derivatives_follow = false;
+    if (analytic_) {  // where an analytic Jacobian may follow without evaluating again
+      rhs_t_ = t;
+      std::copy(x, x + rhs_x_.size(), rhs_x_.begin());
+      rhs_at_ = ctx.evaluation;
+    }
   } catch (const std::exception& e) {
     // recoverable at first: CVODE retries with smaller steps, so a failing
     // run stops close to the failing instant; then final, so that a model
@@ -379,12 +394,50 @@ int Simulator::EvaluateRhs(double t, double* x, double* xdot) {
   return 0;
 }
 
+int Simulator::EvaluateAnalyticJacobian(double t, double* x) {
+  try {
+    const bool current = rhs_at_ != 0 && rhs_at_ == ctx_.evaluation && t == rhs_t_ &&
+                         std::memcmp(x, rhs_x_.data(), rhs_x_.size() * sizeof(double)) == 0;
+    if (!current) {
+      EvaluateAt(t, x);
+      ++stats_.jac_rhs_evals;
+    }
+    ctx_.time = t;
+    ctx_.x = x;
+    analytic_->Evaluate(&ctx_);
+  } catch (const std::logic_error& e) {  // a block's Jacobian outside its own pattern: a bug, never retried
+    callback_failure_ = e.what();
+    return -1;
+  } catch (const std::exception& e) {  // as a right-hand side's failure
+    callback_failure_ = e.what();
+    return ++callback_failures_ > kMaxCallbackFailures ? -1 : 1;
+  }
+  return 0;
+}
+
+int Simulator::DenseJacobian(double t, N_Vector y, N_Vector, SUNMatrix j, void* user, N_Vector, N_Vector,
+                             N_Vector) {
+  auto* self = static_cast<Simulator*>(user);
+  if (const int flag = self->EvaluateAnalyticJacobian(t, N_VGetArrayPointer(y)); flag != 0) return flag;
+  self->analytic_->ToDense(static_cast<int>(SM_COLUMNS_D(j)), SM_DATA_D(j));
+  return 0;
+}
+
 int Simulator::LinearSystem(double t, N_Vector y, N_Vector fy, SUNMatrix a, sunbooleantype jok,
                             sunbooleantype* jcur, double gamma, void* user, N_Vector, N_Vector, N_Vector) {
   auto* self = static_cast<Simulator*>(user);
   ColouredJacobian& jacobian = *self->jacobian_;
   const SparsityPattern& pattern = jacobian.pattern();
-  if (!jok) {
+  if (!jok && self->analytic_) {
+    if (const int flag = self->EvaluateAnalyticJacobian(t, N_VGetArrayPointer(y)); flag != 0) return flag;
+    try {
+      self->analytic_->ToPattern(pattern, self->analytic_values_.data());
+    } catch (const std::logic_error& e) {
+      self->callback_failure_ = e.what();
+      return -1;
+    }
+    *jcur = SUNTRUE;
+  } else if (!jok) {
     // a fresh J at (t, y), with the increments CVODE's dense quotient would take
     void* mem = self->solver_->cvode.get();
     double step = 0.0;
@@ -408,7 +461,7 @@ int Simulator::LinearSystem(double t, N_Vector y, N_Vector fy, SUNMatrix a, sunb
   sunindextype* start = SUNSparseMatrix_IndexPointers(a);
   sunindextype* rows = SUNSparseMatrix_IndexValues(a);
   double* values = SUNSparseMatrix_Data(a);
-  const std::vector<double>& j = jacobian.values();
+  const std::vector<double>& j = self->analytic_ ? self->analytic_values_ : jacobian.values();
   for (int c = 0; c <= pattern.n; ++c) start[c] = pattern.column_start[c];
   for (int c = 0; c < pattern.n; ++c) {
     for (int k = pattern.column_start[c]; k < pattern.column_start[c + 1]; ++k) {
@@ -627,6 +680,9 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     stats_.nonzeros = jacobian_->pattern().nonzeros();
   }
   stats_.krylov = krylov_;
+  stats_.analytic_jacobian = analytic_ != nullptr;
+  rhs_x_.assign(analytic_ ? n : 0, 0.0);
+  rhs_at_ = 0;
   stats_.newton_size = solver_->second_order ? solver_->second_order->reduced_size() : static_cast<int>(n);
   callback_failures_ = 0;
   callback_failure_.clear();
@@ -672,6 +728,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     Check(CVodeSStolerances(mem, options_.rtol, options_.atol), "CVodeSStolerances");
     Check(CVodeSetLinearSolver(mem, solver_->linear_solver(), solver_->matrix()), "CVodeSetLinearSolver");
     if (jacobian_) Check(CVodeSetLinSysFn(mem, &Simulator::LinearSystem), "CVodeSetLinSysFn");
+    else if (analytic_) Check(CVodeSetJacFn(mem, &Simulator::DenseJacobian), "CVodeSetJacFn");
     if (krylov_) Check(CVodeSetPreconditioner(mem, nullptr, &Simulator::PreconditionRatePairs), "CVodeSetPreconditioner");
     linear_solver_attached_ = true;
     Check(CVodeSetMaxNumSteps(mem, options_.max_steps), "CVodeSetMaxNumSteps");

@@ -74,9 +74,14 @@
 
 namespace mechflow::blocks {
 
+class AnalyticJacobian;
 class ColouredJacobian;
 
 enum class LinearSolverKind { kAuto, kDense, kSparse, kKrylov };
+// Where the Newton matrices' Jacobian comes from: kAuto takes the analytic
+// one when the diagram has it (blocks/analytic_jacobian.h), difference
+// quotients otherwise; kAnalytic refuses a diagram without it.
+enum class JacobianKind { kAuto, kAnalytic, kDifferenceQuotient };
 
 struct SolverOptions {
   double t_start = 0.0;      // [s]
@@ -93,6 +98,7 @@ struct SolverOptions {
   // (blocks/second_order_solver.h); false solves the whole system, as
   // before (for comparisons).
   bool second_order = true;
+  JacobianKind jacobian = JacobianKind::kAuto;
 
   // Empty when usable, otherwise what is wrong (e.g. "rtol must be > 0").
   std::string Problem() const;
@@ -102,7 +108,8 @@ struct SolverOptions {
 struct SolverStats {
   long steps = 0;
   long rhs_evals = 0;        // by the integrator
-  long jac_rhs_evals = 0;    // by the difference-quotient Jacobian
+  long jac_rhs_evals = 0;    // by the difference-quotient Jacobian; with the analytic one, the
+                             // output evaluations it needed (at a state no right-hand side had just seen)
   long jac_evals = 0;
   long newton_iters = 0;
   long linear_iters = 0;     // Krylov iterations (0 with direct solvers)
@@ -117,6 +124,7 @@ struct SolverStats {
   long projection_failures = 0;  // failed projections (each retries its step smaller)
   bool sparse = false;           // sparse Jacobian and KLU (otherwise dense or Krylov)
   bool krylov = false;           // GMRES with difference-quotient products J v
+  bool analytic_jacobian = false;  // the blocks' exact Jacobian (blocks/analytic_jacobian.h)
   int newton_size = 0;           // unknowns of each Newton system solved (fewer than states with rate pairs)
   int colours = 0;               // sparse: column groups, right-hand sides per Jacobian
   long nonzeros = 0;             // sparse: entries of the structural pattern
@@ -204,6 +212,8 @@ class Simulator {
   static int Rhs(double t, N_Vector y, N_Vector ydot, void* self);
   static int LinearSystem(double t, N_Vector y, N_Vector fy, SUNMatrix A, sunbooleantype jok,
                           sunbooleantype* jcur, double gamma, void* self, N_Vector, N_Vector, N_Vector);
+  static int DenseJacobian(double t, N_Vector y, N_Vector fy, SUNMatrix j, void* self, N_Vector, N_Vector,
+                           N_Vector);
   static int Roots(double t, N_Vector y, double* g, void* self);
   static int PreconditionRatePairs(double t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z, double gamma,
                                    double delta, int side, void* self);
@@ -211,6 +221,10 @@ class Simulator {
   static void ErrorHandler(int code, const char* module, const char* function, char* msg, void* self);
 
   int EvaluateRhs(double t, double* x, double* xdot);
+  // The analytic Jacobian at (t, x), evaluating the outputs there first
+  // unless the last right-hand side was at (t, x); returns 0 or a failure
+  // flag for CVODE (recoverable, as a right-hand side's).
+  int EvaluateAnalyticJacobian(double t, double* x);
   void EvaluateAt(double t, double* x);
   bool StillEvaluated(double t, const double* x) const;
   void RememberEvaluated(double t, const double* x, const double* g);
@@ -294,6 +308,11 @@ class Simulator {
   double evaluated_t_ = 0.0;
   std::vector<double> evaluated_x_, evaluated_g_;
   std::unique_ptr<ColouredJacobian> jacobian_;  // sparse runs only
+  std::unique_ptr<AnalyticJacobian> analytic_;  // when the run uses one
+  std::vector<double> analytic_values_;         // sparse: its values on the pattern
+  double rhs_t_ = 0.0;                          // analytic: the last right-hand side's time and state
+  std::vector<double> rhs_x_;
+  std::uint64_t rhs_at_ = 0;                    // and its ctx_.evaluation (0: none)
   std::vector<double> increments_;              // sparse: per state, for each fill
   std::vector<std::pair<int, int>> rate_pairs_;  // dense: eliminated from the Newton systems; Krylov: preconditioner
   bool krylov_ = false;                          // GMRES, matrix-free

@@ -45,17 +45,23 @@ std::vector<std::pair<int, int>> DiagramRatePairs(const Diagram& d) {
   return pairs;
 }
 
-SparsityPattern DiagramSparsity(const Diagram& d) {
-  // the output port that drives each input port
-  struct Port {
-    int block = -1, port = -1;
-  };
+namespace {
+
+// the output port that drives each input port
+struct Port {
+  int block = -1, port = -1;
+};
+
+std::vector<std::vector<Port>> Drivers(const Diagram& d) {
   std::vector<std::vector<Port>> driver(d.num_blocks());
   for (int b = 0; b < d.num_blocks(); ++b) driver[b].assign(d.block(b).num_inputs(), Port{});
   for (const Connection& c : d.connections()) driver[c.to_block][c.to_port] = {c.from_block, c.from_port};
+  return driver;
+}
 
-  // states each output port reads: its own, then along feedthrough to a
-  // fixed point (sets only grow, so comparing sizes detects change)
+// The states each output port reads: its own, then along feedthrough to a
+// fixed point (sets only grow, so comparing sizes detects change).
+std::vector<std::vector<IndexSet>> OutputReads(const Diagram& d, const std::vector<std::vector<Port>>& driver) {
   std::vector<std::vector<IndexSet>> reads(d.num_blocks());
   for (int b = 0; b < d.num_blocks(); ++b) {
     const Block& block = d.block(b);
@@ -82,6 +88,22 @@ SparsityPattern DiagramSparsity(const Diagram& d) {
     for (int b = 0; b < d.num_blocks(); ++b)
       for (int o = 0; o < d.block(b).num_outputs(); ++o) changed |= propagate(b, o);
   }
+  return reads;
+}
+
+}  // namespace
+
+bool InputsReadStates(const Diagram& d, int b) {
+  const std::vector<std::vector<Port>> driver = Drivers(d);
+  const std::vector<std::vector<IndexSet>> reads = OutputReads(d, driver);
+  for (const Port& from : driver[b])
+    if (from.block >= 0 && !reads[from.block][from.port].empty()) return true;
+  return false;
+}
+
+SparsityPattern DiagramSparsity(const Diagram& d) {
+  const std::vector<std::vector<Port>> driver = Drivers(d);
+  const std::vector<std::vector<IndexSet>> reads = OutputReads(d, driver);
 
   // rows: what each derivative reads
   const int n = std::max(1, d.num_states());

@@ -33,6 +33,10 @@ struct SparsityPattern {
 // stateless diagram has the simulator's one placeholder state).
 SparsityPattern DiagramSparsity(const Diagram& diagram);
 
+// True when some input of block b reads a continuous state, directly or
+// through signals (structurally, as DiagramSparsity).
+bool InputsReadStates(const Diagram& diagram, int b);
+
 // The rate pairs of every block (Block::rate_pairs), as indices into the
 // diagram's continuous states: x_position' = x_rate exactly.
 std::vector<std::pair<int, int>> DiagramRatePairs(const Diagram& diagram);

@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "blocks/analytic_jacobian.h"
 #include "blocks/csv.h"
 #include "blocks/input_file.h"
 #include "blocks/library/mechanism_block.h"
@@ -89,10 +90,15 @@ void PrintStats(const blocks::SolverStats& s, std::ostream& out) {
       << " re-initialisations, " << s.root_evals << " zero-crossing evaluations\n";
   if (s.restarts > 0)
     out << "        " << s.restarts << " restarts after repeated error-test or convergence failures\n";
-  if (s.sparse)
+  const char* from = s.analytic_jacobian ? "analytic" : "difference quotients";
+  if (s.krylov)
+    out << "        Krylov (GMRES): " << s.linear_iters << " linear iterations, no Jacobian\n";
+  else if (s.sparse && s.analytic_jacobian)
+    out << "        sparse Jacobian (KLU), analytic: " << s.nonzeros << " nonzeros\n";
+  else if (s.sparse)
     out << "        sparse Jacobian (KLU): " << s.colours << " colours, " << s.nonzeros << " nonzeros\n";
   else
-    out << "        dense Jacobian\n";
+    out << "        dense Jacobian, " << from << "\n";
   // only diagrams with a block on a manifold project
   if (s.projections > 0 || s.projection_failures > 0)
     out << "        " << s.projections << " projections, " << s.projection_failures << " projection failures\n";
@@ -249,6 +255,10 @@ void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
     for (int i = 0; i < b.num_states(); ++i)
       out << "  x[" << d.layout(bi).first_state + i << "]  " << b.name() << "." << b.state_name(i) << "\n";
   }
+  std::string why;
+  out << "\nJacobian: "
+      << (blocks::AnalyticJacobian::FindBlock(d, &why) >= 0 ? "analytic" : "difference quotients (" + why + ")")
+      << "\n";
   out << "\nzero-crossing functions:\n";
   if (d.num_zero_crossings() == 0) out << "  (none)\n";
   static const char* kDirection[] = {"rising", "falling", "either"};

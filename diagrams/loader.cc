@@ -5,6 +5,7 @@
 #include <map>
 #include <tuple>
 
+#include "blocks/analytic_jacobian.h"
 #include "blocks/block_factory.h"
 #include "blocks/diagram_builder.h"
 #include "blocks/suggest.h"
@@ -91,6 +92,13 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
       else if (a.value == "sparse") solver->linear_solver = blocks::LinearSolverKind::kSparse;
       else if (a.value == "krylov") solver->linear_solver = blocks::LinearSolverKind::kKrylov;
       else throw InputError(what + " is '" + a.value + "'; expected auto, dense, sparse or krylov");
+      continue;
+    }
+    if (a.name == "jacobian") {
+      if (a.value == "auto") solver->jacobian = blocks::JacobianKind::kAuto;
+      else if (a.value == "analytic") solver->jacobian = blocks::JacobianKind::kAnalytic;
+      else if (a.value == "difference") solver->jacobian = blocks::JacobianKind::kDifferenceQuotient;
+      else throw InputError(what + " is '" + a.value + "'; expected auto, analytic or difference");
       continue;
     }
     const double v = eval.Number(a.value, what);
@@ -439,6 +447,13 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
 
   // solver and output settings
   BuildSolverOptions(d, eval, options, &out.solver);
+  if (out.solver.jacobian == blocks::JacobianKind::kAnalytic) {
+    std::string why = "the krylov linear solver uses no Jacobian";
+    if (out.solver.linear_solver == blocks::LinearSolverKind::kKrylov ||
+        blocks::AnalyticJacobian::FindBlock(*out.diagram, &why) < 0)
+      throw InputError(FindAttribute(d.solver, "jacobian")->loc.str() + ": solver jacobian=\"analytic\": " + why +
+                       "; use jacobian=\"auto\" or \"difference\"");
+  }
   CollectLoggedSignals(d, &out);
   CollectReports(d, eval, &out);
   CollectSpectra(d, eval, &out);

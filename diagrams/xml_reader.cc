@@ -76,7 +76,7 @@ const std::vector<ElementSchema>& Schema() {
       {"block", {"type", "name"}, {}, {}, true},
       {"connections", {}, {}, {"connect"}},
       {"connect", {"from", "to"}, {}, {}},
-      {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps", "linear_solver"}, {}},
+      {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps", "linear_solver", "jacobian"}, {}},
       {"output", {}, {"interval", "csv", "plot", "animation", "gltf"}, {"log", "report", "spectrum", "xy"}},
       {"xy", {"curves"}, {"title", "x_label", "y_label"}, {}},
       {"spectrum", {"signal"}, {"segment", "overlap", "window", "from", "peaks", "max_frequency"}, {}},

@@ -17,6 +17,7 @@ class AppliedForce final : public ForceElement {
                std::array<Parameter, 3> torque, bool body_axes);
   void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                 std::span<double> sensors) const override;
+  DerivativeSupport derivative_support() const override { return DerivativeSupport::kStateIndependent; }
 
  private:
   int body_;

@@ -19,6 +19,12 @@ class BipolarForce final : public ForceElement {
   void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                 std::span<double> sensors) const override;
   ElementCoordinate Coordinate(const std::string& component) const override;
+  DerivativeSupport derivative_support() const override {
+    return law_->has_derivatives() ? DerivativeSupport::kAlongCoordinate : DerivativeSupport::kNone;
+  }
+  void Derivatives(const ElementContext& ctx, double x, double v, ElementDerivatives* d) const override {
+    law_->Derivatives(x, v, ctx, &d->force_x, &d->force_v);
+  }
 
  private:
   int body1_, body2_;

@@ -13,6 +13,7 @@
 // Run-time methods are const, must not allocate, and report bad numbers by
 // throwing SimulationError.
 
+#include <array>
 #include <memory>
 #include <span>
 #include <string>
@@ -42,6 +43,26 @@ struct ElementContext {
 };
 
 class DynamicsWorkspace;
+
+// Partial derivatives of an element's force along its coordinate
+// (Coordinate(""), kind kLine or kJoint) and of its state rates, in the
+// current modes, for an analytic Jacobian (mech/sliding_jacobian.h): x and v
+// are the coordinate and its rate, s_k the element's own states.
+struct ElementDerivatives {
+  static constexpr int kMaxStates = 2;
+  double force_x = 0.0, force_v = 0.0;
+  std::array<double, kMaxStates> force_s{};
+  std::array<double, kMaxStates> rate_x{}, rate_v{};               // d s_k' / dx, d s_k' / dv
+  std::array<std::array<double, kMaxStates>, kMaxStates> rate_s{};  // d s_k' / d s_m
+};
+
+// What an element tells an analytic Jacobian.
+enum class DerivativeSupport {
+  kNone,              // nothing: the solver takes difference quotients
+  kStateIndependent,  // its loads depend on time and inputs alone (a given force on a body that
+                      // cannot turn: in a sliding mechanism, where no body turns)
+  kAlongCoordinate,   // ForceElement::Derivatives
+};
 
 // The scalar coordinate an element acts along, for driving the element alone
 // (force analysis, issue 14):
@@ -186,6 +207,13 @@ class ForceElement {
   int work_sensor() const { return work_sensor_; }  // "dissipated" follows when stores_energy()
   bool stores_energy() const { return energy_sensor_ >= 0; }
   int energy_sensor() const { return energy_sensor_; }
+
+  // Analytic Jacobian (mech/sliding_jacobian.h): what the element can tell,
+  // fixed at construction, and -- for kAlongCoordinate -- its derivatives at
+  // the coordinate's value x and rate v. Parameters that follow inputs count
+  // as constants (the inputs are held).
+  virtual DerivativeSupport derivative_support() const { return DerivativeSupport::kNone; }
+  virtual void Derivatives(const ElementContext&, double /*x*/, double /*v*/, ElementDerivatives*) const {}
 
   // The element's scalar coordinate (kind kNone: it has none, e.g. an
   // applied force). `component` names one of several (a bushing's); empty

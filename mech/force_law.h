@@ -37,6 +37,10 @@ class ForceLaw {
   virtual ~ForceLaw() = default;
   virtual double Force(double x, double v, const ElementContext& ctx) const = 0;
   virtual bool depends_on_inputs() const = 0;
+  // dF/dx and dF/dv at (x, v), when the law knows them (has_derivatives).
+  virtual bool has_derivatives() const { return false; }
+  virtual void Derivatives(double /*x*/, double /*v*/, const ElementContext&, double* /*force_x*/,
+                           double* /*force_v*/) const {}
   // A potential U(x) with F = -dU/dx - (the damping part), when the law has
   // one that does not change in time (issue 12, item 5: stored energy).
   virtual bool has_energy() const { return false; }
@@ -51,6 +55,11 @@ class LinearLaw final : public ForceLaw {
   }
   bool depends_on_inputs() const override {
     return c_.uses_inputs || x0_.uses_inputs || d_.uses_inputs || f0_.uses_inputs;
+  }
+  bool has_derivatives() const override { return true; }
+  void Derivatives(double, double, const ElementContext& ctx, double* force_x, double* force_v) const override {
+    *force_x = -c_.Get(ctx);
+    *force_v = -d_.Get(ctx);
   }
   // U = c/2 (x - x0)^2 - F0 (x - x0), when c, x0 and F0 are constants.
   bool has_energy() const override { return c_.is_constant() && x0_.is_constant() && f0_.is_constant(); }

@@ -117,6 +117,15 @@ void FrictionalForce::Evaluate(const ElementContext& ctx, Loads* loads, std::spa
   }
 }
 
+void FrictionalForce::Derivatives(const ElementContext& ctx, double, double, ElementDerivatives* d) const {
+  // sliding: a constant force, a constant deflection; stuck: -c delta - d v, delta' = v
+  if (ctx.modes[0] != kStick) return;
+  const double c = p_.stiffness.Get(ctx), damping = p_.damping.Get(ctx);
+  d->force_s[0] = -c;
+  d->force_v = -damping;
+  if (c != 0.0 || damping != 0.0) d->rate_v[0] = 1.0;
+}
+
 bool FrictionalForce::StuckExactly(const ElementContext& ctx) const {
   return exact_stick() && ctx.modes[0] == kStick;
 }

@@ -7,9 +7,7 @@
 #include "mech/errors.h"
 
 namespace mechflow::mech {
-namespace {
-
-ElementContext MakeContext(const Mechanism& mechanism, double t, std::span<const double> x,
+ElementContext MakeElementContext(const Mechanism& mechanism, double t, std::span<const double> x,
                            std::span<const double> modes, const MechanismWorkspace& ws, int e) {
   const Model& model = mechanism.model();
   const ForceElement& element = mechanism.element(e);
@@ -26,12 +24,14 @@ ElementContext MakeContext(const Mechanism& mechanism, double t, std::span<const
   return ctx;
 }
 
+namespace {
+
 // Element e's loads, state rates and sensors; with its work tracked, also the
 // work's rate (the power of its loads) and its work sensors.
 void EvaluateElement(const Mechanism& mechanism, int e, double t, std::span<const double> x,
                      std::span<const double> modes, MechanismWorkspace* ws, std::span<double> all_rates) {
   const ForceElement& element = mechanism.element(e);
-  const ElementContext ctx = MakeContext(mechanism, t, x, modes, *ws, e);
+  const ElementContext ctx = MakeElementContext(mechanism, t, x, modes, *ws, e);
   const std::span<double> rates = all_rates.subspan(mechanism.state_offset(e), element.num_states());
   const std::span<double> sensors =
       std::span<double>(ws->sensors).subspan(mechanism.sensor_offset(e), element.num_sensors());
@@ -125,7 +125,7 @@ void FindStuck(const Mechanism& mechanism, double t, std::span<const double> x, 
   StickWorkspace& s = ws->stick;
   s.stuck.clear();
   for (int e : mechanism.exact_stick_elements()) {
-    if (!modes.empty() && mechanism.element(e).StuckExactly(MakeContext(mechanism, t, x, modes, *ws, e))) {
+    if (!modes.empty() && mechanism.element(e).StuckExactly(MakeElementContext(mechanism, t, x, modes, *ws, e))) {
       s.stuck.push_back(e);
       // the probe's size: the last holding force's, so that the differences
       // below lose no digits to a large load
@@ -144,7 +144,7 @@ void HoldStuckElements(const Mechanism& mechanism, double t, std::span<const dou
   const int k = static_cast<int>(s.stuck.size());
   auto relative_acceleration = [&](int i) {
     const int e = s.stuck[i];
-    return mechanism.element(e).StickAcceleration(MakeContext(mechanism, t, x, modes, *ws, e), ws->dyn, ws->vdot);
+    return mechanism.element(e).StickAcceleration(MakeElementContext(mechanism, t, x, modes, *ws, e), ws->dyn, ws->vdot);
   };
   ws->loads_without_holds = ws->loads;
   SolveDynamics(mechanism, ws, false);
@@ -152,7 +152,7 @@ void HoldStuckElements(const Mechanism& mechanism, double t, std::span<const dou
   for (int j = 0; j < k; ++j) {
     const int e = s.stuck[j];
     ws->loads = ws->loads_without_holds;
-    mechanism.element(e).ApplyStickForce(MakeContext(mechanism, t, x, modes, *ws, e), s.probe[e], &ws->loads);
+    mechanism.element(e).ApplyStickForce(MakeElementContext(mechanism, t, x, modes, *ws, e), s.probe[e], &ws->loads);
     SolveDynamics(mechanism, ws, false);
     for (int i = 0; i < k; ++i) s.S(i, j) = (relative_acceleration(i) - s.a0(i)) / s.probe[e];
   }
@@ -291,8 +291,14 @@ bool AnyStuckExactly(const Mechanism& mechanism, double t, std::span<const doubl
                      const MechanismWorkspace& ws) {
   if (modes.empty()) return false;
   for (int e : mechanism.exact_stick_elements())
-    if (mechanism.element(e).StuckExactly(MakeContext(mechanism, t, x, modes, ws, e))) return true;
+    if (mechanism.element(e).StuckExactly(MakeElementContext(mechanism, t, x, modes, ws, e))) return true;
   return false;
+}
+
+void EvaluateForCrossings(const Mechanism& mechanism, double t, std::span<const double> x,
+                          std::span<const double> inputs, MechanismWorkspace* ws) {
+  EvaluatePositions(mechanism, t, x, ws);
+  SetParameterArgs(t, inputs, ws);
 }
 
 void EvaluateCrossings(const Mechanism& mechanism, std::span<const double> x, std::span<const double> modes,
@@ -300,7 +306,7 @@ void EvaluateCrossings(const Mechanism& mechanism, std::span<const double> x, st
   for (int e = 0; e < mechanism.num_elements(); ++e) {
     const ForceElement& element = mechanism.element(e);
     if (element.num_crossings() == 0) continue;
-    const ElementContext ctx = MakeContext(mechanism, ws->kin.time, x, modes, *ws, e);
+    const ElementContext ctx = MakeElementContext(mechanism, ws->kin.time, x, modes, *ws, e);
     element.ZeroCrossings(ctx, values.subspan(mechanism.crossing_offset(e), element.num_crossings()));
   }
 }
@@ -311,7 +317,7 @@ void ApplyCrossing(const Mechanism& mechanism, int crossing, int direction, std:
     const ForceElement& element = mechanism.element(e);
     const int first = mechanism.crossing_offset(e);
     if (crossing < first || crossing >= first + element.num_crossings()) continue;
-    const ElementContext ctx = MakeContext(mechanism, ws->kin.time, x, modes, *ws, e);
+    const ElementContext ctx = MakeElementContext(mechanism, ws->kin.time, x, modes, *ws, e);
     element.OnCrossing(crossing - first, direction, ctx, x.subspan(mechanism.state_offset(e), element.num_states()),
                        modes.subspan(mechanism.mode_offset(e), element.num_modes()));
     return;
@@ -347,7 +353,7 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
   SetParameterArgs(0.0, inputs, ws);
   for (int e = 0; e < mechanism.num_elements(); ++e) {
     const ForceElement& element = mechanism.element(e);
-    const ElementContext ctx = MakeContext(mechanism, 0.0, x, modes, *ws, e);
+    const ElementContext ctx = MakeElementContext(mechanism, 0.0, x, modes, *ws, e);
     element.Initialize(ctx, x.subspan(mechanism.state_offset(e), element.num_states()),
                        modes.subspan(mechanism.mode_offset(e), element.num_modes()));
     if (element.tracks_work()) x[mechanism.state_offset(e) + element.work_state()] = 0.0;
@@ -382,7 +388,7 @@ bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> 
     for (int e = 0; e < mechanism.num_elements(); ++e) {
       const ForceElement& element = mechanism.element(e);
       if (element.num_modes() == 0) continue;
-      const ElementContext ctx = MakeContext(mechanism, t, x, modes, *ws, e);
+      const ElementContext ctx = MakeElementContext(mechanism, t, x, modes, *ws, e);
       changed_now |= element.UpdateModes(ctx, x.subspan(mechanism.state_offset(e), element.num_states()),
                                          modes.subspan(mechanism.mode_offset(e), element.num_modes()));
     }

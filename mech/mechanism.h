@@ -107,6 +107,11 @@ struct MechanismWorkspace {
   bool want_reactions = false;
 };
 
+// What element e reads at (t, x, modes) from the workspace's kinematics and
+// parameters.
+ElementContext MakeElementContext(const Mechanism& mechanism, double t, std::span<const double> x,
+                                  std::span<const double> modes, const MechanismWorkspace& ws, int e);
+
 // Initial state and modes: the model's initial coordinates, loops assembled
 // (positions and velocities projected onto the constraints), elements
 // initialised. Throws InputError when loops cannot be assembled or leave no
@@ -136,7 +141,14 @@ void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const dou
 bool AnyStuckExactly(const Mechanism& mechanism, double t, std::span<const double> x, std::span<const double> modes,
                      const MechanismWorkspace& ws);
 
-// The elements' zero-crossing values at the last EvaluateMechanism.
+// Kinematics and the parameters' arguments (t, inputs): all that the
+// elements' zero crossings read, unless one sticks exactly (its holding force
+// is EvaluateMechanism's).
+void EvaluateForCrossings(const Mechanism& mechanism, double t, std::span<const double> x,
+                          std::span<const double> inputs, MechanismWorkspace* ws);
+
+// The elements' zero-crossing values after EvaluateForCrossings, EvaluateElements
+// or EvaluateMechanism at the same (t, x).
 void EvaluateCrossings(const Mechanism& mechanism, std::span<const double> x, std::span<const double> modes,
                        MechanismWorkspace* ws, std::span<double> values);
 

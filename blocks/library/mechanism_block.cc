@@ -177,13 +177,31 @@ void MechanismBlock::DoCalcDerivatives(const BlockContext& ctx) const {
   full_at_ = positions_at_ = ctx.evaluation();
 }
 
+std::string MechanismBlock::StateJacobianUnavailable() const {
+  const std::string why = mech::SlidingJacobian::Unavailable(*mechanism_);
+  return why.empty() ? why : "mechanism '" + name() + "' is not a sliding one: " + why;
+}
+
+void MechanismBlock::CalcStateJacobian(const BlockContext& ctx, std::vector<JacobianEntry>* entries) const {
+  if (!jacobian_) jacobian_ = std::make_unique<mech::SlidingJacobian>(*mechanism_);
+  EvaluateElementsWithInputs(ctx);
+  jacobian_->Evaluate(*mechanism_, ctx.time(), ctx.state(), ctx.discrete(), ws_, &jacobian_entries_);
+  entries->clear();
+  for (const auto& [row, column, value] : jacobian_entries_) entries->push_back({row, column, value});
+}
+
 void MechanismBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
   // The crossings read positions, velocities, element states and parameters
-  // (of t and the inputs, all computed by now), not accelerations: evaluating
-  // the elements is enough when no solve of this evaluation is at hand --
+  // (of t and the inputs, all computed by now), not loads or accelerations:
+  // the kinematics are enough when no evaluation of this one is at hand --
   // unless an element sticks exactly, whose holding force is a solve's.
-  if (StuckExactly(ctx)) EnsureEvaluated(ctx, true);
-  else EvaluateElementsWithInputs(ctx);
+  const std::uint64_t now = ctx.evaluation();
+  if (StuckExactly(ctx)) {
+    EnsureEvaluated(ctx, true);
+  } else if (full_at_ != now && elements_with_inputs_at_ != now) {
+    mech::EvaluateForCrossings(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), &ws_);
+    positions_at_ = now;
+  }
   mech::EvaluateCrossings(*mechanism_, ctx.state(), ctx.discrete(), &ws_, ctx.zero_crossings());
 }
 

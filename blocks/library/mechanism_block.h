@@ -43,6 +43,7 @@
 
 #include "blocks/block.h"
 #include "mech/sensor.h"
+#include "mech/sliding_jacobian.h"
 
 namespace mechflow::blocks {
 
@@ -65,6 +66,9 @@ class MechanismBlock final : public Block {
   // "element: what its crossing meant" (mech::ForceElement::CrossingName)
   std::string CrossingName(int index, int direction) const override;
   std::string OutputUnit(int port) const override { return mech::SensorUnit(*mechanism_, sensors_.at(port)); }
+  // A sliding mechanism's (mech/sliding_jacobian.h).
+  std::string StateJacobianUnavailable() const override;
+  void CalcStateJacobian(const BlockContext& ctx, std::vector<JacobianEntry>* entries) const override;
 
  private:
   void DoInitialize(const BlockContext& ctx) const override;
@@ -98,6 +102,8 @@ class MechanismBlock final : public Block {
   mutable double worst_residual_ = 0.0;
   mutable bool initial_state_pending_ = false;  // driven segments: redo InitialState with the drives
   mutable std::optional<std::optional<BlockSparsity>> sparsity_;  // outer: found yet
+  mutable std::unique_ptr<mech::SlidingJacobian> jacobian_;       // on first use
+  mutable std::vector<mech::SlidingJacobian::Entry> jacobian_entries_;
 };
 
 }  // namespace mechflow::blocks
