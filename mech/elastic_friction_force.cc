@@ -84,6 +84,19 @@ void ElasticFrictionForce::Evaluate(const ElementContext& ctx, Loads* loads, std
   if (p_.stiffness.is_constant()) sensors[5] = 0.5 * p_.stiffness.value * ctx.state[0] * ctx.state[0];
 }
 
+void ElasticFrictionForce::Derivatives(const ElementContext& ctx, double, double, ElementDerivatives* d) const {
+  // the branches of Compute: force -T, delta' as there
+  const double c = p_.stiffness.Get(ctx), damping = p_.damping.Get(ctx);
+  if (c <= 0.0 && damping <= 0.0) return;
+  if (ctx.modes[0] == 0.0) {
+    d->force_s[0] = -c;
+    d->force_v = -damping;
+    d->rate_v[0] = 1.0;
+  } else if (damping > 0.0) {
+    d->rate_s[0][0] = -c / damping;
+  }
+}
+
 void ElasticFrictionForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
   const double mode = ctx.modes[0];
   const Values r = Compute(ctx, mode);

@@ -44,20 +44,22 @@ PointsLaw::PointsLaw(std::vector<double> x, std::vector<double> f, Interpolation
   }
 }
 
+double PointsLaw::EndSlope(std::size_t i0) const {
+  const std::size_t n = x_.size();
+  const double h = x_[i0 + 1] - x_[i0];
+  const double secant = (f_[i0 + 1] - f_[i0]) / h;
+  if (interpolation_ == Interpolation::kLinear) return secant;
+  return i0 == 0 ? secant - h * (2 * second_[0] + second_[1]) / 6
+                 : secant + h * (second_[n - 2] + 2 * second_[n - 1]) / 6;
+}
+
 double PointsLaw::Table(double x) const {
   const std::size_t n = x_.size();
-  auto end_slope = [&](std::size_t i0) {  // slope of the spline/segment at an end
-    const double h = x_[i0 + 1] - x_[i0];
-    const double secant = (f_[i0 + 1] - f_[i0]) / h;
-    if (interpolation_ == Interpolation::kLinear) return secant;
-    return i0 == 0 ? secant - h * (2 * second_[0] + second_[1]) / 6
-                   : secant + h * (second_[n - 2] + 2 * second_[n - 1]) / 6;
-  };
   if (x <= x_.front()) {
-    return extrapolation_ == Extrapolation::kClamp ? f_.front() : f_.front() + end_slope(0) * (x - x_.front());
+    return extrapolation_ == Extrapolation::kClamp ? f_.front() : f_.front() + EndSlope(0) * (x - x_.front());
   }
   if (x >= x_.back()) {
-    return extrapolation_ == Extrapolation::kClamp ? f_.back() : f_.back() + end_slope(n - 2) * (x - x_.back());
+    return extrapolation_ == Extrapolation::kClamp ? f_.back() : f_.back() + EndSlope(n - 2) * (x - x_.back());
   }
   const std::size_t i = static_cast<std::size_t>(std::upper_bound(x_.begin(), x_.end(), x) - x_.begin()) - 1;
   const double h = x_[i + 1] - x_[i];
@@ -66,6 +68,20 @@ double PointsLaw::Table(double x) const {
   if (interpolation_ == Interpolation::kSpline)
     value += ((a * a * a - a) * second_[i] + (b * b * b - b) * second_[i + 1]) * h * h / 6;
   return value;
+}
+
+double PointsLaw::Slope(double x) const {
+  const std::size_t n = x_.size();
+  if (x < x_.front()) return extrapolation_ == Extrapolation::kClamp ? 0.0 : EndSlope(0);
+  if (x >= x_.back()) return extrapolation_ == Extrapolation::kClamp ? 0.0 : EndSlope(n - 2);
+  const std::size_t i = static_cast<std::size_t>(std::upper_bound(x_.begin(), x_.end(), x) - x_.begin()) - 1;
+  const double h = x_[i + 1] - x_[i];
+  double slope = (f_[i + 1] - f_[i]) / h;
+  if (interpolation_ == Interpolation::kSpline) {
+    const double a = (x_[i + 1] - x) / h, b = (x - x_[i]) / h;
+    slope += ((1 - 3 * a * a) * second_[i] + (3 * b * b - 1) * second_[i + 1]) * h / 6;
+  }
+  return slope;
 }
 
 double PointsLaw::Force(double x, double v, const ElementContext& ctx) const { return Table(x) - d_.Get(ctx) * v; }

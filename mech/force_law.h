@@ -85,9 +85,16 @@ class PointsLaw final : public ForceLaw {
             Parameter d, const std::string& origin);
   double Force(double x, double v, const ElementContext& ctx) const override;
   bool depends_on_inputs() const override { return d_.uses_inputs; }
+  bool has_derivatives() const override { return true; }
+  void Derivatives(double x, double, const ElementContext& ctx, double* force_x, double* force_v) const override {
+    *force_x = Slope(x);
+    *force_v = -d_.Get(ctx);
+  }
   double Table(double x) const;
+  double Slope(double x) const;  // dTable/dx (at a knot of a linear table: the segment to its right)
 
  private:
+  double EndSlope(std::size_t i0) const;  // of the spline or segment at an end (i0 = 0 or n - 2)
   std::vector<double> x_, f_, second_;  // second_: spline second derivatives
   Interpolation interpolation_;
   Extrapolation extrapolation_;

@@ -7,33 +7,10 @@
 namespace mechflow::mech {
 namespace {
 
-// The segment of the joint coordinate that carries segment s, or -1; sets
-// *second when two coordinates carry it.
-int CarryingCoordinate(const Model& model, int s, int* second) {
-  int carrier = -1;
-  for (; s != kGround; s = model.segments()[s].parent) {
-    if (model.segments()[s].drive != SegmentDrive::kDof) continue;
-    if (carrier >= 0) *second = s;
-    if (carrier < 0) carrier = s;
-  }
-  return carrier;
-}
+// A body moves along at most three perpendicular axes.
+constexpr int kMaxPath = 3;
 
-// Per body the carrying coordinate's segment (or -1), per velocity
-// coordinate the mass it carries.
-std::vector<double> CarriedMasses(const Model& model, std::vector<int>* carrier) {
-  std::vector<double> mass(model.nv(), 0.0);
-  carrier->clear();
-  for (const Body& body : model.bodies()) {
-    int second = -1;
-    const int s = body.segment == kGround ? -1 : CarryingCoordinate(model, body.segment, &second);
-    carrier->push_back(s);
-    if (s >= 0) mass[model.segments()[s].v_index] += body.mass;
-  }
-  return mass;
-}
-
-// One end of a line on a coordinate: dd/dq_c = D.
+// One end of a line on a coordinate: dd/dq = D.
 struct End {
   int q, v;  // the coordinate's position and velocity indices
   Vec3 D;
@@ -41,23 +18,57 @@ struct End {
 
 }  // namespace
 
+SlidingJacobian::Path SlidingJacobian::Structure(const Model& model, std::vector<Vec3>* axis,
+                                                 std::vector<double>* mass, std::string* why) {
+  const auto& segments = model.segments();
+  std::vector<Mat3> rotation(segments.size());
+  axis->assign(segments.size(), Vec3::Zero());
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const Segment& seg = segments[s];
+    const std::string joint = "joint '" + model.joints()[seg.joint].name + "'";
+    if (seg.motion != SegmentMotion::kPrismatic) {
+      *why = joint + " turns (only translations keep the mass matrix constant)";
+      return {};
+    }
+    // segments come after their parents
+    rotation[s] = (seg.parent == kGround ? Mat3::Identity() : rotation[seg.parent]) * seg.placement.R;
+    (*axis)[s] = rotation[s] * seg.axis;
+  }
+  Path path;
+  mass->assign(model.nv(), 0.0);
+  for (const Body& body : model.bodies()) {
+    path.start.push_back(static_cast<int>(path.segments.size()));
+    for (int s = body.segment; s != kGround; s = segments[s].parent) {
+      if (segments[s].drive != SegmentDrive::kDof) continue;
+      for (int k = path.start.back(); k < static_cast<int>(path.segments.size()); ++k) {
+        const int t = path.segments[k];
+        if (std::abs((*axis)[s].dot((*axis)[t])) > 1e-12) {
+          *why = "joint '" + model.joints()[segments[t].joint].name + "' slides along a direction not perpendicular to " +
+                 "one of joint '" + model.joints()[segments[s].joint].name + "' it rides on (the mass matrix is not diagonal)";
+          return {};
+        }
+      }
+      path.segments.push_back(s);
+      (*mass)[segments[s].v_index] += body.mass;
+    }
+  }
+  path.start.push_back(static_cast<int>(path.segments.size()));
+  for (const Segment& seg : segments)
+    if (seg.drive == SegmentDrive::kDof && !((*mass)[seg.v_index] > 0.0)) {
+      *why = "joint '" + model.joints()[seg.joint].name + "' carries no mass";
+      return {};
+    }
+  return path;
+}
+
 std::string SlidingJacobian::Unavailable(const Mechanism& mechanism) {
   const Model& model = mechanism.model();
   if (!mechanism.constraints().empty()) return "it has a closed loop or a constraint";
-  for (const Segment& seg : model.segments()) {
-    const std::string joint = "joint '" + model.joints()[seg.joint].name + "'";
-    if (seg.motion != SegmentMotion::kPrismatic) return joint + " turns (only translations keep the mass matrix constant)";
-    int second = -1;
-    CarryingCoordinate(model, static_cast<int>(&seg - model.segments().data()), &second);
-    if (second >= 0)
-      return joint + " rides on joint '" + model.joints()[model.segments()[second].joint].name +
-             "' (the mass matrix is not diagonal)";
-  }
-  std::vector<int> carrier;
-  const std::vector<double> mass = CarriedMasses(model, &carrier);
-  for (const Segment& seg : model.segments())
-    if (seg.drive == SegmentDrive::kDof && !(mass[seg.v_index] > 0.0))
-      return "joint '" + model.joints()[seg.joint].name + "' carries no mass";
+  std::vector<Vec3> axis;
+  std::vector<double> mass;
+  std::string why;
+  Structure(model, &axis, &mass, &why);
+  if (!why.empty()) return why;
   if (mechanism.tracks_work() || mechanism.drive_work_state() >= 0) return "it integrates work (energy sensors)";
   for (int e = 0; e < mechanism.num_elements(); ++e) {
     const ForceElement& element = mechanism.element(e);
@@ -79,7 +90,8 @@ std::string SlidingJacobian::Unavailable(const Mechanism& mechanism) {
 SlidingJacobian::SlidingJacobian(const Mechanism& mechanism) {
   const std::string why = Unavailable(mechanism);
   if (!why.empty()) throw std::logic_error("SlidingJacobian: not a sliding mechanism: " + why);
-  mass_ = CarriedMasses(mechanism.model(), &carrier_);
+  std::string unused;
+  path_ = Structure(mechanism.model(), &axis_, &mass_, &unused);
 }
 
 void SlidingJacobian::Evaluate(const Mechanism& mechanism, double t, std::span<const double> x,
@@ -117,13 +129,12 @@ void SlidingJacobian::Evaluate(const Mechanism& mechanism, double t, std::span<c
     for (int k = 0; k < ns; ++k)
       for (int m = 0; m < ns; ++m) entries->push_back({first_state + k, first_state + m, d.rate_s[k][m]});
     if (!(g.x > 0.0)) continue;  // no direction (see the header)
-    End ends[2];
+    End ends[2 * kMaxPath];
     int num_ends = 0;
     for (const auto& [body, sign] : {std::pair{coordinate.body2, 1.0}, std::pair{coordinate.body1, -1.0}}) {
-      const int s = carrier_[body];
-      if (s >= 0) {
-        const Segment& seg = model.segments()[s];
-        ends[num_ends++] = {seg.q_index, seg.v_index, sign * (kin.pose[s].R * seg.axis)};
+      for (int k = path_.start[body]; k < path_.start[body + 1]; ++k) {
+        const Segment& seg = model.segments()[path_.segments[k]];
+        ends[num_ends++] = {seg.q_index, seg.v_index, sign * axis_[path_.segments[k]]};
       }
     }
     const Vec3 w = PointVelocity(kin, coordinate.body2, coordinate.point2) -
