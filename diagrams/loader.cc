@@ -168,7 +168,7 @@ void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
     column_origin[s.name] = loc.str();
     if (!group_index.count(group)) {
       group_index[group] = static_cast<int>(out->groups.size());
-      out->groups.push_back({group, {}});
+      out->groups.push_back({group, {}, {}});
     }
     for (int i = 0; i < s.width; ++i) {
       out->groups[group_index[group]].columns.push_back(column++);

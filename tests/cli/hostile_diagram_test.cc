@@ -98,7 +98,7 @@ TEST_F(HostileDiagramTest, TheGnuplotScriptKeepsEveryTextOnItsLine) {
   std::ostringstream csv;
   results.WriteCsv(csv);
   folder.Write("r.csv", csv.str());
-  const std::string script = GnuplotScript(results, {{attack, {1}}}, attack, "r.csv", "r.svg");
+  const std::string script = GnuplotScript(results, {{attack, {1}, attack}}, attack, "r.csv", "r.svg");
   for (std::size_t at = script.find("touch"); at != std::string::npos; at = script.find("touch", at + 1)) {
     const std::size_t line = script.rfind('\n', at) + 1;
     EXPECT_EQ(script[script.find_first_not_of(' ', line)] == '!', false) << script;
