@@ -22,6 +22,9 @@
 //           whose Jacobian is dense (a long serial chain: every acceleration
 //           reads every coordinate), where dense costs n^2 per Jacobian and
 //           n^3 per factorisation.
+// Dense and sparse take the blocks' analytic Jacobian instead of difference
+// quotients when the diagram has one (blocks/analytic_jacobian.h; a sliding
+// mechanism, mech/sliding_jacobian.h): no right-hand sides per Jacobian.
 // kAuto picks sparse when the diagram has at least kSparseMinStates states and
 // its pattern needs at most a quarter as many colours as states (so a fill
 // costs at most n/4 right-hand sides); otherwise krylov when it has at least
