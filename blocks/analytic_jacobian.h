@@ -23,6 +23,10 @@ class AnalyticJacobian {
   // The block whose Jacobian is the diagram's, or -1 with *why set to a
   // sentence saying why there is none.
   static int FindBlock(const Diagram& diagram, std::string* why);
+  // The message refusing jacobian="analytic" for that reason.
+  static std::string Refusal(const std::string& why) {
+    return "solver jacobian=\"analytic\": " + why + "; use jacobian=\"auto\" or \"difference\"";
+  }
 
   AnalyticJacobian(const Diagram& diagram, int block) : diagram_(diagram), block_(block) {}
 

@@ -152,7 +152,7 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
     const int block = krylov_ ? -1 : AnalyticJacobian::FindBlock(diagram_, &why);
     if (block >= 0) analytic_ = std::make_unique<AnalyticJacobian>(diagram_, block);
     else if (options_.jacobian == JacobianKind::kAnalytic)
-      throw InputError("solver jacobian=\"analytic\": " + why + "; use jacobian=\"auto\" or \"difference\"");
+      throw InputError(AnalyticJacobian::Refusal(why));
   }
   if (analytic_ && jacobian_) analytic_values_.assign(jacobian_->pattern().nonzeros(), 0.0);
 }
@@ -729,7 +729,8 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     Check(CVodeSetLinearSolver(mem, solver_->linear_solver(), solver_->matrix()), "CVodeSetLinearSolver");
     if (jacobian_) Check(CVodeSetLinSysFn(mem, &Simulator::LinearSystem), "CVodeSetLinSysFn");
     else if (analytic_) Check(CVodeSetJacFn(mem, &Simulator::DenseJacobian), "CVodeSetJacFn");
-    if (krylov_) Check(CVodeSetPreconditioner(mem, nullptr, &Simulator::PreconditionRatePairs), "CVodeSetPreconditioner");
+    if (krylov_)
+      Check(CVodeSetPreconditioner(mem, nullptr, &Simulator::PreconditionRatePairs), "CVodeSetPreconditioner");
     linear_solver_attached_ = true;
     Check(CVodeSetMaxNumSteps(mem, options_.max_steps), "CVodeSetMaxNumSteps");
     if (options_.max_step > 0.0) Check(CVodeSetMaxStep(mem, options_.max_step), "CVodeSetMaxStep");

@@ -451,8 +451,8 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
     std::string why = "the krylov linear solver uses no Jacobian";
     if (out.solver.linear_solver == blocks::LinearSolverKind::kKrylov ||
         blocks::AnalyticJacobian::FindBlock(*out.diagram, &why) < 0)
-      throw InputError(FindAttribute(d.solver, "jacobian")->loc.str() + ": solver jacobian=\"analytic\": " + why +
-                       "; use jacobian=\"auto\" or \"difference\"");
+      throw InputError(FindAttribute(d.solver, "jacobian")->loc.str() + ": " +
+                       blocks::AnalyticJacobian::Refusal(why));
   }
   CollectLoggedSignals(d, &out);
   CollectReports(d, eval, &out);

@@ -8,7 +8,7 @@
 
 namespace mechflow::mech {
 ElementContext MakeElementContext(const Mechanism& mechanism, double t, std::span<const double> x,
-                           std::span<const double> modes, const MechanismWorkspace& ws, int e) {
+                                  std::span<const double> modes, const MechanismWorkspace& ws, int e) {
   const Model& model = mechanism.model();
   const ForceElement& element = mechanism.element(e);
   ElementContext ctx;
@@ -144,7 +144,8 @@ void HoldStuckElements(const Mechanism& mechanism, double t, std::span<const dou
   const int k = static_cast<int>(s.stuck.size());
   auto relative_acceleration = [&](int i) {
     const int e = s.stuck[i];
-    return mechanism.element(e).StickAcceleration(MakeElementContext(mechanism, t, x, modes, *ws, e), ws->dyn, ws->vdot);
+    const ElementContext ctx = MakeElementContext(mechanism, t, x, modes, *ws, e);
+    return mechanism.element(e).StickAcceleration(ctx, ws->dyn, ws->vdot);
   };
   ws->loads_without_holds = ws->loads;
   SolveDynamics(mechanism, ws, false);

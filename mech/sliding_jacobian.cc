@@ -43,8 +43,9 @@ SlidingJacobian::Path SlidingJacobian::Structure(const Model& model, std::vector
       for (int k = path.start.back(); k < static_cast<int>(path.segments.size()); ++k) {
         const int t = path.segments[k];
         if (std::abs((*axis)[s].dot((*axis)[t])) > 1e-12) {
-          *why = "joint '" + model.joints()[segments[t].joint].name + "' slides along a direction not perpendicular to " +
-                 "one of joint '" + model.joints()[segments[s].joint].name + "' it rides on (the mass matrix is not diagonal)";
+          *why = "joint '" + model.joints()[segments[t].joint].name +
+                 "' slides along a direction not perpendicular to one of joint '" +
+                 model.joints()[segments[s].joint].name + "' it rides on (the mass matrix is not diagonal)";
           return {};
         }
       }

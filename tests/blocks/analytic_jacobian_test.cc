@@ -30,6 +30,7 @@
 #include "bench/friction_direct.h"
 #include "blocks/analytic_jacobian.h"
 #include "blocks/evaluation.h"
+#include "tests/blocks/block_test_util.h"
 #include "tests/test_util.h"
 
 namespace mechflow {
@@ -41,14 +42,8 @@ using blocks::AnalyticJacobian;
 // its modes settled at the initial state.
 class Harness {
  public:
-  Harness(const blocks::Diagram& d, int block) : d_(d), jacobian_(d, block), n_(d.num_states()) {
-    ctx_.signals.assign(d.num_signals(), 0.0);
-    ctx_.discrete.assign(d.num_discrete_states(), 0.0);
-    x0_.assign(n_, 0.0);
-    ctx_.x = x0_.data();
-    blocks::InitializeStates(d, &ctx_);
-    blocks::SettleModes(d, &ctx_);
-  }
+  Harness(const blocks::Diagram& d, int block)
+      : d_(d), jacobian_(d, block), n_(d.num_states()), ctx_(blocks::testing::SettledContext(d, &x0_)) {}
   int n() const { return n_; }
   const std::vector<double>& initial() const { return x0_; }
   std::vector<double> Rhs(double t, std::vector<double> x) {
@@ -91,8 +86,8 @@ class Harness {
   const blocks::Diagram& d_;
   AnalyticJacobian jacobian_;
   int n_;
+  std::vector<double> x0_;  // before ctx_, which points into it
   blocks::Context ctx_;
-  std::vector<double> x0_;
 };
 
 // Compares at three random states near the initial one; returns the number
@@ -154,7 +149,8 @@ const char* kSliding = R"xml(<diagram name="sliding">
            c="2000" d="20"/>
     <force name="slip" type="elastic_friction" body1="Base0" point1="0 3 0" body2="B" friction="2" ratio="1.2"
            c="1000" d="5"/>
-    <force name="rub" type="frictional" body1="Base0" point1="1 1 3" body2="C" friction="1" ratio="1.2" c="5000" d="30"/>
+    <force name="rub" type="frictional" body1="Base0" point1="1 1 3" body2="C" friction="1" ratio="1.2"
+           c="5000" d="30"/>
     <joint_force name="hold" dof="y" type="linear" c="50" d="0.3"/>
     <joint_force name="rubx" dof="x" type="frictional" friction="0.5" ratio="1.2" c="4000" d="20"/>
     <applied_force name="push" body="C" force="0 0 5*sin(3*t)"/>
@@ -220,10 +216,11 @@ TEST(AnalyticJacobianTest, SaysWhyNot) {
     <joint name="jA" type="translational" body1="Base0" body2="A" axis="1 0 0"/>
     <joint name="jB" type="translational" body1="A" body2="B" axis="1 1 0"/>
     </mechanism></diagram>)xml").find("joint 'jB' slides along a direction not perpendicular"), std::string::npos);
-  const std::string expression = WhyNot(head + R"xml(<joint name="jA" type="translational" body1="Base0" body2="A" axis="1 0 0"/>
+  const std::string expression = WhyNot(head + R"xml(<joint name="jA" type="translational" body1="Base0"
+    body2="A" axis="1 0 0"/>
     <force name="e" type="expression" body1="Base0" body2="A" expression="-x"/>
     </mechanism></diagram>)xml");
-  EXPECT_NE(expression.find("element 'e' (test.xml:3) gives no derivatives"), std::string::npos) << expression;
+  EXPECT_NE(expression.find("element 'e' (test.xml:4) gives no derivatives"), std::string::npos) << expression;
   // the mechanism's position, through a gain, pushes it: feedback
   EXPECT_NE(WhyNot(R"xml(<diagram name="w"><identifiers><identifier name="u" value="0"/></identifiers>
     <mechanism name="m"><input name="u"/><body name="A" mass="1" inertia="1 1 1"/>

@@ -17,6 +17,7 @@
 
 #include "blocks/block_factory.h"
 #include "blocks/diagram_builder.h"
+#include "blocks/evaluation.h"
 #include "blocks/simulator.h"
 #include "mech/errors.h"
 
@@ -29,6 +30,19 @@ inline const BlockRegistry& StandardRegistry() {
     return r;
   }();
   return registry;
+}
+
+// A context at the diagram's initial state with its modes settled, as
+// blocks::Simulator starts a run; the state lives in *x (at least one).
+inline Context SettledContext(const Diagram& d, std::vector<double>* x) {
+  Context ctx;
+  ctx.signals.assign(d.num_signals(), 0.0);
+  ctx.discrete.assign(d.num_discrete_states(), 0.0);
+  x->assign(std::max(1, d.num_states()), 0.0);
+  ctx.x = x->data();
+  InitializeStates(d, &ctx);
+  SettleModes(d, &ctx);
+  return ctx;
 }
 
 // "1 2, 3" -> {1, 2, 3}; throws InputError on anything that is not a number.

@@ -30,6 +30,7 @@
 #include "blocks/coloured_jacobian.h"
 #include "blocks/evaluation.h"
 #include "blocks/sparsity.h"
+#include "tests/blocks/block_test_util.h"
 #include "tests/test_util.h"
 
 namespace mechflow {
@@ -41,14 +42,8 @@ using blocks::SparsityPattern;
 // The diagram's right-hand side, set up the way blocks::Simulator does it.
 class DiagramRhs {
  public:
-  explicit DiagramRhs(const blocks::Diagram& d) : d_(d), n_(std::max(1, d.num_states())) {
-    ctx_.signals.assign(d.num_signals(), 0.0);
-    ctx_.discrete.assign(d.num_discrete_states(), 0.0);
-    x0_.assign(n_, 0.0);
-    ctx_.x = x0_.data();
-    blocks::InitializeStates(d, &ctx_);
-    blocks::SettleModes(d, &ctx_);
-  }
+  explicit DiagramRhs(const blocks::Diagram& d)
+      : d_(d), n_(std::max(1, d.num_states())), ctx_(blocks::testing::SettledContext(d, &x0_)) {}
   int n() const { return n_; }
   const std::vector<double>& initial() const { return x0_; }
   int operator()(double* x, double* f) {
@@ -70,8 +65,8 @@ class DiagramRhs {
  private:
   const blocks::Diagram& d_;
   int n_;
+  std::vector<double> x0_;  // before ctx_, which points into it
   blocks::Context ctx_;
-  std::vector<double> x0_;
 };
 
 // Dense difference quotients with the given increments, column-major n x n,
