@@ -6,6 +6,7 @@
 #include <Eigen/Cholesky>
 
 #include "mech/errors.h"
+#include "mech/sliding_structure.h"
 
 namespace mechflow::mech {
 namespace {
@@ -48,10 +49,60 @@ DynamicsWorkspace::DynamicsWorkspace(const Model& model) {
   acceleration.assign(n, Vec6::Zero());
   force.assign(n, Vec6::Zero());
   composite.assign(n, Mat6::Zero());
+  if (model.sliding()) {
+    sliding_field.assign(n, Vec3::Zero());
+    sliding_force.assign(n, Vec3::Zero());
+  }
 }
+
+namespace {
+
+// ForwardDynamics of a sliding model: M_ii v_i' = tau_i + a_i . (the force
+// on everything coordinate i carries), gravity and the time-driven
+// accelerations included as the bodies' field (mech/sliding_structure.h).
+void SlidingDynamics(const Model& model, const Kinematics& kin, std::span<const double> tau,
+                     std::span<const Vec6> external, std::span<double> vdot, DynamicsWorkspace* ws) {
+  const SlidingStructure& sliding = *model.sliding();
+  const auto& segments = model.segments();
+  const int n = static_cast<int>(segments.size());
+  for (int i = 0; i < n; ++i) {
+    const Segment& seg = segments[i];
+    Vec3 field = seg.parent == kGround ? model.gravity() : ws->sliding_field[seg.parent];
+    if (seg.drive == SegmentDrive::kTime) field -= sliding.axis[i] * kin.prescribed[i].acceleration;
+    ws->sliding_field[i] = field;
+    ws->sliding_force[i] = kin.pose[i].R * external[i].tail<3>() + sliding.carried_mass[i] * field;
+  }
+  for (int i = n - 1; i >= 0; --i) {  // children come after their parents
+    const Segment& seg = segments[i];
+    if (seg.drive == SegmentDrive::kDof)
+      vdot[seg.v_index] =
+          (tau[seg.v_index] + sliding.axis[i].dot(ws->sliding_force[i])) / sliding.coordinate_mass[seg.v_index];
+    if (seg.parent != kGround) ws->sliding_force[seg.parent] += ws->sliding_force[i];
+  }
+  // The segments' accelerations minus gravity, global in sliding_field (whose
+  // field is used up), in their own frames in ws->acceleration.
+  for (int i = 0; i < n; ++i) {
+    const Segment& seg = segments[i];
+    Vec3 a = seg.parent == kGround ? Vec3(-model.gravity()) : ws->sliding_field[seg.parent];
+    if (seg.drive == SegmentDrive::kDof) a += sliding.axis[i] * vdot[seg.v_index];
+    if (seg.drive == SegmentDrive::kTime) a += sliding.axis[i] * kin.prescribed[i].acceleration;
+    ws->sliding_field[i] = a;
+    ws->acceleration[i] << Vec3::Zero(), kin.pose[i].R.transpose() * a;
+  }
+}
+
+}  // namespace
 
 void ForwardDynamics(const Model& model, const Kinematics& kin, std::span<const double> tau,
                      std::span<const Vec6> external, std::span<double> vdot, DynamicsWorkspace* ws) {
+  if (model.sliding())
+    SlidingDynamics(model, kin, tau, external, vdot, ws);
+  else
+    ArticulatedBodyDynamics(model, kin, tau, external, vdot, ws);
+}
+
+void ArticulatedBodyDynamics(const Model& model, const Kinematics& kin, std::span<const double> tau,
+                             std::span<const Vec6> external, std::span<double> vdot, DynamicsWorkspace* ws) {
   const auto& segments = model.segments();
   const int n = static_cast<int>(segments.size());
   for (int i = 0; i < n; ++i) {

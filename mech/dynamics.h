@@ -36,13 +36,21 @@ class DynamicsWorkspace {
   std::vector<Vec6> acceleration;  // per segment, segment frame (minus gravity)
   std::vector<Vec6> force;         // RNEA: force transmitted from the parent across the joint
   std::vector<Mat6> composite;     // CRBA
+  // Sliding models (mech/sliding_structure.h), global components: the
+  // acceleration gravity and the time-driven segments leave to the bodies a
+  // segment carries, and the force on everything it carries.
+  std::vector<Vec3> sliding_field, sliding_force;
 };
 
-// Articulated-body algorithm: v' (nv) from generalized forces tau (nv) and
-// external segment loads. Fills ws->acceleration. Throws SimulationError when
-// a joint axis carries no inertia (singular mass matrix).
+// v' (nv) from generalized forces tau (nv) and external segment loads; fills
+// ws->acceleration. A sliding model's coordinates accelerate on their own
+// (mech/sliding_structure.h); any other tree takes ArticulatedBodyDynamics.
 void ForwardDynamics(const Model& model, const Kinematics& kin, std::span<const double> tau,
                      std::span<const Vec6> external, std::span<double> vdot, DynamicsWorkspace* ws);
+// Articulated-body algorithm, for any tree. Throws SimulationError when a
+// joint axis carries no inertia (singular mass matrix).
+void ArticulatedBodyDynamics(const Model& model, const Kinematics& kin, std::span<const double> tau,
+                             std::span<const Vec6> external, std::span<double> vdot, DynamicsWorkspace* ws);
 
 // Recursive Newton-Euler: the generalized forces tau (nv) that produce v'
 // under the external loads. Fills ws->acceleration and ws->force.

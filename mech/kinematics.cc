@@ -1,5 +1,7 @@
 #include "mech/kinematics.h"
 
+#include "mech/sliding_structure.h"
+
 namespace mechflow::mech {
 namespace {
 
@@ -21,9 +23,77 @@ Kinematics::Kinematics(const Model& model) {
   body_pose.resize(nb);
   body_omega.assign(nb, Vec3::Zero());
   body_velocity.assign(nb, Vec3::Zero());
+  const SlidingStructure* sliding = model.sliding();
+  if (!sliding) return;
+  // What never changes in a sliding model: rotations, motion axes; angular
+  // velocities and accelerations stay zero.
+  for (std::size_t i = 0; i < ns; ++i) {
+    const Segment& seg = model.segments()[i];
+    X[i].E = seg.placement.R.transpose();
+    pose[i].R = sliding->rotation[i];
+    if (seg.motion == SegmentMotion::kRevolute)  // a fixed joint's segment
+      axis[i] << seg.axis, Vec3::Zero();
+    else
+      axis[i] << Vec3::Zero(), seg.axis;
+  }
+  for (std::size_t b = 0; b < nb; ++b) {
+    const Body& body = model.bodies()[b];
+    body_pose[b].R = body.segment == kGround ? body.in_segment.R : sliding->rotation[body.segment] * body.in_segment.R;
+  }
 }
 
+namespace {
+
+// UpdateKinematicsOfTree for a sliding model: the constructor set what the
+// rotations fix; only translations and their rates change.
+void UpdateSlidingKinematics(const Model& model, double t, std::span<const double> q, std::span<const double> v,
+                             Kinematics* kin) {
+  kin->time = t;
+  const auto& segments = model.segments();
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const Segment& seg = segments[i];
+    Jet s;
+    if (seg.drive == SegmentDrive::kTime) {
+      s = seg.signal >= 0 ? kin->drives[seg.signal] : seg.function->Evaluate(t);
+      kin->prescribed[i] = s;
+    } else if (seg.drive == SegmentDrive::kDof) {
+      s = {q[seg.q_index], v[seg.v_index], 0.0};
+    }
+    const Vec3 local = seg.placement.p + seg.placement.R * (seg.axis * s.value);
+    kin->X[i].r = local;
+    auto velocity = kin->velocity[i].tail<3>();
+    if (seg.parent == kGround) {
+      kin->pose[i].p = local;
+      velocity = seg.axis * s.rate;
+    } else {
+      kin->pose[i].p = kin->pose[seg.parent].R * local + kin->pose[seg.parent].p;
+      velocity = kin->X[i].E * kin->velocity[seg.parent].tail<3>() + seg.axis * s.rate;
+    }
+    kin->bias[i].tail<3>() = seg.axis * s.acceleration;
+  }
+  for (std::size_t b = 0; b < model.bodies().size(); ++b) {
+    const Body& body = model.bodies()[b];
+    if (body.segment == kGround) {
+      kin->body_pose[b].p = body.in_segment.p;
+      continue;
+    }
+    const Pose& sp = kin->pose[body.segment];
+    kin->body_pose[b].p = sp.R * body.in_segment.p + sp.p;
+    kin->body_velocity[b] = sp.R * kin->velocity[body.segment].tail<3>();
+  }
+}
+
+}  // namespace
+
 void UpdateKinematics(const Model& model, double t, std::span<const double> q, std::span<const double> v,
+                      Kinematics* kin) {
+  if (model.sliding())
+    UpdateSlidingKinematics(model, t, q, v, kin);
+  else
+    UpdateKinematicsOfTree(model, t, q, v, kin);
+}
+
+void UpdateKinematicsOfTree(const Model& model, double t, std::span<const double> q, std::span<const double> v,
                       Kinematics* kin) {
   kin->time = t;
   const auto& segments = model.segments();

@@ -33,9 +33,14 @@ struct Kinematics {
   std::vector<Vec3> body_velocity;  // velocity of the body frame's origin
 };
 
-// Fills `kin` for time t and coordinates q (nq), v (nv).
+// Fills `kin` for time t and coordinates q (nq), v (nv): for a sliding
+// model (Model::sliding) its translations only, else UpdateKinematicsOfTree.
 void UpdateKinematics(const Model& model, double t, std::span<const double> q, std::span<const double> v,
                       Kinematics* kin);
+// The same for any tree: every segment placed and moved from its parent's
+// frame (the sliding case's reference in the tests).
+void UpdateKinematicsOfTree(const Model& model, double t, std::span<const double> q, std::span<const double> v,
+                            Kinematics* kin);
 
 // Global position and velocity of a point fixed on `body`, given in the body frame.
 inline Vec3 PointPosition(const Kinematics& kin, int body, const Vec3& local) {

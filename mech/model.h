@@ -99,6 +99,8 @@ struct Joint {
   std::string origin;
 };
 
+struct SlidingStructure;
+
 class Model {
  public:
   const std::vector<Body>& bodies() const { return bodies_; }
@@ -114,6 +116,10 @@ class Model {
   int num_bodies() const { return static_cast<int>(bodies_.size()); }
   int num_cut_joints() const { return num_cut_joints_; }
   bool has_quaternions() const { return has_quaternions_; }
+  // The sliding structure (mech/sliding_structure.h), or null when some
+  // frame turns; then not_sliding() says which joint and why.
+  const SlidingStructure* sliding() const { return sliding_.get(); }
+  const std::string& not_sliding() const { return not_sliding_; }
 
   // Index or -1; names are exact.
   int FindBody(const std::string& name) const;
@@ -139,6 +145,8 @@ class Model {
   int num_cut_joints_ = 0;
   bool has_quaternions_ = false;
   std::vector<double> initial_q_, initial_v_;
+  std::shared_ptr<const SlidingStructure> sliding_;
+  std::string not_sliding_;
 };
 
 }  // namespace mechflow::mech

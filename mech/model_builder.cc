@@ -9,6 +9,7 @@
 #include "mech/dynamics.h"
 #include "mech/errors.h"
 #include "mech/kinematics.h"
+#include "mech/sliding_structure.h"
 
 namespace mechflow::mech {
 namespace {
@@ -337,6 +338,7 @@ std::shared_ptr<const Model> ModelBuilder::Build() {
         SpatialInertia(body.mass, P * body.com, P.R * body.inertia * P.R.transpose());
   }
   CheckRotationsCarryInertia(m);
+  m.sliding_ = FindSlidingStructure(m, &m.not_sliding_);
   return std::shared_ptr<const Model>(model_.release());
 }
 

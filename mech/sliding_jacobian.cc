@@ -18,58 +18,10 @@ struct End {
 
 }  // namespace
 
-SlidingJacobian::Path SlidingJacobian::Structure(const Model& model, std::vector<Vec3>* axis,
-                                                 std::vector<double>* mass, std::string* why) {
-  const auto& segments = model.segments();
-  std::vector<Mat3> rotation(segments.size());
-  axis->assign(segments.size(), Vec3::Zero());
-  for (std::size_t s = 0; s < segments.size(); ++s) {
-    const Segment& seg = segments[s];
-    const std::string joint = "joint '" + model.joints()[seg.joint].name + "'";
-    if (seg.motion != SegmentMotion::kPrismatic) {
-      *why = joint + " turns (only translations keep the mass matrix constant)";
-      return {};
-    }
-    // segments come after their parents
-    rotation[s] = (seg.parent == kGround ? Mat3::Identity() : rotation[seg.parent]) * seg.placement.R;
-    (*axis)[s] = rotation[s] * seg.axis;
-  }
-  Path path;
-  mass->assign(model.nv(), 0.0);
-  for (const Body& body : model.bodies()) {
-    path.start.push_back(static_cast<int>(path.segments.size()));
-    for (int s = body.segment; s != kGround; s = segments[s].parent) {
-      if (segments[s].drive != SegmentDrive::kDof) continue;
-      for (int k = path.start.back(); k < static_cast<int>(path.segments.size()); ++k) {
-        const int t = path.segments[k];
-        if (std::abs((*axis)[s].dot((*axis)[t])) > 1e-12) {
-          *why = "joint '" + model.joints()[segments[t].joint].name +
-                 "' slides along a direction not perpendicular to one of joint '" +
-                 model.joints()[segments[s].joint].name + "' it rides on (the mass matrix is not diagonal)";
-          return {};
-        }
-      }
-      path.segments.push_back(s);
-      (*mass)[segments[s].v_index] += body.mass;
-    }
-  }
-  path.start.push_back(static_cast<int>(path.segments.size()));
-  for (const Segment& seg : segments)
-    if (seg.drive == SegmentDrive::kDof && !((*mass)[seg.v_index] > 0.0)) {
-      *why = "joint '" + model.joints()[seg.joint].name + "' carries no mass";
-      return {};
-    }
-  return path;
-}
-
 std::string SlidingJacobian::Unavailable(const Mechanism& mechanism) {
   const Model& model = mechanism.model();
   if (!mechanism.constraints().empty()) return "it has a closed loop or a constraint";
-  std::vector<Vec3> axis;
-  std::vector<double> mass;
-  std::string why;
-  Structure(model, &axis, &mass, &why);
-  if (!why.empty()) return why;
+  if (!model.sliding()) return model.not_sliding();
   if (mechanism.tracks_work() || mechanism.drive_work_state() >= 0) return "it integrates work (energy sensors)";
   for (int e = 0; e < mechanism.num_elements(); ++e) {
     const ForceElement& element = mechanism.element(e);
@@ -88,11 +40,9 @@ std::string SlidingJacobian::Unavailable(const Mechanism& mechanism) {
   return "";
 }
 
-SlidingJacobian::SlidingJacobian(const Mechanism& mechanism) {
+SlidingJacobian::SlidingJacobian(const Mechanism& mechanism) : structure_(mechanism.model().sliding()) {
   const std::string why = Unavailable(mechanism);
   if (!why.empty()) throw std::logic_error("SlidingJacobian: not a sliding mechanism: " + why);
-  std::string unused;
-  path_ = Structure(mechanism.model(), &axis_, &mass_, &unused);
 }
 
 void SlidingJacobian::Evaluate(const Mechanism& mechanism, double t, std::span<const double> x,
@@ -113,7 +63,7 @@ void SlidingJacobian::Evaluate(const Mechanism& mechanism, double t, std::span<c
     if (coordinate.kind == ElementCoordinate::Kind::kJoint) {
       const int c = coordinate.v_index, row = nq + c;
       element.Derivatives(ctx, x[coordinate.q_index], x[nq + c], &d);
-      const double inverse_mass = 1.0 / mass_[c];
+      const double inverse_mass = 1.0 / structure_->coordinate_mass[c];
       entries->push_back({row, coordinate.q_index, d.force_x * inverse_mass});
       entries->push_back({row, row, d.force_v * inverse_mass});
       for (int k = 0; k < ns; ++k) {
@@ -133,9 +83,10 @@ void SlidingJacobian::Evaluate(const Mechanism& mechanism, double t, std::span<c
     End ends[2 * kMaxPath];
     int num_ends = 0;
     for (const auto& [body, sign] : {std::pair{coordinate.body2, 1.0}, std::pair{coordinate.body1, -1.0}}) {
-      for (int k = path_.start[body]; k < path_.start[body + 1]; ++k) {
-        const Segment& seg = model.segments()[path_.segments[k]];
-        ends[num_ends++] = {seg.q_index, seg.v_index, sign * axis_[path_.segments[k]]};
+      for (int k = structure_->path_start[body]; k < structure_->path_start[body + 1]; ++k) {
+        const int i = structure_->path_segments[k];
+        const Segment& seg = model.segments()[i];
+        ends[num_ends++] = {seg.q_index, seg.v_index, sign * structure_->axis[i]};
       }
     }
     const Vec3 w = PointVelocity(kin, coordinate.body2, coordinate.point2) -
@@ -144,7 +95,7 @@ void SlidingJacobian::Evaluate(const Mechanism& mechanism, double t, std::span<c
     const double f = ws.sensors[mechanism.sensor_offset(e) + coordinate.force_sensor] * coordinate.force_sign;
     for (int i = 0; i < num_ends; ++i) {
       const End& r = ends[i];
-      const double ur = g.u.dot(r.D), inverse_mass = 1.0 / mass_[r.v];
+      const double ur = g.u.dot(r.D), inverse_mass = 1.0 / structure_->coordinate_mass[r.v];
       const int row = nq + r.v;
       for (int j = 0; j < num_ends; ++j) {
         const End& c = ends[j];

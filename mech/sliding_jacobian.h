@@ -1,13 +1,9 @@
 #pragma once
 // Analytic Jacobian of a sliding mechanism (issue 17).
 //
-// A sliding mechanism has translations only (joint coordinates and
-// time-driven translations), no closed loops, and the coordinates on any
-// body's path to the ground slide along perpendicular axes. No body turns,
-// so a point of body b moves as r0(t) + sum a_i q_i over the coordinates i on
-// its path, with constant unit axes a_i; the mass matrix
-// M_ij = (a_i . a_j) (the mass both carry) is diagonal, M_ii = the mass
-// coordinate i carries, and nothing depends on products of velocities:
+// A sliding mechanism is a sliding model (mech/sliding_structure.h: only
+// translations, perpendicular along every path, so M is constant and
+// diagonal) without closed loops. Nothing depends on products of velocities:
 //   q' = v,   v_i' = (Q_i + constant) / M_ii,   s' = the element states' rates
 // with Q the elements' generalized forces. Each element knows its law along
 // its coordinate (ForceElement::Derivatives); for a line from point A (body
@@ -30,6 +26,7 @@
 #include <vector>
 
 #include "mech/mechanism.h"
+#include "mech/sliding_structure.h"
 
 namespace mechflow::mech {
 
@@ -57,18 +54,7 @@ class SlidingJacobian {
                 const MechanismWorkspace& ws, std::vector<Entry>* entries) const;
 
  private:
-  // Per body, the segments of the coordinates on its path to the ground:
-  // segments[start[b] .. start[b + 1]).
-  struct Path {
-    std::vector<int> start, segments;
-  };
-  // The paths, each segment's global axis and each coordinate's mass; empty
-  // with *why set when the model is not a sliding one.
-  static Path Structure(const Model& model, std::vector<Vec3>* axis, std::vector<double>* mass, std::string* why);
-
-  Path path_;
-  std::vector<Vec3> axis_;    // per segment, global
-  std::vector<double> mass_;  // per velocity coordinate
+  const SlidingStructure* structure_;  // the model's
 };
 
 }  // namespace mechflow::mech

@@ -1,5 +1,6 @@
 # Tests of mech/.
 mechflow_test(dynamics_test unit tests/mech/dynamics_test.cc)
+mechflow_test(sliding_dynamics_test unit tests/mech/sliding_dynamics_test.cc)
 mechflow_test(constraints_test unit tests/mech/constraints_test.cc)
 mechflow_test(quaternion_joint_test unit tests/mech/quaternion_joint_test.cc)
 # Counting allocations replaces malloc, which AddressSanitizer owns: these
