@@ -49,9 +49,9 @@ namespace {
 void UpdateSlidingKinematics(const Model& model, double t, std::span<const double> q, std::span<const double> v,
                              Kinematics* kin) {
   kin->time = t;
-  const auto& segments = model.segments();
-  for (std::size_t i = 0; i < segments.size(); ++i) {
-    const Segment& seg = segments[i];
+  const SlidingStructure& sliding = *model.sliding();
+  for (std::size_t i = 0; i < sliding.slides.size(); ++i) {
+    const SlidingStructure::Slide& seg = sliding.slides[i];
     Jet s;
     if (seg.drive == SegmentDrive::kTime) {
       s = seg.signal >= 0 ? kin->drives[seg.signal] : seg.function->Evaluate(t);
@@ -59,7 +59,7 @@ void UpdateSlidingKinematics(const Model& model, double t, std::span<const doubl
     } else if (seg.drive == SegmentDrive::kDof) {
       s = {q[seg.q_index], v[seg.v_index], 0.0};
     }
-    const Vec3 local = seg.placement.p + seg.placement.R * (seg.axis * s.value);
+    const Vec3 local = seg.offset + seg.parent_axis * s.value;
     kin->X[i].r = local;
     auto velocity = kin->velocity[i].tail<3>();
     if (seg.parent == kGround) {
@@ -71,14 +71,14 @@ void UpdateSlidingKinematics(const Model& model, double t, std::span<const doubl
     }
     kin->bias[i].tail<3>() = seg.axis * s.acceleration;
   }
-  for (std::size_t b = 0; b < model.bodies().size(); ++b) {
-    const Body& body = model.bodies()[b];
+  for (std::size_t b = 0; b < sliding.riders.size(); ++b) {
+    const SlidingStructure::Rider& body = sliding.riders[b];
     if (body.segment == kGround) {
-      kin->body_pose[b].p = body.in_segment.p;
+      kin->body_pose[b].p = body.offset;
       continue;
     }
     const Pose& sp = kin->pose[body.segment];
-    kin->body_pose[b].p = sp.R * body.in_segment.p + sp.p;
+    kin->body_pose[b].p = sp.R * body.offset + sp.p;
     kin->body_velocity[b] = sp.R * kin->velocity[body.segment].tail<3>();
   }
 }

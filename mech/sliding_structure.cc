@@ -19,7 +19,11 @@ std::shared_ptr<const SlidingStructure> FindSlidingStructure(const Model& model,
     // segments come after their parents
     s->rotation[i] = (seg.parent == kGround ? Mat3::Identity() : s->rotation[seg.parent]) * seg.placement.R;
     if (seg.drive != SegmentDrive::kNone) s->axis[i] = s->rotation[i] * seg.axis;
+    const Vec3 axis = seg.drive == SegmentDrive::kNone ? Vec3::Zero() : seg.axis;
+    s->slides.push_back({seg.parent, seg.q_index, seg.v_index, seg.signal, seg.drive, seg.function.get(),
+                         seg.placement.p, seg.placement.R * axis, axis});
   }
+  for (const Body& body : model.bodies()) s->riders.push_back({body.segment, body.in_segment.p});
   s->coordinate_mass.assign(model.nv(), 0.0);
   for (const Body& body : model.bodies()) {
     if (body.segment != kGround) s->carried_mass[body.segment] += body.mass;

@@ -25,6 +25,22 @@
 namespace mechflow::mech {
 
 struct SlidingStructure {
+  // What the kinematics read of a segment and a body, packed: the model's
+  // records are large, and a long chain's would not stay in the cache.
+  struct Slide {
+    int parent, q_index, v_index, signal;
+    SegmentDrive drive;
+    const TimeFunction* function;
+    Vec3 offset;       // the joint frame's origin in the parent's frame
+    Vec3 parent_axis;  // the axis in the parent's frame
+    Vec3 axis;         // the axis in the segment's frame
+  };
+  struct Rider {
+    int segment;  // kGround: welded to the ground
+    Vec3 offset;  // the body frame's origin in the segment's frame
+  };
+  std::vector<Slide> slides;  // per segment
+  std::vector<Rider> riders;  // per body
   std::vector<Mat3> rotation;           // per segment: its frame's constant global rotation
   std::vector<Vec3> axis;               // per segment: global unit axis of its translation (zero: fixed)
   std::vector<double> carried_mass;     // per segment: the mass of the bodies riding on it
