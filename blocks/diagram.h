@@ -54,6 +54,11 @@ class Diagram {
   // Output ports in evaluation order; an entry with loop >= 0 is that
   // algebraic loop, solved as a whole.
   const std::vector<OutputNode>& schedule() const { return schedule_; }
+  // The schedule split in two, each in schedule order: the entries that the
+  // derivatives and zero crossings read (directly or through other outputs),
+  // and the rest, which only output rows and watchers read.
+  const std::vector<OutputNode>& dynamics_schedule() const { return dynamics_schedule_; }
+  const std::vector<OutputNode>& rest_schedule() const { return rest_schedule_; }
   const std::vector<AlgebraicLoop>& loops() const { return loops_; }
   const std::vector<Connection>& connections() const { return connections_; }
   // Blocks with continuous states / zero crossings / a periodic sample time.
@@ -74,7 +79,7 @@ class Diagram {
   std::map<std::string, int, std::less<>> block_index_;  // name -> block, for FindBlock
   std::vector<BlockLayout> layouts_;
   std::vector<Connection> connections_;
-  std::vector<OutputNode> schedule_;
+  std::vector<OutputNode> schedule_, dynamics_schedule_, rest_schedule_;
   std::vector<AlgebraicLoop> loops_;
   // (output slot, input copy slot) of each value a block feeds to itself
   // directly; the copies are extra signals after the outputs'

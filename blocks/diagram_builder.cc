@@ -432,6 +432,58 @@ void DiagramBuilder::Schedule(Diagram* d) const {
   }
 }
 
+// Splits the schedule: the outputs that derivatives and zero crossings read,
+// directly or through the outputs that feed them, are the dynamics schedule
+// (a right-hand side or a root check computes those alone); the others are
+// logged or watched only, and are computed for output rows.
+void DiagramBuilder::SplitSchedule(Diagram* d) {
+  const int nb = d->num_blocks();
+  std::vector<std::vector<char>> needed(nb);
+  std::vector<std::vector<int>> loop_of(nb), inbound(nb);
+  for (int b = 0; b < nb; ++b) {
+    needed[b].assign(d->blocks_[b]->num_outputs(), 0);
+    loop_of[b].assign(d->blocks_[b]->num_outputs(), -1);
+  }
+  for (int l = 0; l < static_cast<int>(d->loops_.size()); ++l)
+    for (const auto* nodes : {&d->loops_[l].inner(), &d->loops_[l].tears()})
+      for (const OutputNode& node : *nodes) loop_of[node.block][node.port] = l;
+  for (int c = 0; c < static_cast<int>(d->connections_.size()); ++c)
+    inbound[d->connections_[c].to_block].push_back(c);
+  std::vector<char> loop_needed(d->loops_.size(), 0);
+  std::vector<OutputNode> work;
+  auto mark = [&](int block, int port) {
+    if (needed[block][port]) return;
+    needed[block][port] = 1;
+    work.push_back({block, port});
+    const int l = loop_of[block][port];
+    if (l < 0 || loop_needed[l]) return;
+    loop_needed[l] = 1;  // a loop is solved as a whole
+    for (const auto* nodes : {&d->loops_[l].inner(), &d->loops_[l].tears()})
+      for (const OutputNode& node : *nodes)
+        if (!needed[node.block][node.port]) {
+          needed[node.block][node.port] = 1;
+          work.push_back(node);
+        }
+  };
+  for (const Connection& c : d->connections_) {
+    const Block& to = *d->blocks_[c.to_block];
+    if (to.num_states() > 0 || to.num_zero_crossings() > 0) mark(c.from_block, c.from_port);
+  }
+  while (!work.empty()) {
+    const OutputNode node = work.back();
+    work.pop_back();
+    const Block& block = *d->blocks_[node.block];
+    for (const int ci : inbound[node.block]) {
+      const Connection& c = d->connections_[ci];
+      if (block.HasFeedthrough(c.to_port, node.port)) mark(c.from_block, c.from_port);
+    }
+  }
+  for (const OutputNode& entry : d->schedule_) {
+    const bool in_dynamics = entry.loop >= 0 ? loop_needed[entry.loop] : needed[entry.block][entry.port];
+    (in_dynamics ? d->dynamics_schedule_ : d->rest_schedule_).push_back(entry);
+  }
+}
+
 std::unique_ptr<Diagram> DiagramBuilder::Build() {
   ThrowIfBuilt("Build");
   std::vector<Connection> resolved;
@@ -439,6 +491,7 @@ std::unique_ptr<Diagram> DiagramBuilder::Build() {
   CheckInputs(resolved);
   LayOut(diagram_.get(), resolved);
   Schedule(diagram_.get());
+  SplitSchedule(diagram_.get());
   pending_.clear();
   return std::move(diagram_);
 }

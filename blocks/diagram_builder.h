@@ -43,6 +43,7 @@ class DiagramBuilder {
   void CheckInputs(const std::vector<Connection>& resolved) const;
   void LayOut(Diagram* d, const std::vector<Connection>& resolved) const;
   void Schedule(Diagram* d) const;
+  static void SplitSchedule(Diagram* d);
 
   std::unique_ptr<Diagram> diagram_;
   std::vector<PendingConnection> pending_;

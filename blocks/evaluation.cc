@@ -6,8 +6,10 @@ void InitializeStates(const Diagram& d, Context* ctx) {
   for (int b = 0; b < d.num_blocks(); ++b) d.block(b).Initialize(BlockContext(ctx, &d.layout(b)));
 }
 
-void EvaluateOutputs(const Diagram& d, Context* ctx) {
-  for (const OutputNode& node : d.schedule()) {
+void EvaluateOutputs(const Diagram& d, Context* ctx) { EvaluateOutputs(d, d.schedule(), ctx); }
+
+void EvaluateOutputs(const Diagram& d, const std::vector<OutputNode>& entries, Context* ctx) {
+  for (const OutputNode& node : entries) {
     if (node.loop >= 0)
       d.loops()[node.loop].Solve(d, ctx);
     else

@@ -15,6 +15,9 @@ void InitializeStates(const Diagram& d, Context* ctx);
 
 // Computes every output port in schedule order.
 void EvaluateOutputs(const Diagram& d, Context* ctx);
+// Computes the given entries of the schedule, in their order
+// (Diagram::dynamics_schedule, rest_schedule).
+void EvaluateOutputs(const Diagram& d, const std::vector<OutputNode>& entries, Context* ctx);
 
 // Writes the derivative of every continuous state (outputs must be current).
 void EvaluateDerivatives(const Diagram& d, Context* ctx);

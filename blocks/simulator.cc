@@ -281,11 +281,11 @@ int Simulator::Advance(double t_out, N_Vector yout, double* t_ret) {
   return CV_SUCCESS;
 }
 
-void Simulator::EvaluateAt(double t, double* x) {
+void Simulator::EvaluateAt(double t, double* x, bool dynamics_only) {
   ctx_.time = t;
   ctx_.x = x;
   ++ctx_.evaluation;
-  EvaluateOutputs(diagram_, &ctx_);
+  EvaluateOutputs(diagram_, dynamics_only ? diagram_.dynamics_schedule() : diagram_.schedule(), &ctx_);
 }
 
 bool Simulator::StillEvaluated(double t, const double* x) const {
@@ -293,9 +293,22 @@ bool Simulator::StillEvaluated(double t, const double* x) const {
          std::memcmp(x, evaluated_x_.data(), evaluated_x_.size() * sizeof(double)) == 0;
 }
 
-void Simulator::RememberEvaluated(double t, const double* x, const double* g) {
+void Simulator::CompleteAt(double t, double* x) {
+  if (!StillEvaluated(t, x)) {
+    EvaluateAt(t, x);
+    RememberEvaluated(t, x, nullptr, true);
+  } else if (!evaluated_complete_) {
+    ctx_.time = t;
+    ctx_.x = x;  // the same values, perhaps in another buffer
+    EvaluateOutputs(diagram_, diagram_.rest_schedule(), &ctx_);
+    evaluated_complete_ = true;
+  }
+}
+
+void Simulator::RememberEvaluated(double t, const double* x, const double* g, bool complete) {
   if (!reuse_evaluations_) return;
   evaluated_valid_ = true;
+  evaluated_complete_ = complete;
   evaluated_at_ = ctx_.evaluation;
   evaluated_t_ = t;
   std::copy(x, x + evaluated_x_.size(), evaluated_x_.begin());
@@ -305,10 +318,7 @@ void Simulator::RememberEvaluated(double t, const double* x, const double* g) {
 
 void Simulator::Record(double t, double* x) {
   // the signals of the root functions' evaluation at this output time, if any
-  if (!StillEvaluated(t, x)) {
-    EvaluateAt(t, x);
-    RememberEvaluated(t, x, nullptr);
-  }
+  CompleteAt(t, x);
   row_[0] = t;
   int column = 1;
   for (const SignalRef& s : logged_)
@@ -368,7 +378,7 @@ int Simulator::EvaluateRhs(double t, double* x, double* xdot) {
     ctx.xdot = xdot;
     ++ctx.evaluation;
     ctx.derivatives_follow = true;
-    EvaluateOutputs(d, &ctx);
+    EvaluateOutputs(d, d.dynamics_schedule(), &ctx);
     EvaluateDerivatives(d, &ctx);
     ctx.derivatives_follow = false;
     if (analytic_) {  // where an analytic Jacobian may follow without evaluating again
@@ -399,7 +409,7 @@ int Simulator::EvaluateAnalyticJacobian(double t, double* x) {
     const bool current = rhs_at_ != 0 && rhs_at_ == ctx_.evaluation && t == rhs_t_ &&
                          std::memcmp(x, rhs_x_.data(), rhs_x_.size() * sizeof(double)) == 0;
     if (!current) {
-      EvaluateAt(t, x);
+      EvaluateAt(t, x, /*dynamics_only=*/true);
       ++stats_.jac_rhs_evals;
     }
     ctx_.time = t;
@@ -522,9 +532,9 @@ int Simulator::Roots(double t, N_Vector y, double* g, void* user) {
     ctx.x = N_VGetArrayPointer(y);
     ctx.crossings = g;
     ++ctx.evaluation;
-    EvaluateOutputs(self->diagram_, &ctx);
+    EvaluateOutputs(self->diagram_, self->diagram_.dynamics_schedule(), &ctx);
     EvaluateZeroCrossings(self->diagram_, &ctx);
-    self->RememberEvaluated(t, x, g);
+    self->RememberEvaluated(t, x, g, false);
   } catch (const std::exception& e) {
     self->callback_failure_ = e.what();
     return -1;
@@ -647,7 +657,7 @@ class Simulator::Point final : public ControlPoint {
 };
 
 bool Simulator::CallControl(double t, double* x, void (RunControl::*call)(ControlPoint&)) {
-  if (!StillEvaluated(t, x)) EvaluateAt(t, x);
+  CompleteAt(t, x);
   control_changed_ = false;
   Point point(*this);
   (control_->*call)(point);

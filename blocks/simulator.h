@@ -228,9 +228,15 @@ class Simulator {
   // unless the last right-hand side was at (t, x); returns 0 or a failure
   // flag for CVODE (recoverable, as a right-hand side's).
   int EvaluateAnalyticJacobian(double t, double* x);
-  void EvaluateAt(double t, double* x);
+  // Every output at (t, x), or the dynamics schedule's alone.
+  void EvaluateAt(double t, double* x, bool dynamics_only = false);
+  // Every output at (t, x), from the last evaluation when it was there: then
+  // only the outputs it left out (a root check computes the dynamics
+  // schedule alone) are computed.
+  void CompleteAt(double t, double* x);
   bool StillEvaluated(double t, const double* x) const;
-  void RememberEvaluated(double t, const double* x, const double* g);
+  // `complete`: every output was computed, not only the dynamics schedule.
+  void RememberEvaluated(double t, const double* x, const double* g, bool complete);
   void Record(double t, double* x);
   // Before an output row: when CVODE's own time advanced since the last row
   // (no re-initialisation between) while its own state stayed the same bit
@@ -307,6 +313,7 @@ class Simulator {
   bool reuse_evaluations_ = false;
   bool evaluated_valid_ = false;
   bool evaluated_crossings_ = false;
+  bool evaluated_complete_ = false;
   std::uint64_t evaluated_at_ = 0;  // ctx_.evaluation of it
   double evaluated_t_ = 0.0;
   std::vector<double> evaluated_x_, evaluated_g_;
