@@ -45,6 +45,17 @@ DenseSolver::~DenseSolver() {
   SUNMatDestroy(a_);
 }
 
+namespace {
+
+// KLU's initialisation only asks for a fresh symbolic analysis and
+// factorisation at the next setup; CVodeReInit initialises the linear solver
+// after every event. The pattern is the run's, fixed, so the analysis stays
+// valid; a refactorisation with the old pivot order is checked by KLU's
+// condition estimate in every setup, which factors afresh when it degrades.
+int KeepKluAnalysis(SUNLinearSolver) { return SUNLS_SUCCESS; }
+
+}  // namespace
+
 SparseSolver::SparseSolver(const Vector& y, const SparsityPattern& pattern, const Context& ctx) {
   const sunindextype n = N_VGetLength(y.get());
   if (n != pattern.n) throw std::logic_error("sparsity pattern and state vector differ in size");
@@ -59,6 +70,7 @@ SparseSolver::SparseSolver(const Vector& y, const SparsityPattern& pattern, cons
     SUNMatDestroy(a_);
     throw std::runtime_error("SUNLinSol_KLU failed");
   }
+  ls_->ops->initialize = KeepKluAnalysis;
 }
 SparseSolver::~SparseSolver() {
   SUNLinSolFree(ls_);
