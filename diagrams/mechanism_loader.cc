@@ -651,12 +651,12 @@ std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const E
   // balance in every element.
   for (const ElementDesc& e : m.children) {
     if (e.tag != "sensor") continue;
-    const std::string quantity = e.Text("quantity", "force");
+    const std::string kind = e.Text("kind"), quantity = e.Text("quantity", "force");
+    const bool balance = kind == "energy_balance";
+    if (!balance && !(kind == "element" && (quantity == "work" || quantity == "dissipated"))) continue;
+    const std::string name = e.Text("element");
     for (auto& element : elements)
-      if (e.Text("kind") == "energy_balance" ||
-          (e.Text("kind") == "element" && element->name() == e.Text("element") &&
-           (quantity == "work" || quantity == "dissipated")))
-        element->TrackWork();
+      if (balance || element->name() == name) element->TrackWork();
   }
   std::vector<std::string> input_names;
   for (const ElementDesc& e : m.children)
