@@ -18,8 +18,9 @@ namespace mechflow::mech {
 
 class Loads {
  public:
-  explicit Loads(const Model& model)
-      : model_(&model), segment_(model.segments().size(), Vec6::Zero()), tau_(model.nv(), 0.0) {}
+  explicit Loads(const Model& model) : segment_(model.segments().size(), Vec6::Zero()), tau_(model.nv(), 0.0) {
+    for (const Body& body : model.bodies()) segment_of_body_.push_back(body.segment);
+  }
 
   void Clear() {
     for (Vec6& f : segment_) f.setZero();
@@ -34,7 +35,7 @@ class Loads {
   // A force (global components) acting on `body` at the global point x.
   // Loads on Base0 (or bodies welded to it) are taken by the ground.
   void AddForce(const Kinematics& kin, int body, const Vec3& x, const Vec3& force) {
-    const int s = model_->bodies()[body].segment;
+    const int s = segment_of_body_[body];
     if (s == kGround) return;
     const Pose& pose = kin.pose[s];
     const Vec3 f = pose.R.transpose() * force;
@@ -48,7 +49,7 @@ class Loads {
   }
   // A pure moment (global components) on `body`.
   void AddTorque(const Kinematics& kin, int body, const Vec3& torque) {
-    const int s = model_->bodies()[body].segment;
+    const int s = segment_of_body_[body];
     if (s == kGround) return;
     const Vec3 moment = kin.pose[s].R.transpose() * torque;
     segment_[s].head<3>() += moment;
@@ -64,7 +65,7 @@ class Loads {
   std::span<const double> generalized() const { return tau_; }
 
  private:
-  const Model* model_;
+  std::vector<int> segment_of_body_;  // the model's bodies are large records; this one stays in the cache
   std::vector<Vec6> segment_;
   std::vector<double> tau_;
   std::span<const double> v_;  // empty: no power sums
