@@ -182,11 +182,22 @@ void* LuaState::Allocate(void* ud, void* ptr, std::size_t old_size, std::size_t 
   if (new_size > old_bytes && memory->used - old_bytes + new_size > memory->limit) return nullptr;
   void* block = std::realloc(ptr, new_size);
   if (block) memory->used = memory->used - old_bytes + new_size;
+  if (block && new_size >= kLargeBlock && memory->owner) memory->owner->HurryTimeCheck();
   return block;
+}
+
+void LuaState::HurryTimeCheck() {
+  // lua_sethook may be called anywhere (the standalone interpreter calls it
+  // from a signal handler); the hook then raises the error
+  if (!L_ || time_limit_ <= 0.0 || call_.exceeded != Exceeded::kNone || call_.interval == 1 || !lua_gethook(L_)) return;
+  if (Now() - call_.start <= time_limit_) return;
+  call_.interval = 1;
+  lua_sethook(L_, &InstructionHook, LUA_MASKCOUNT, 1);
 }
 
 LuaState::LuaState(Options options) : unsafe_(options.unsafe) {
   memory_.limit = options.memory_limit;
+  memory_.owner = this;
   set_instruction_limit(options.instruction_limit);
   set_time_limit(options.time_limit);
   L_ = lua_newstate(&LuaState::Allocate, &memory_);

@@ -27,7 +27,8 @@
 //   the error is raised again at every instruction until the call returns,
 //   so no Lua code can run on. Both are checked by a count hook (every
 //   kCheckInterval instructions), armed at the start of the call and removed
-//   at its end, so there is no cost between calls. C functions whose work
+//   at its end, so there is no cost between calls; a large allocation past
+//   the time limit makes the hook run at the next instruction. C functions whose work
 //   the count cannot see are guarded separately (scripting/lua_guards.h).
 //
 // Lua errors long-jump: no C++ frame owning resources may sit between a
@@ -118,7 +119,14 @@ class LuaState {
   struct Memory {
     std::size_t used = 0;
     std::size_t limit = std::size_t(256) << 20;
+    LuaState* owner = nullptr;
   };
+  // Blocks this large make the allocator look at the clock (HurryTimeCheck).
+  static constexpr std::size_t kLargeBlock = std::size_t(64) << 10;
+  // Past the time limit, the hook is made to run at the next instruction: a
+  // loop of costly C calls (each one instruction, each allocating) would
+  // otherwise overrun the limit by kCheckInterval of them.
+  void HurryTimeCheck();
   static void* Allocate(void* ud, void* ptr, std::size_t old_size, std::size_t new_size);
 
   friend class BoundedCall;
