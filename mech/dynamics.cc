@@ -63,17 +63,17 @@ namespace {
 void SlidingDynamics(const Model& model, const Kinematics& kin, std::span<const double> tau,
                      std::span<const Vec6> external, std::span<double> vdot, DynamicsWorkspace* ws) {
   const SlidingStructure& sliding = *model.sliding();
-  const auto& segments = model.segments();
+  const auto& segments = sliding.slides;  // packed: the model's records are large
   const int n = static_cast<int>(segments.size());
   for (int i = 0; i < n; ++i) {
-    const Segment& seg = segments[i];
+    const SlidingStructure::Slide& seg = segments[i];
     Vec3 field = seg.parent == kGround ? model.gravity() : ws->sliding_field[seg.parent];
     if (seg.drive == SegmentDrive::kTime) field -= sliding.axis[i] * kin.prescribed[i].acceleration;
     ws->sliding_field[i] = field;
     ws->sliding_force[i] = kin.pose[i].R * external[i].tail<3>() + sliding.carried_mass[i] * field;
   }
   for (int i = n - 1; i >= 0; --i) {  // children come after their parents
-    const Segment& seg = segments[i];
+    const SlidingStructure::Slide& seg = segments[i];
     if (seg.drive == SegmentDrive::kDof)
       vdot[seg.v_index] =
           (tau[seg.v_index] + sliding.axis[i].dot(ws->sliding_force[i])) / sliding.coordinate_mass[seg.v_index];
@@ -82,7 +82,7 @@ void SlidingDynamics(const Model& model, const Kinematics& kin, std::span<const 
   // The segments' accelerations minus gravity, global in sliding_field (whose
   // field is used up), in their own frames in ws->acceleration.
   for (int i = 0; i < n; ++i) {
-    const Segment& seg = segments[i];
+    const SlidingStructure::Slide& seg = segments[i];
     Vec3 a = seg.parent == kGround ? Vec3(-model.gravity()) : ws->sliding_field[seg.parent];
     if (seg.drive == SegmentDrive::kDof) a += sliding.axis[i] * vdot[seg.v_index];
     if (seg.drive == SegmentDrive::kTime) a += sliding.axis[i] * kin.prescribed[i].acceleration;

@@ -44,6 +44,20 @@ Kinematics::Kinematics(const Model& model) {
 
 namespace {
 
+// s(t) and its rates of segment i's motion (a Segment or a sliding model's
+// packed record of one): a coordinate's, or the time-driven value, which is
+// kept in kin->prescribed. Fixed segments stay at zero.
+template <class SegmentRecord>
+Jet MotionOf(const SegmentRecord& seg, std::size_t i, double t, std::span<const double> q,
+             std::span<const double> v, Kinematics* kin) {
+  if (seg.drive == SegmentDrive::kTime) {
+    kin->prescribed[i] = seg.signal >= 0 ? kin->drives[seg.signal] : seg.function->Evaluate(t);
+    return kin->prescribed[i];
+  }
+  if (seg.drive == SegmentDrive::kDof) return {q[seg.q_index], v[seg.v_index], 0.0};
+  return {};
+}
+
 // UpdateKinematicsOfTree for a sliding model: the constructor set what the
 // rotations fix; only translations and their rates change.
 void UpdateSlidingKinematics(const Model& model, double t, std::span<const double> q, std::span<const double> v,
@@ -52,13 +66,7 @@ void UpdateSlidingKinematics(const Model& model, double t, std::span<const doubl
   const SlidingStructure& sliding = *model.sliding();
   for (std::size_t i = 0; i < sliding.slides.size(); ++i) {
     const SlidingStructure::Slide& seg = sliding.slides[i];
-    Jet s;
-    if (seg.drive == SegmentDrive::kTime) {
-      s = seg.signal >= 0 ? kin->drives[seg.signal] : seg.function->Evaluate(t);
-      kin->prescribed[i] = s;
-    } else if (seg.drive == SegmentDrive::kDof) {
-      s = {q[seg.q_index], v[seg.v_index], 0.0};
-    }
+    const Jet s = MotionOf(seg, i, t, q, v, kin);
     const Vec3 local = seg.offset + seg.parent_axis * s.value;
     kin->X[i].r = local;
     auto velocity = kin->velocity[i].tail<3>();
@@ -94,7 +102,7 @@ void UpdateKinematics(const Model& model, double t, std::span<const double> q, s
 }
 
 void UpdateKinematicsOfTree(const Model& model, double t, std::span<const double> q, std::span<const double> v,
-                      Kinematics* kin) {
+                            Kinematics* kin) {
   kin->time = t;
   const auto& segments = model.segments();
   for (std::size_t i = 0; i < segments.size(); ++i) {
@@ -107,13 +115,7 @@ void UpdateKinematicsOfTree(const Model& model, double t, std::span<const double
                                    Vec3(q[seg.q_index], q[seg.q_index + 1], q[seg.q_index + 2])};
       for (int k = 0; k < 6; ++k) vJ(k) = v[seg.v_index + k];
     } else {
-      Jet s;
-      if (seg.drive == SegmentDrive::kTime) {
-        s = seg.signal >= 0 ? kin->drives[seg.signal] : seg.function->Evaluate(t);
-        kin->prescribed[i] = s;
-      } else if (seg.drive == SegmentDrive::kDof) {
-        s = {q[seg.q_index], v[seg.v_index], 0.0};
-      }
+      const Jet s = MotionOf(seg, i, t, q, v, kin);
       Vec6& S = kin->axis[i];
       if (seg.motion == SegmentMotion::kRevolute) {
         local = {seg.placement.R * AxisRotation(seg.axis, s.value), seg.placement.p};
