@@ -129,6 +129,13 @@ void EvaluateElements(const Mechanism& mechanism, double t, std::span<const doub
                       std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
                       std::span<double> xdot);
 
+// Kinematics and the listed elements' sensors (and state rates, into the
+// workspace), for output rows and root checks that read element sensors and
+// no loads: the workspace's loads are left incomplete.
+void EvaluateSensedElements(const Mechanism& mechanism, double t, std::span<const double> x,
+                            std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
+                            std::span<const int> elements);
+
 // Full evaluation: kinematics, element loads and sensors, the holding forces
 // of the elements that stick exactly (mech/exact_stick.h), accelerations,
 // constraint multipliers. Writes x' into `xdot` (may be empty to skip).

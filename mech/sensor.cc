@@ -52,6 +52,10 @@ bool SensorNeedsFullEvaluation(const SensorSpec& spec) {
   return SensorNeedsAccelerations(spec) || spec.kind == SensorKind::kElement;
 }
 
+bool SensorReadsStateOnly(const SensorSpec& spec) {
+  return spec.kind == SensorKind::kCoordinate || spec.kind == SensorKind::kVelocity;
+}
+
 bool SensorDependsOnInputs(const Mechanism& mechanism, const SensorSpec& spec) {
   if (SensorNeedsAccelerations(spec)) return true;
   return spec.kind == SensorKind::kElement && mechanism.element(spec.index).depends_on_inputs();

@@ -56,6 +56,8 @@ bool SensorNeedsAccelerations(const SensorSpec& spec);
 // EvaluateMechanism; an element's force may depend on the inputs through its
 // parameters), need the full evaluation; the others only EvaluatePositions.
 bool SensorNeedsFullEvaluation(const SensorSpec& spec);
+// Coordinate and velocity sensors read the state alone.
+bool SensorReadsStateOnly(const SensorSpec& spec);
 // True when the sensor's value depends on the mechanism's inputs at the same
 // instant: accelerations, reactions, and outputs of elements whose
 // parameters follow inputs.

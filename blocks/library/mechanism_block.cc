@@ -78,9 +78,13 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
                                                           : CrossingDirection::kEither);
     }
   if (!mechanism_->constraints().empty() || mechanism_->model().has_quaternions()) DeclareProjection();
-  for (const auto& sensor : sensors_)
+  for (const auto& sensor : sensors_) {
     if (sensor.kind == mech::SensorKind::kReactionForce || sensor.kind == mech::SensorKind::kReactionTorque)
       ws_.want_reactions = true;
+    if (sensor.kind == mech::SensorKind::kElement) sensed_elements_.push_back(sensor.index);
+  }
+  std::sort(sensed_elements_.begin(), sensed_elements_.end());
+  sensed_elements_.erase(std::unique(sensed_elements_.begin(), sensed_elements_.end()), sensed_elements_.end());
 }
 
 const BlockSparsity* MechanismBlock::sparsity() const {
@@ -136,27 +140,35 @@ void MechanismBlock::EvaluateElementsWithInputs(const BlockContext& ctx) const {
   const std::uint64_t now = ctx.evaluation();
   if (full_at_ == now || elements_with_inputs_at_ == now) return;
   mech::EvaluateElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
-  elements_with_inputs_at_ = elements_at_ = positions_at_ = now;
+  elements_with_inputs_at_ = positions_at_ = now;
 }
 
 void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
   const mech::SensorSpec& sensor = sensors_[port];
+  const std::uint64_t now = ctx.evaluation();
   // Without inputs the full solve is valid at once, and the derivatives and
   // crossings of this evaluation reuse it (the elements are evaluated once).
-  if (sensor.kind == mech::SensorKind::kElement && !mech::SensorDependsOnInputs(*mechanism_, sensor) &&
-      num_inputs() > 0) {
+  if (mech::SensorReadsStateOnly(sensor)) {
+    // nothing to evaluate
+  } else if (sensor.kind == mech::SensorKind::kElement && !mech::SensorDependsOnInputs(*mechanism_, sensor) &&
+             num_inputs() > 0) {
     // Its inputs may not be computed yet in this evaluation (it does not feed
-    // through): evaluate the elements only, and keep no solve cached.
-    if (full_at_ != ctx.evaluation() && elements_at_ != ctx.evaluation()) {
-      mech::EvaluateElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
-      elements_at_ = positions_at_ = ctx.evaluation();
+    // through): evaluate the sensed elements only, and keep no solve cached.
+    if (full_at_ != now && elements_with_inputs_at_ != now && sensed_at_ != now) {
+      mech::EvaluateSensedElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_,
+                                   sensed_elements_);
+      sensed_at_ = positions_at_ = now;
     }
   } else if (sensor.kind == mech::SensorKind::kElement && !ctx.derivatives_follow() &&
              !mech::SensorNeedsAccelerations(sensor) && !StuckExactly(ctx)) {
     // An output row or a root check: no derivatives will reuse a solve, and
-    // no holding force needs one; the elements alone give the element's
-    // values (its inputs feed through, so they are computed).
-    EvaluateElementsWithInputs(ctx);
+    // no holding force needs one; the sensed elements alone give the
+    // element's values (its inputs feed through, so they are computed).
+    if (full_at_ != now && elements_with_inputs_at_ != now && sensed_with_inputs_at_ != now) {
+      mech::EvaluateSensedElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_,
+                                   sensed_elements_);
+      sensed_with_inputs_at_ = sensed_at_ = positions_at_ = now;
+    }
   } else {
     EnsureEvaluated(ctx, mech::SensorNeedsFullEvaluation(sensor));
   }
@@ -198,7 +210,7 @@ void MechanismBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
   const std::uint64_t now = ctx.evaluation();
   if (StuckExactly(ctx)) {
     EnsureEvaluated(ctx, true);
-  } else if (full_at_ != now && elements_with_inputs_at_ != now) {
+  } else if (full_at_ != now && elements_with_inputs_at_ != now && sensed_with_inputs_at_ != now) {
     mech::EvaluateForCrossings(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), &ws_);
     positions_at_ = now;
   }

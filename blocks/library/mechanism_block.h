@@ -88,7 +88,7 @@ class MechanismBlock final : public Block {
   void EvaluateElementsWithInputs(const BlockContext& ctx) const;
   // After modes or states changed outside an evaluation: nothing cached holds.
   void ForgetEvaluations() const {
-    positions_at_ = full_at_ = elements_at_ = elements_with_inputs_at_ = ~std::uint64_t{0};
+    positions_at_ = full_at_ = elements_with_inputs_at_ = sensed_at_ = sensed_with_inputs_at_ = ~std::uint64_t{0};
   }
   // Some element sticks exactly: its holding force needs the dynamics.
   bool StuckExactly(const BlockContext& ctx) const;
@@ -97,8 +97,12 @@ class MechanismBlock final : public Block {
   std::vector<mech::SensorSpec> sensors_;
   mutable mech::MechanismWorkspace ws_;
   mutable std::vector<double> inputs_, scratch_, xdot_;
+  // The evaluation each result was last computed at. sensed_at_: the
+  // sensed elements, perhaps with inputs not yet computed in it.
   mutable std::uint64_t positions_at_ = ~std::uint64_t{0}, full_at_ = ~std::uint64_t{0},
-                        elements_at_ = ~std::uint64_t{0}, elements_with_inputs_at_ = ~std::uint64_t{0};
+                        elements_with_inputs_at_ = ~std::uint64_t{0}, sensed_at_ = ~std::uint64_t{0},
+                        sensed_with_inputs_at_ = ~std::uint64_t{0};
+  std::vector<int> sensed_elements_;  // the elements an element sensor reads, in order
   mutable double worst_residual_ = 0.0;
   mutable bool initial_state_pending_ = false;  // driven segments: redo InitialState with the drives
   mutable std::optional<std::optional<BlockSparsity>> sparsity_;  // outer: found yet

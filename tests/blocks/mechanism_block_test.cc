@@ -526,6 +526,59 @@ TEST(MechanismBlockTest, ElementCrossingsSwitchModes) {
   EXPECT_EQ(r.at(0, 2), -torque);
 }
 
+// Test-only element without sensors that counts its evaluations (and loads nothing).
+class Counted final : public mech::ForceElement {
+ public:
+  explicit Counted(long* calls) : ForceElement("counted", "test"), calls_(calls) {}
+  void Evaluate(const mech::ElementContext&, mech::Loads*, std::span<double>, std::span<double>) const override {
+    ++*calls_;
+  }
+
+ private:
+  long* calls_;
+};
+
+// An output row reads element sensors from the elements that have them:
+// an element nobody senses is evaluated for the right-hand sides only.
+TEST(MechanismBlockTest, RowsEvaluateOnlyTheSensedElements) {
+  const double q0 = 0.3, torque = 1.0;
+  mech::ModelBuilder m;
+  m.SetGravity(mech::Vec3::Zero());
+  m.AddBody(Rod("Rod", 1.0, 1.0));
+  m.AddJoint(mech::testing::ChainJoint("hinge", "Base0", "Rod", {Et(T::kRv, mech::Vec3::UnitX(), q0)}));
+  auto model = m.Build();
+  long counted_calls = 0;
+  std::vector<std::unique_ptr<mech::ForceElement>> elements;
+  elements.push_back(std::make_unique<Counted>(&counted_calls));
+  elements.push_back(std::make_unique<BangBang>(model->dofs()[0], torque));
+  auto mechanism = std::make_shared<mech::Mechanism>(model, std::move(elements), std::vector<std::string>{});
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<MechanismBlock>(
+      "m", mechanism,
+      std::vector<mech::SensorSpec>{Sensor("q", mech::SensorKind::kCoordinate, 0), ElementSensor("torque", 1, 0),
+                                    ElementSensor("integral", 1, 1)}));
+  auto diagram = builder.Build();
+  SolverOptions options;
+  options.t_end = 1.0;
+  options.output_interval = 1e-4;  // far more rows than right-hand sides (the motion is parabolic)
+  Simulator sim(*diagram, options,
+                {diagram->ResolveSignal("m.q"), diagram->ResolveSignal("m.torque"), diagram->ResolveSignal("m.integral")});
+  const RunOutcome outcome = sim.Run();
+  ASSERT_TRUE(outcome.ok) << outcome.failure;
+  const Results& r = sim.results();
+  ASSERT_EQ(r.num_rows(), 10001);
+  const long evaluations = sim.stats().rhs_evals + sim.stats().jac_rhs_evals;
+  EXPECT_LT(evaluations, 2000);
+  EXPECT_GE(counted_calls, evaluations);
+  EXPECT_LE(counted_calls, evaluations + 20) << "rows evaluate the unsensed element";
+  // the sensed element's values are its own: the torque opposes q, the
+  // integral of q grows while q > 0 (the rod reaches q = 0 at t = 0.77 s)
+  for (int i = 0; i < r.num_rows(); i += 500) {
+    EXPECT_EQ(r.at(i, 2), r.at(i, 1) >= 0.0 ? -torque : torque) << r.at(i, 0);
+    if (i > 0 && r.at(i, 1) > 0.0) EXPECT_GT(r.at(i, 3), r.at(i - 500, 3)) << r.at(i, 0);
+  }
+}
+
 TEST(MechanismBlockTest, SensorsAreCheckedAtConstruction) {
   EXPECT_THROW(MechanismBlock("p", Pendulum(0.0), {Sensor("q", mech::SensorKind::kCoordinate, 3)}), InputError);
   EXPECT_THROW(MechanismBlock("p", Pendulum(0.0), {Sensor("r", mech::SensorKind::kReactionForce, -1)}), InputError);
