@@ -344,7 +344,7 @@ void Simulator::RefuseFrozenState() {
   std::copy(y, y + n, frozen_y_.begin());
   if (!advanced || !std::equal(y, y + n, frozen_before_.begin())) return;
   // the solver's own derivative there
-  N_Vector slope = N_VMake_Serial(static_cast<sunindextype>(n), frozen_slope_.data(), solver_->ctx.get());
+  N_Vector slope = sundials::WrapArray(static_cast<sunindextype>(n), frozen_slope_.data(), solver_->ctx);
   const int flag = CVodeGetDky(mem, tn, 1, slope);
   N_VDestroy(slope);
   Check(flag, "CVodeGetDky");
@@ -711,7 +711,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   evaluated_valid_ = false;
   evaluated_x_.assign(n, 0.0);
   if (watch_vector_) N_VDestroy(watch_vector_);
-  watch_vector_ = N_VMake_Serial(n, watch_y_.data(), solver_->ctx.get());
+  watch_vector_ = sundials::WrapArray(n, watch_y_.data(), solver_->ctx);
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
 
@@ -770,7 +770,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     Record(t0, y);
     if (progress) progress(t0);
     std::vector<double> interpolated(n);
-    N_Vector yout = N_VMake_Serial(n, interpolated.data(), solver_->ctx.get());
+    N_Vector yout = sundials::WrapArray(n, interpolated.data(), solver_->ctx);
     struct Release {
       N_Vector v;
       ~Release() { N_VDestroy(v); }

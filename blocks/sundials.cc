@@ -7,6 +7,8 @@
 #include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "blocks/vector_ops.h"
+
 namespace mechflow::blocks::sundials {
 
 std::string CvodeFlagName(int flag) {
@@ -27,8 +29,16 @@ Context::~Context() { SUNContext_Free(&ctx_); }
 
 Vector::Vector(sunindextype n, const Context& ctx) : v_(N_VNew_Serial(n, ctx.get())) {
   if (!v_) throw std::runtime_error("N_VNew_Serial failed");
+  UseCompiledVectorOps(v_);  // and so CVODE's clones of it
 }
 Vector::~Vector() { N_VDestroy(v_); }
+
+N_Vector WrapArray(sunindextype n, double* data, const Context& ctx) {
+  N_Vector v = N_VMake_Serial(n, data, ctx.get());
+  if (!v) throw std::runtime_error("N_VMake_Serial failed");
+  UseCompiledVectorOps(v);
+  return v;
+}
 
 DenseSolver::DenseSolver(const Vector& y, const Context& ctx) {
   const sunindextype n = N_VGetLength(y.get());

@@ -46,6 +46,10 @@ class Vector {
   N_Vector v_ = nullptr;
 };
 
+// A serial vector over `data` (not owned; N_VDestroy frees the vector alone),
+// with the compiled operations (blocks/vector_ops.h), like Vector's.
+N_Vector WrapArray(sunindextype n, double* data, const Context& ctx);
+
 // Dense matrix plus dense direct linear solver for Newton's method.
 class DenseSolver {
  public:

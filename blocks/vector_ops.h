@@ -1,0 +1,27 @@
+#pragma once
+// Serial N_Vector operations compiled with the project, installed in place of
+// NVECTOR_SERIAL's own.
+//
+// Why: Debian 12's SUNDIALS 6.4.1 is built without optimisation (its CMake
+// build type defaulted to none until SUNDIALS 7), so every vector operation
+// of CVODE keeps each loop variable in memory: a weighted norm of 3000
+// numbers took 12 % of a P3 run (../shared/BENCH.md) at N = 1000.
+//
+// The operations compute exactly what NVECTOR_SERIAL computes -- the same
+// special cases (c (x + y) when a = b, x - y when a = 1, b = -1, ...) and the
+// same order of operations in every element and every sum -- so a run gives
+// the same numbers, bit for bit, with either set. The fused operations
+// (linear combination, scale-add-multi) follow, element by element, the
+// sequence of linear sums SUNDIALS performs when a vector has none.
+//
+// Vectors cloned from one with these operations inherit them (N_VCloneEmpty
+// copies the operations table).
+
+#include <nvector/nvector_serial.h>
+
+namespace mechflow::blocks::sundials {
+
+// `v` must be an NVECTOR_SERIAL vector.
+void UseCompiledVectorOps(N_Vector v);
+
+}  // namespace mechflow::blocks::sundials
