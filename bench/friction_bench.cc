@@ -24,7 +24,10 @@
 // direct-dense (dense LU, difference-quotient Jacobian, as the simulator's
 // dense path, so counts compare); for P3 also mechflow-dense (the simulator
 // forced dense), direct-band (banded LU with the analytic Jacobian) and
-// direct-band-ftz (the same with flush-to-zero, BENCH.md's trap). Dense
+// direct-band-ftz (the same with flush-to-zero, BENCH.md's trap). The
+// -ops contenders are the direct programs with mechflow's compiled vector
+// operations (blocks/vector_ops.h) in place of Debian's unoptimised ones:
+// the comparison with equal vector kernels. Dense
 // contenders are skipped above --dense-max (default 100: at N = 1000 a run
 // would take an hour or more), mechflow above --mechflow-max (10000).
 // Final states are compared with a tight run of the direct program (rtol
@@ -49,6 +52,7 @@
 #include "bench/friction_diagram.h"
 #include "bench/friction_direct.h"
 #include "blocks/simulator.h"
+#include "blocks/vector_ops.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
 
@@ -215,10 +219,11 @@ void Header() {
 }
 
 mb::FrictionRunOptions Options(double t_end, int outputs, double rtol, double atol, mb::LinearSolver solver,
-                               bool ftz) {
+                               bool ftz, bool compiled_ops = false) {
   mb::FrictionRunOptions o;
   o.t_end = t_end, o.num_outputs = outputs, o.rtol = rtol, o.atol = atol, o.solver = solver;
   o.flush_subnormals = ftz;
+  if (compiled_ops) o.vector_ops = mechflow::blocks::sundials::UseCompiledVectorOps;
   return o;
 }
 
@@ -244,7 +249,8 @@ void RunP1(int repeat) {
   Header();
   const std::vector<Contender> contenders = {
       {"mechflow", Mechflow(loaded, 1, &line.friction)},
-      {"direct-dense", [&] { return Direct(line, x0, v0s, Options(t_end, outputs, kRtol, kAtol, mb::LinearSolver::kDenseDifferenceQuotient, false)); }}};
+      {"direct-dense", [&] { return Direct(line, x0, v0s, Options(t_end, outputs, kRtol, kAtol, mb::LinearSolver::kDenseDifferenceQuotient, false)); }},
+      {"direct-dense-ops", [&] { return Direct(line, x0, v0s, Options(t_end, outputs, kRtol, kAtol, mb::LinearSolver::kDenseDifferenceQuotient, false, true)); }}};
   const Measured m = Measure(contenders, repeat, tight, "P1");
   // the same with no output grid (rows at 0 and t_end only): what the 2001 rows cost
   auto bare = std::make_shared<mechflow::diagrams::LoadedDiagram>(
@@ -280,7 +286,8 @@ void RunP2(int repeat) {
   Header();
   const std::vector<Contender> contenders = {
       {"mechflow", Mechflow(loaded, 1)},
-      {"direct-dense", [&] { return Direct(line, zero, zero, Options(t_end, outputs, kRtol, kAtol, mb::LinearSolver::kDenseDifferenceQuotient, false)); }}};
+      {"direct-dense", [&] { return Direct(line, zero, zero, Options(t_end, outputs, kRtol, kAtol, mb::LinearSolver::kDenseDifferenceQuotient, false)); }},
+      {"direct-dense-ops", [&] { return Direct(line, zero, zero, Options(t_end, outputs, kRtol, kAtol, mb::LinearSolver::kDenseDifferenceQuotient, false, true)); }}};
   const Measured m = Measure(contenders, repeat, tight, "P2");
   std::printf("        closed-form Coulomb period (rigid stick): stick %.6f + slip %.6f = %.6f s\n", exact.stick,
               exact.slip, exact.period());
@@ -312,7 +319,7 @@ void RunP3(int repeat, const std::vector<int>& sizes, int dense_max, int mechflo
               t_end, kRtol, kAtol, repeat);
   Header();
   const std::vector<std::string> names = {"mechflow", "mechflow-dense", "direct-dense", "direct-band",
-                                          "direct-band-ftz"};
+                                          "direct-band-ftz", "direct-band-ops"};
   std::vector<std::vector<double>> ns(names.size()), cost(names.size());
   for (const int n : sizes) {
     const mb::FrictionLine line = mb::ChainLine(n);
@@ -322,15 +329,16 @@ void RunP3(int repeat, const std::vector<int>& sizes, int dense_max, int mechflo
     mb::DiagramSettings settings;
     settings.t_end = t_end, settings.num_outputs = outputs, settings.rtol = kRtol, settings.atol = kAtol;
     if (n <= mechflow_max) loaded = LoadText(mb::FrictionLineDiagram(line, zero, zero, settings));
-    auto direct = [line, zero, t_end](mb::LinearSolver solver, bool ftz) {
-      return std::function<Outcome()>([=] { return Direct(line, zero, zero, Options(t_end, outputs, kRtol, kAtol, solver, ftz)); });
+    auto direct = [line, zero, t_end](mb::LinearSolver solver, bool ftz, bool ops = false) {
+      return std::function<Outcome()>([=] { return Direct(line, zero, zero, Options(t_end, outputs, kRtol, kAtol, solver, ftz, ops)); });
     };
     const std::vector<Contender> contenders = {
         {names[0], loaded ? Mechflow(loaded, n) : std::function<Outcome()>()},
         {names[1], loaded && n <= dense_max ? Mechflow(loaded, n, nullptr, true) : std::function<Outcome()>()},
         {names[2], n <= dense_max ? direct(mb::LinearSolver::kDenseDifferenceQuotient, false) : std::function<Outcome()>()},
         {names[3], direct(mb::LinearSolver::kBandAnalytic, false)},
-        {names[4], direct(mb::LinearSolver::kBandAnalytic, true)}};
+        {names[4], direct(mb::LinearSolver::kBandAnalytic, true)},
+        {names[5], direct(mb::LinearSolver::kBandAnalytic, true, true)}};
     const Measured m = Measure(contenders, repeat, tight, ("N=" + std::to_string(n)).c_str());
     for (std::size_t c = 0; c < names.size(); ++c)
       if (contenders[c].run) ns[c].push_back(n), cost[c].push_back(m.median[c]);

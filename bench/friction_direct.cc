@@ -237,6 +237,7 @@ FrictionRunResult RunFrictionLine(const FrictionLine& line, const std::vector<do
     Solver s;
     Check(SUNContext_Create(nullptr, &s.ctx), "SUNContext_Create");
     s.y = CheckPointer(N_VNew_Serial(size, s.ctx), "N_VNew_Serial");
+    if (options.vector_ops) options.vector_ops(s.y);
     double* y = N_VGetArrayPointer(s.y);
     std::fill(y, y + size, 0.0);
     for (int i = 0; i < n; ++i) y[2 * i] = x0[i], y[2 * i + 1] = v0[i];

@@ -30,6 +30,8 @@
 
 #include <vector>
 
+#include <sundials/sundials_nvector.h>
+
 namespace mechflow::bench {
 
 // The Frictional element's parameters (mech/frictional_force.h).
@@ -106,6 +108,9 @@ struct FrictionRunOptions {
   // and with V = 0, E(t) + dissipated - work = E(0).
   bool energy_states = false;
   long max_steps = 500000;     // per output interval
+  // Installs other operations on the state vector (CVODE's clones inherit
+  // them): mechflow's compiled ones, to compare with equal vector kernels.
+  void (*vector_ops)(N_Vector) = nullptr;
 };
 
 struct FrictionEvent {
