@@ -8,6 +8,8 @@
 //              (bench/pendulum_chain_direct.h: absolute angles, mass matrix in
 //              closed form, Cholesky per evaluation; tested on its own by
 //              tests/mech/pendulum_chain_reference_test.cc);
+//   reference-ops  the same with mechflow's compiled vector operations
+//              (blocks/vector_ops.h) in place of Debian's unoptimised ones;
 //   mechflow   a diagram with one mechanism (generated as XML text and loaded
 //              outside the timing), relative joint angles, articulated-body
 //              dynamics, run by blocks::Simulator with its dense solver
@@ -50,6 +52,7 @@
 
 #include "bench/pendulum_chain_direct.h"
 #include "blocks/simulator.h"
+#include "blocks/vector_ops.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
 
@@ -81,10 +84,11 @@ struct Contender {
 // ---------------------------------------------------------------------------
 // reference: the direct program
 
-std::function<Outcome()> PrepareReference(int n) {
+std::function<Outcome()> PrepareReference(int n, bool compiled_ops) {
   auto chain = std::make_shared<const PendulumChain>(n, kMass, kLength, kG);
-  return [chain] {
+  return [chain, compiled_ops] {
     mechflow::bench::DirectRunOptions options;
+    if (compiled_ops) options.vector_ops = mechflow::blocks::sundials::UseCompiledVectorOps;
     options.rtol = kRtol;
     options.atol = kAtol;
     options.t_end = kTEnd;
@@ -172,7 +176,8 @@ std::vector<Contender> Contenders() {
     return [prepare](int n) { return n <= dense_max ? prepare(n) : std::function<Outcome()>(); };
   };
   std::vector<Contender> contenders = {
-      {"reference", dense_only(PrepareReference)},
+      {"reference", dense_only([](int n) { return PrepareReference(n, false); })},
+      {"reference-ops", dense_only([](int n) { return PrepareReference(n, true); })},
       {"mechflow", dense_only([](int n) { return PrepareMechflow(n, LinearSolverKind::kDense); })},
       {"mf-krylov", [](int n) { return PrepareMechflow(n, LinearSolverKind::kKrylov); }}};
 #ifdef MECHFLOW_HAVE_SIMBODY
@@ -246,7 +251,7 @@ int main(int argc, char** argv) {
                 kRtol, kAtol, kTEnd, kOutputs, repeat);
     std::printf("us/RHS = median wall time / (integrator + Jacobian RHS evaluations); energy drift E(t_end) - E(0); "
                 "|dtheta| = max |theta_i - theta_i,reference| at t_end\n\n");
-    std::printf("%5s  %-10s %9s %9s %7s %8s %8s %5s %7s %8s %11s %9s\n", "N", "contender", "wall [ms]", "fast [ms]",
+    std::printf("%5s  %-13s %9s %9s %7s %8s %8s %5s %7s %8s %11s %9s\n", "N", "contender", "wall [ms]", "fast [ms]",
                 "steps", "RHS int", "RHS jac", "Jac", "lin it", "us/RHS", "drift [J]", "|dtheta|");
 
     std::vector<std::vector<double>> cost(nc), wall(nc), sizes_of(nc);  // per contender, per N measured
@@ -273,7 +278,7 @@ int main(int argc, char** argv) {
       std::vector<double> median(nc, 0.0);
       for (std::size_t c = 0; c < nc; ++c) {
         if (!runs[c]) {
-          std::printf("%5d  %-10s not measured\n", n, contenders[c].name.c_str());
+          std::printf("%5d  %-13s not measured\n", n, contenders[c].name.c_str());
           continue;
         }
         const Outcome& o = last[c];
@@ -282,7 +287,7 @@ int main(int argc, char** argv) {
         wall[c].push_back(median[c]);
         sizes_of[c].push_back(n);
         const double drift = chain.Energy(o.theta, o.omega);  // E(0) = 0: horizontal, at rest
-        std::printf("%5d  %-10s %9.2f %9.2f %7ld %8ld %8ld %5ld %7ld %8.2f %11.2e", n, contenders[c].name.c_str(),
+        std::printf("%5d  %-13s %9.2f %9.2f %7ld %8ld %8ld %5ld %7ld %8.2f %11.2e", n, contenders[c].name.c_str(),
                     1e3 * median[c], 1e3 * *std::min_element(seconds[c].begin(), seconds[c].end()), o.steps, o.rhs,
                     o.jac_rhs, o.jac_evals, o.linear_iters, 1e6 * cost[c].back(), drift);
         if (c > 0 && runs[0])

@@ -166,6 +166,7 @@ DirectRunResult RunDirect(const PendulumChain& chain, const Eigen::VectorXd& the
     Solver s;
     Check(SUNContext_Create(nullptr, &s.ctx), "SUNContext_Create");
     s.y = CheckPointer(N_VNew_Serial(2 * n, s.ctx), "N_VNew_Serial");
+    if (options.vector_ops) options.vector_ops(s.y);
     double* y = N_VGetArrayPointer(s.y);
     Eigen::Map<Eigen::VectorXd>(y, n) = theta0;
     Eigen::Map<Eigen::VectorXd>(y + n, n) = omega0;

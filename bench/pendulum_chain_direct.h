@@ -31,6 +31,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <sundials/sundials_nvector.h>
 
 namespace mechflow::bench {
 
@@ -92,6 +93,9 @@ struct DirectRunOptions {
   double t_end = 5.0;     // [s], from t = 0
   int num_outputs = 1000;  // CVode is called at t_end k/num_outputs, k = 1..num_outputs (CV_NORMAL)
   long max_steps = 500000;
+  // Installs other operations on the state vector (CVODE's clones inherit
+  // them): mechflow's compiled ones, to compare with equal vector kernels.
+  void (*vector_ops)(N_Vector) = nullptr;
 };
 
 // What one direct run reports.
