@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "blocks/compiled_ops.h"
+
 namespace mechflow::blocks {
 
 SecondOrderSolver::SecondOrderSolver(const sundials::Vector& y, const std::vector<std::pair<int, int>>& pairs,
@@ -37,6 +39,7 @@ SecondOrderSolver::SecondOrderSolver(const sundials::Vector& y, const std::vecto
 
   a_ = SUNDenseMatrix(n, n, ctx.get());
   if (!a_) throw std::runtime_error("SUNDenseMatrix failed");
+  sundials::UseCompiledMatrixOps(a_);  // CVODE copies and scales it at every setup
   ls_ = SUNLinSolNewEmpty(ctx.get());
   if (!ls_) {
     SUNMatDestroy(a_);

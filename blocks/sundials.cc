@@ -7,7 +7,7 @@
 #include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "blocks/vector_ops.h"
+#include "blocks/compiled_ops.h"
 
 namespace mechflow::blocks::sundials {
 
@@ -44,6 +44,7 @@ DenseSolver::DenseSolver(const Vector& y, const Context& ctx) {
   const sunindextype n = N_VGetLength(y.get());
   a_ = SUNDenseMatrix(n, n, ctx.get());
   if (!a_) throw std::runtime_error("SUNDenseMatrix failed");
+  UseCompiledMatrixOps(a_);
   ls_ = SUNLinSol_Dense(y.get(), a_, ctx.get());
   if (!ls_) {
     SUNMatDestroy(a_);

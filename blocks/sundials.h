@@ -47,7 +47,7 @@ class Vector {
 };
 
 // A serial vector over `data` (not owned; N_VDestroy frees the vector alone),
-// with the compiled operations (blocks/vector_ops.h), like Vector's.
+// with the compiled operations (blocks/compiled_ops.h), like Vector's.
 N_Vector WrapArray(sunindextype n, double* data, const Context& ctx);
 
 // Dense matrix plus dense direct linear solver for Newton's method.

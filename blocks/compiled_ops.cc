@@ -1,5 +1,6 @@
-#include "blocks/vector_ops.h"
+#include "blocks/compiled_ops.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mechflow::blocks::sundials {
@@ -165,7 +166,60 @@ int ScaleAddMulti(int nvec, double* a, N_Vector xv, N_Vector* Y, N_Vector* Z) {
   return 0;
 }
 
+// Dense matrices, column-major: with equal shapes, element k of one is
+// element k of the other.
+
+bool SameShape(SUNMatrix a, SUNMatrix b) {
+  return SUNMatGetID(a) == SUNMATRIX_DENSE && SUNMatGetID(b) == SUNMATRIX_DENSE &&
+         SM_ROWS_D(a) == SM_ROWS_D(b) && SM_COLUMNS_D(a) == SM_COLUMNS_D(b);
+}
+
+int MatZero(SUNMatrix a) {
+  double* d = SM_DATA_D(a);
+  for (sunindextype k = 0, n = SM_LDATA_D(a); k < n; ++k) d[k] = 0.0;
+  return SUNMAT_SUCCESS;
+}
+
+int MatCopy(SUNMatrix a, SUNMatrix b) {  // B = A
+  if (!SameShape(a, b)) return SUNMAT_ILL_INPUT;
+  const double* from = SM_DATA_D(a);
+  double* to = SM_DATA_D(b);
+  for (sunindextype k = 0, n = SM_LDATA_D(a); k < n; ++k) to[k] = from[k];
+  return SUNMAT_SUCCESS;
+}
+
+int MatScaleAddI(double c, SUNMatrix a) {  // A = cA + I
+  double* d = SM_DATA_D(a);
+  for (sunindextype k = 0, n = SM_LDATA_D(a); k < n; ++k) d[k] *= c;
+  const sunindextype rows = SM_ROWS_D(a), diagonal = std::min(rows, SM_COLUMNS_D(a));
+  for (sunindextype j = 0; j < diagonal; ++j) d[j * rows + j] += 1.0;
+  return SUNMAT_SUCCESS;
+}
+
+int MatScaleAdd(double c, SUNMatrix a, SUNMatrix b) {  // A = cA + B
+  if (!SameShape(a, b)) return SUNMAT_ILL_INPUT;
+  double* d = SM_DATA_D(a);
+  const double* e = SM_DATA_D(b);
+  for (sunindextype k = 0, n = SM_LDATA_D(a); k < n; ++k) d[k] = c * d[k] + e[k];
+  return SUNMAT_SUCCESS;
+}
+
+SUNMatrix MatClone(SUNMatrix a) {
+  SUNMatrix b = SUNDenseMatrix(SM_ROWS_D(a), SM_COLUMNS_D(a), a->sunctx);
+  if (b) UseCompiledMatrixOps(b);
+  return b;
+}
+
 }  // namespace
+
+void UseCompiledMatrixOps(SUNMatrix a) {
+  SUNMatrix_Ops ops = a->ops;
+  ops->zero = MatZero;
+  ops->copy = MatCopy;
+  ops->scaleaddi = MatScaleAddI;
+  ops->scaleadd = MatScaleAdd;
+  ops->clone = MatClone;
+}
 
 void UseCompiledVectorOps(N_Vector v) {
   N_Vector_Ops ops = v->ops;

@@ -1,9 +1,10 @@
-// The compiled vector operations (blocks/vector_ops.h) give NVECTOR_SERIAL's
-// numbers bit for bit: every special case of its coefficients, every way an
-// output may alias an input, and the fused operations against the linear
-// sums SUNDIALS performs without them.
+// The compiled operations (blocks/compiled_ops.h) give NVECTOR_SERIAL's and
+// SUNMATRIX_DENSE's numbers bit for bit: every special case of the vector
+// coefficients, every way an output may alias an input, the fused vector
+// operations against the linear sums SUNDIALS performs without them, and the
+// Newton matrix's copy and scaling.
 
-#include "blocks/vector_ops.h"
+#include "blocks/compiled_ops.h"
 
 #include <cstring>
 #include <random>
@@ -132,6 +133,47 @@ TEST_F(VectorOpsTest, ClonesInheritTheOperations) {
   EXPECT_EQ(clone->ops->nvlinearsum, ours_[0]->ops->nvlinearsum);
   EXPECT_NE(clone->ops->nvlinearsum, stock_[0]->ops->nvlinearsum);
   N_VDestroy(clone);
+}
+
+// A stock and a compiled 5 x 5 matrix (and a 5 x 3 one) with the same random entries.
+TEST(CompiledMatrixOpsTest, CopyScaleAndCloneAsSundials) {
+  Context ctx;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> value(-2.0, 2.0);
+  SUNMatrix stock[3], ours[3];
+  const sunindextype rows[3] = {5, 5, 5}, columns[3] = {5, 5, 3};
+  for (int k = 0; k < 3; ++k) {
+    stock[k] = SUNDenseMatrix(rows[k], columns[k], ctx.get());
+    ours[k] = SUNDenseMatrix(rows[k], columns[k], ctx.get());
+    UseCompiledMatrixOps(ours[k]);
+    for (sunindextype i = 0; i < rows[k] * columns[k]; ++i)
+      SUNDenseMatrix_Data(stock[k])[i] = SUNDenseMatrix_Data(ours[k])[i] = value(rng);
+  }
+  auto expect_same = [&](const char* what) {
+    for (int k = 0; k < 3; ++k)
+      ASSERT_EQ(std::memcmp(SUNDenseMatrix_Data(stock[k]), SUNDenseMatrix_Data(ours[k]),
+                            rows[k] * columns[k] * sizeof(double)),
+                0)
+          << what << ": matrix " << k;
+  };
+  for (const double c : {-0.37, 1.0, -1.0, 2.5}) {
+    ASSERT_EQ(SUNMatScaleAddI(c, stock[0]), SUNMatScaleAddI(c, ours[0]));
+    expect_same("A = cA + I");
+    ASSERT_EQ(SUNMatScaleAdd(c, stock[1], stock[0]), SUNMatScaleAdd(c, ours[1], ours[0]));
+    expect_same("A = cA + B");
+  }
+  ASSERT_EQ(SUNMatScaleAddI(0.3, stock[2]), SUNMatScaleAddI(0.3, ours[2]));  // 5 x 3: I on the top square
+  expect_same("A = cA + I, not square");
+  EXPECT_EQ(SUNMatCopy(ours[0], ours[2]), SUNMAT_ILL_INPUT);  // shapes differ
+  ASSERT_EQ(SUNMatCopy(stock[0], stock[1]), SUNMatCopy(ours[0], ours[1]));
+  expect_same("copy");
+  SUNMatrix clone = SUNMatClone(ours[1]);
+  EXPECT_EQ(clone->ops->copy, ours[1]->ops->copy);
+  EXPECT_NE(clone->ops->copy, stock[1]->ops->copy);
+  SUNMatDestroy(clone);
+  ASSERT_EQ(SUNMatZero(stock[1]), SUNMatZero(ours[1]));
+  expect_same("zero");
+  for (int k = 0; k < 3; ++k) SUNMatDestroy(stock[k]), SUNMatDestroy(ours[k]);
 }
 
 }  // namespace
