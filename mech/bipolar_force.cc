@@ -1,10 +1,20 @@
 #include "mech/bipolar_force.h"
 
+#include <cmath>
 #include <sstream>
 
 #include "mech/errors.h"
 
 namespace mechflow::mech {
+namespace {
+
+// The coordinate axis d lies on (its only non-zero component), or -1.
+int AlignedAxis(const Vec3& d) {
+  const bool x = d.x() != 0.0, y = d.y() != 0.0, z = d.z() != 0.0;
+  return x && !y && !z ? 0 : y && !x && !z ? 1 : z && !x && !y ? 2 : -1;
+}
+
+}  // namespace
 
 BipolarForce::BipolarForce(std::string name, std::string origin, int body1, Vec3 point1, int body2, Vec3 point2,
                            std::unique_ptr<ForceLaw> law)
@@ -31,8 +41,18 @@ BipolarGeometry MeasureBipolar(const Kinematics& kin, int body1, const Vec3& poi
   g.pa = PointPosition(kin, body1, point1);
   g.pb = PointPosition(kin, body2, point2);
   const Vec3 d = g.pb - g.pa;
-  g.x = d.norm();
-  g.u = g.x > 0.0 ? Vec3(d / g.x) : Vec3(Vec3::Zero());
+  // Along a coordinate axis (a line of masses along x, say) the length is
+  // that component's magnitude: the same numbers without the square root and
+  // the divisions (sqrt(a^2) = |a| and (+-0)/x = +-0 in IEEE arithmetic).
+  const int axis = AlignedAxis(d);
+  if (axis >= 0) {
+    g.x = std::abs(d(axis));
+    g.u = d;
+    g.u(axis) = d(axis) > 0.0 ? 1.0 : -1.0;
+  } else {
+    g.x = d.norm();
+    g.u = g.x > 0.0 ? Vec3(d / g.x) : Vec3(Vec3::Zero());
+  }
   g.v = (PointVelocity(kin, body2, point2) - PointVelocity(kin, body1, point1)).dot(g.u);
   return g;
 }

@@ -355,6 +355,36 @@ TEST(BipolarForceTest, RepulsionIsPositive) {
               +100.0 * 0.5 / 10.0, 1e-12);
 }
 
+// A line along a coordinate axis is measured without a square root; the
+// numbers are those of the general formula, bit for bit, on every axis and
+// in both directions, and off the axes the general formula is used.
+TEST(BipolarForceTest, LinesAlongAnAxisMeasureAsTheGeneralFormula) {
+  for (int axis = 0; axis < 4; ++axis)  // 3: off the axes
+    for (const double side : {1.0, -1.0}) {
+      std::array<double, 6> q0{0.1, -0.2, 0.3, 0.0, 0.0, 0.0};  // the box origin, not turned
+      const Vec3 anchor = Vec3(0.1, -0.2, 0.3) - side * (axis < 3 ? 0.7 * Vec3::Unit(axis) : Vec3(0.3, 0.4, 0.5));
+      ModelBuilder m;
+      m.SetGravity(Vec3::Zero());
+      m.AddBody(testing::Box("Box", 1.0, {0.1, 0.1, 0.1}));
+      m.AddJoint(Cardan("j", "Base0", "Box", q0));
+      auto model = m.Build();
+      Kinematics kin(*model);
+      const std::vector<double> v{0.3, -1.1, 0.7, 0.0, 0.0, 0.0};  // translation only: the box point stays on the axis
+      UpdateKinematics(*model, 0.0, model->initial_q(), v, &kin);
+      const BipolarGeometry g = MeasureBipolar(kin, 0, anchor, 1, Vec3::Zero());
+      const Vec3 d = PointPosition(kin, 1, Vec3::Zero()) - anchor;
+      const double x = d.norm();
+      const Vec3 u = d / x;
+      const double rate = (PointVelocity(kin, 1, Vec3::Zero()) - PointVelocity(kin, 0, anchor)).dot(u);
+      EXPECT_EQ(g.x, x) << axis << " " << side;
+      EXPECT_EQ(g.u, u) << axis << " " << side;
+      EXPECT_EQ(g.v, rate) << axis << " " << side;
+      if (axis < 3) {
+        EXPECT_EQ(g.u(axis), side);
+      }
+    }
+}
+
 TEST(BipolarForceTest, ObliqueLineProjectsOntoTheJoint) {
   // Ground point A = (0.3, 0, 0), box point B = its centre at z = 0.4:
   // x = 0.5, u = (-0.6, 0, 0.8); F = -100 (0.5 - 1) = 50 pushes the box along
