@@ -34,10 +34,10 @@
 // states), krylov is 2x faster at 200 and grows as N^1.2 up to 2000
 // bodies. Measured on the P3
 // chain (../shared/BENCH.md, CPU time): sparse wins already at 20 states
-// (0.07 s against 0.14 s) and by 7x at 200 (1.4 s against 10.3 s); below 100
-// states both take well under a second, so small diagrams keep the dense
-// solver their results were first checked with. The whole run has subnormal
-// numbers flushed to zero (blocks/flush_denormals.h).
+// (0.07 s against 0.14 s), by 1.4x at 30 and 7x at 200 (1.4 s against
+// 10.3 s). No example diagram changes solver at this threshold (it was 100
+// until every other cost of a small run had come down). The whole run has
+// subnormal numbers flushed to zero (blocks/flush_denormals.h).
 //
 // One run, as pseudocode:
 //   initialise block states; settle modes; sample hits due at t_start
@@ -206,7 +206,7 @@ class Simulator {
   const ColouredJacobian* sparse_jacobian() const { return jacobian_.get(); }
 
   // Smallest state count for which kAuto considers a sparse Jacobian.
-  static constexpr int kSparseMinStates = 100;
+  static constexpr int kSparseMinStates = 20;
   // Smallest state count for which kAuto picks the Krylov solver.
   static constexpr int kKrylovMinStates = 200;
 

@@ -575,7 +575,9 @@ TEST(MechanismBlockTest, RowsEvaluateOnlyTheSensedElements) {
   // integral of q grows while q > 0 (the rod reaches q = 0 at t = 0.77 s)
   for (int i = 0; i < r.num_rows(); i += 500) {
     EXPECT_EQ(r.at(i, 2), r.at(i, 1) >= 0.0 ? -torque : torque) << r.at(i, 0);
-    if (i > 0 && r.at(i, 1) > 0.0) EXPECT_GT(r.at(i, 3), r.at(i - 500, 3)) << r.at(i, 0);
+    if (i > 0 && r.at(i, 1) > 0.0) {
+      EXPECT_GT(r.at(i, 3), r.at(i - 500, 3)) << r.at(i, 0);
+    }
   }
 }
 

@@ -409,9 +409,12 @@ TEST(SparseSolverTest, SparseAndDenseRunsAgreeOnFrictionChain) {
 // --- 4. selection and settings -----------------------------------------------
 
 TEST(SparseSolverTest, AutoPicksDenseForSmallAndSparseForLargeChains) {
-  const diagrams::LoadedDiagram small = testing::LoadXml(ChainXml(10));
+  const diagrams::LoadedDiagram small = testing::LoadXml(ChainXml(6));  // 18 states
   const blocks::Simulator small_sim(*small.diagram, small.solver, small.logged);
   EXPECT_EQ(small_sim.sparse_jacobian(), nullptr);
+  const diagrams::LoadedDiagram ten = testing::LoadXml(ChainXml(10));  // 30 states
+  const blocks::Simulator ten_sim(*ten.diagram, ten.solver, ten.logged);
+  EXPECT_NE(ten_sim.sparse_jacobian(), nullptr);
   const diagrams::LoadedDiagram large = testing::LoadXml(ChainXml(100));
   const blocks::Simulator large_sim(*large.diagram, large.solver, large.logged);
   ASSERT_NE(large_sim.sparse_jacobian(), nullptr);
