@@ -485,26 +485,46 @@ TEST(MechanismBlockTest, StatesModesAndCrossingsAreTheMechanisms) {
   EXPECT_FALSE(MechanismBlock("p", Pendulum(0.0), {}).has_projection());
 }
 
-TEST(MechanismBlockTest, ElementCrossingsSwitchModes) {
-  // Without gravity, a rod released at q0 under the torque -T sign(q) moves
-  // along parabolas: it reaches q = 0 after t1 = sqrt(2 q0 I_O / T) and is
-  // back at q0 after 4 t1, where the integral of q over the period is zero.
-  const double q0 = 0.3, torque = 1.0, inertia = 1.0 / 3.0;
-  const double t1 = std::sqrt(2 * q0 * inertia / torque);
+// Test-only element without sensors that counts its evaluations (and loads nothing).
+class Counted final : public mech::ForceElement {
+ public:
+  explicit Counted(long* calls) : ForceElement("counted", "test"), calls_(calls) {}
+  void Evaluate(const mech::ElementContext&, mech::Loads*, std::span<double>, std::span<double>) const override {
+    ++*calls_;
+  }
+
+ private:
+  long* calls_;
+};
+
+// A rod hinged about x at q0, gravity off, under BangBang(torque); with
+// `counted`, a Counted element comes first. Signals m.q, m.torque, m.integral.
+std::unique_ptr<Diagram> BangBangRod(double q0, double torque, long* counted = nullptr) {
   mech::ModelBuilder m;
   m.SetGravity(mech::Vec3::Zero());
   m.AddBody(Rod("Rod", 1.0, 1.0));
   m.AddJoint(mech::testing::ChainJoint("hinge", "Base0", "Rod", {Et(T::kRv, mech::Vec3::UnitX(), q0)}));
   auto model = m.Build();
   std::vector<std::unique_ptr<mech::ForceElement>> elements;
+  if (counted) elements.push_back(std::make_unique<Counted>(counted));
+  const int bang = static_cast<int>(elements.size());
   elements.push_back(std::make_unique<BangBang>(model->dofs()[0], torque));
   auto mechanism = std::make_shared<mech::Mechanism>(model, std::move(elements), std::vector<std::string>{});
   DiagramBuilder builder;
   builder.AddBlock(std::make_unique<MechanismBlock>(
       "m", mechanism,
-      std::vector<mech::SensorSpec>{Sensor("q", mech::SensorKind::kCoordinate, 0), ElementSensor("torque", 0, 0),
-                                    ElementSensor("integral", 0, 1)}));
-  auto diagram = builder.Build();
+      std::vector<mech::SensorSpec>{Sensor("q", mech::SensorKind::kCoordinate, 0), ElementSensor("torque", bang, 0),
+                                    ElementSensor("integral", bang, 1)}));
+  return builder.Build();
+}
+
+TEST(MechanismBlockTest, ElementCrossingsSwitchModes) {
+  // Without gravity, a rod released at q0 under the torque -T sign(q) moves
+  // along parabolas: it reaches q = 0 after t1 = sqrt(2 q0 I_O / T) and is
+  // back at q0 after 4 t1, where the integral of q over the period is zero.
+  const double q0 = 0.3, torque = 1.0, inertia = 1.0 / 3.0;
+  const double t1 = std::sqrt(2 * q0 * inertia / torque);
+  auto diagram = BangBangRod(q0, torque);
   SolverOptions options;
   options.t_end = 4 * t1;
   options.rtol = 1e-10;
@@ -526,38 +546,12 @@ TEST(MechanismBlockTest, ElementCrossingsSwitchModes) {
   EXPECT_EQ(r.at(0, 2), -torque);
 }
 
-// Test-only element without sensors that counts its evaluations (and loads nothing).
-class Counted final : public mech::ForceElement {
- public:
-  explicit Counted(long* calls) : ForceElement("counted", "test"), calls_(calls) {}
-  void Evaluate(const mech::ElementContext&, mech::Loads*, std::span<double>, std::span<double>) const override {
-    ++*calls_;
-  }
-
- private:
-  long* calls_;
-};
-
 // An output row reads element sensors from the elements that have them:
 // an element nobody senses is evaluated for the right-hand sides only.
 TEST(MechanismBlockTest, RowsEvaluateOnlyTheSensedElements) {
-  const double q0 = 0.3, torque = 1.0;
-  mech::ModelBuilder m;
-  m.SetGravity(mech::Vec3::Zero());
-  m.AddBody(Rod("Rod", 1.0, 1.0));
-  m.AddJoint(mech::testing::ChainJoint("hinge", "Base0", "Rod", {Et(T::kRv, mech::Vec3::UnitX(), q0)}));
-  auto model = m.Build();
+  const double torque = 1.0;
   long counted_calls = 0;
-  std::vector<std::unique_ptr<mech::ForceElement>> elements;
-  elements.push_back(std::make_unique<Counted>(&counted_calls));
-  elements.push_back(std::make_unique<BangBang>(model->dofs()[0], torque));
-  auto mechanism = std::make_shared<mech::Mechanism>(model, std::move(elements), std::vector<std::string>{});
-  DiagramBuilder builder;
-  builder.AddBlock(std::make_unique<MechanismBlock>(
-      "m", mechanism,
-      std::vector<mech::SensorSpec>{Sensor("q", mech::SensorKind::kCoordinate, 0), ElementSensor("torque", 1, 0),
-                                    ElementSensor("integral", 1, 1)}));
-  auto diagram = builder.Build();
+  auto diagram = BangBangRod(0.3, torque, &counted_calls);
   SolverOptions options;
   options.t_end = 1.0;
   options.output_interval = 1e-4;  // far more rows than right-hand sides (the motion is parabolic)
