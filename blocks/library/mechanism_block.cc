@@ -143,9 +143,18 @@ void MechanismBlock::EvaluateElementsWithInputs(const BlockContext& ctx) const {
   elements_with_inputs_at_ = positions_at_ = now;
 }
 
+void MechanismBlock::EvaluateSensedElements(const BlockContext& ctx, bool inputs_computed) const {
+  const std::uint64_t now = ctx.evaluation();
+  if (full_at_ == now || elements_with_inputs_at_ == now || sensed_with_inputs_at_ == now) return;
+  if (!inputs_computed && sensed_at_ == now) return;
+  mech::EvaluateSensedElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_,
+                               sensed_elements_);
+  sensed_at_ = positions_at_ = now;
+  if (inputs_computed) sensed_with_inputs_at_ = now;
+}
+
 void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
   const mech::SensorSpec& sensor = sensors_[port];
-  const std::uint64_t now = ctx.evaluation();
   // Without inputs the full solve is valid at once, and the derivatives and
   // crossings of this evaluation reuse it (the elements are evaluated once).
   if (mech::SensorReadsStateOnly(sensor)) {
@@ -154,21 +163,13 @@ void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
              num_inputs() > 0) {
     // Its inputs may not be computed yet in this evaluation (it does not feed
     // through): evaluate the sensed elements only, and keep no solve cached.
-    if (full_at_ != now && elements_with_inputs_at_ != now && sensed_at_ != now) {
-      mech::EvaluateSensedElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_,
-                                   sensed_elements_);
-      sensed_at_ = positions_at_ = now;
-    }
+    EvaluateSensedElements(ctx, false);
   } else if (sensor.kind == mech::SensorKind::kElement && !ctx.derivatives_follow() &&
              !mech::SensorNeedsAccelerations(sensor) && !StuckExactly(ctx)) {
     // An output row or a root check: no derivatives will reuse a solve, and
     // no holding force needs one; the sensed elements alone give the
     // element's values (its inputs feed through, so they are computed).
-    if (full_at_ != now && elements_with_inputs_at_ != now && sensed_with_inputs_at_ != now) {
-      mech::EvaluateSensedElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_,
-                                   sensed_elements_);
-      sensed_with_inputs_at_ = sensed_at_ = positions_at_ = now;
-    }
+    EvaluateSensedElements(ctx, true);
   } else {
     EnsureEvaluated(ctx, mech::SensorNeedsFullEvaluation(sensor));
   }

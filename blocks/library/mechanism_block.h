@@ -86,6 +86,10 @@ class MechanismBlock final : public Block {
   // The elements' loads and sensors without the dynamics, with every input
   // computed (once per evaluation).
   void EvaluateElementsWithInputs(const BlockContext& ctx) const;
+  // The kinematics and the elements that sensors read, for output rows and
+  // root checks (once per evaluation); `inputs_computed`: every input is
+  // computed by now, else only elements that read none may be read.
+  void EvaluateSensedElements(const BlockContext& ctx, bool inputs_computed) const;
   // After modes or states changed outside an evaluation: nothing cached holds.
   void ForgetEvaluations() const {
     positions_at_ = full_at_ = elements_with_inputs_at_ = sensed_at_ = sensed_with_inputs_at_ = ~std::uint64_t{0};
