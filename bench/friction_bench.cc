@@ -51,8 +51,8 @@
 
 #include "bench/friction_diagram.h"
 #include "bench/friction_direct.h"
-#include "blocks/simulator.h"
 #include "blocks/compiled_ops.h"
+#include "blocks/simulator.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
 

@@ -51,8 +51,8 @@
 #include <Eigen/Core>
 
 #include "bench/pendulum_chain_direct.h"
-#include "blocks/simulator.h"
 #include "blocks/compiled_ops.h"
+#include "blocks/simulator.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
 

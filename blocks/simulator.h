@@ -34,8 +34,8 @@
 // states), krylov is 2x faster at 200 and grows as N^1.2 up to 2000
 // bodies. Measured on the P3
 // chain (../shared/BENCH.md, CPU time): sparse wins already at 20 states
-// (0.07 s against 0.14 s), by 1.4x at 30 and 7x at 200 (1.4 s against
-// 10.3 s). No example diagram changes solver at this threshold (it was 100
+// (0.07 s against 0.14 s), by 1.2x at 30 (bench_friction, P3 N = 10),
+// 1.6x at 90 and 7x at 200 (1.4 s against 10.3 s). No example diagram changes solver at this threshold (it was 100
 // until every other cost of a small run had come down). The whole run has
 // subnormal numbers flushed to zero (blocks/flush_denormals.h).
 //

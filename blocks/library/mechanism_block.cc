@@ -155,8 +155,6 @@ void MechanismBlock::EvaluateSensedElements(const BlockContext& ctx, bool inputs
 
 void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
   const mech::SensorSpec& sensor = sensors_[port];
-  // Without inputs the full solve is valid at once, and the derivatives and
-  // crossings of this evaluation reuse it (the elements are evaluated once).
   if (mech::SensorReadsStateOnly(sensor)) {
     // nothing to evaluate
   } else if (sensor.kind == mech::SensorKind::kElement && !mech::SensorDependsOnInputs(*mechanism_, sensor) &&
@@ -171,6 +169,8 @@ void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
     // element's values (its inputs feed through, so they are computed).
     EvaluateSensedElements(ctx, true);
   } else {
+    // The kinematics, or the full solve (in a right-hand side, its
+    // derivatives and crossings reuse it: the elements are evaluated once).
     EnsureEvaluated(ctx, mech::SensorNeedsFullEvaluation(sensor));
   }
   mech::EvaluateSensor(*mechanism_, ws_, ctx.state(), sensor, ctx.output(port));
