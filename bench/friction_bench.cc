@@ -218,9 +218,13 @@ void Header() {
               "steps", "RHS int", "RHS jac", "Jac", "events", "|dx| tight", "|dv| tight");
 }
 
+// The direct programs keep the rows the diagram logs (x_i, v_i for P2 and P3)
+// unless told otherwise, as a program writing the same results would.
 mb::FrictionRunOptions Options(double t_end, int outputs, double rtol, double atol, mb::LinearSolver solver,
-                               bool ftz, bool compiled_ops = false) {
+                               bool ftz, bool compiled_ops = false,
+                               mb::FrictionRunOptions::Rows rows = mb::FrictionRunOptions::Rows::kStates) {
   mb::FrictionRunOptions o;
+  o.rows = rows;
   o.t_end = t_end, o.num_outputs = outputs, o.rtol = rtol, o.atol = atol, o.solver = solver;
   o.flush_subnormals = ftz;
   if (compiled_ops) o.vector_ops = mechflow::blocks::sundials::UseCompiledVectorOps;
@@ -247,10 +251,16 @@ void RunP1(int repeat) {
               "t = 0..%g s, rtol %g, atol %g, %d output times, median of %d runs\n",
               t_end, kRtol, kAtol, outputs, repeat);
   Header();
+  // The seed logs x, v, the friction force and mode, and four columns that
+  // are zero in this variant (the switched-off elastic element, the resting
+  // base), which the direct program does not model.
+  const auto rows = mb::FrictionRunOptions::Rows::kStatesAndFriction;
+  const auto dense = mb::LinearSolver::kDenseDifferenceQuotient;
   const std::vector<Contender> contenders = {
       {"mechflow", Mechflow(loaded, 1, &line.friction)},
-      {"direct-dense", [&] { return Direct(line, x0, v0s, Options(t_end, outputs, kRtol, kAtol, mb::LinearSolver::kDenseDifferenceQuotient, false)); }},
-      {"direct-dense-ops", [&] { return Direct(line, x0, v0s, Options(t_end, outputs, kRtol, kAtol, mb::LinearSolver::kDenseDifferenceQuotient, false, true)); }}};
+      {"direct-dense", [&] { return Direct(line, x0, v0s, Options(t_end, outputs, kRtol, kAtol, dense, false, false, rows)); }},
+      {"direct-dense-ops", [&] { return Direct(line, x0, v0s, Options(t_end, outputs, kRtol, kAtol, dense, false, true, rows)); }},
+      {"direct-no-rows", [&] { return Direct(line, x0, v0s, Options(t_end, outputs, kRtol, kAtol, dense, false, false, mb::FrictionRunOptions::Rows::kNone)); }}};
   const Measured m = Measure(contenders, repeat, tight, "P1");
   // the same with no output grid (rows at 0 and t_end only): what the 2001 rows cost
   auto bare = std::make_shared<mechflow::diagrams::LoadedDiagram>(

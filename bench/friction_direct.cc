@@ -278,12 +278,31 @@ FrictionRunResult RunFrictionLine(const FrictionLine& line, const std::vector<do
       Check(CVodeGetNumGEvals(mem, &v), "CVodeGetNumGEvals"), result.root_evals += v;
     };
 
+    using Rows = FrictionRunOptions::Rows;
+    const int per_mass = options.rows == Rows::kNone ? 0 : options.rows == Rows::kStates ? 2 : 4;
+    result.row_width = per_mass > 0 ? 1 + per_mass * n : 0;
+    result.rows.reserve(static_cast<std::size_t>(result.row_width) * (options.num_outputs + 1));
+    auto record = [&](double t_row) {
+      if (per_mass == 0) return;
+      result.rows.push_back(t_row);
+      for (int i = 0; i < n; ++i) {
+        const double x = y[2 * i], v = y[2 * i + 1];
+        result.rows.push_back(x);
+        result.rows.push_back(v);
+        if (per_mass < 4) continue;
+        result.rows.push_back(FrictionForce(line.friction, p.modes[i], x, v, p.anchors[i]));
+        result.rows.push_back(p.modes[i]);
+      }
+    };
+    record(0.0);
+
     const double t_end = options.t_end, interval = t_end / options.num_outputs;
     double t = 0.0;
     long next_output = 1;
     while (t < t_end) {
       const double t_out = std::min(next_output * interval, t_end);
       if (t_out <= t) {  // an output time that coincides with the last event
+        record(t);
         ++next_output;
         continue;
       }
@@ -308,7 +327,10 @@ FrictionRunResult RunFrictionLine(const FrictionLine& line, const std::vector<do
         Check(CVodeReInit(mem, t, s.y), "CVodeReInit");
         continue;
       }
-      if (t >= t_out) ++next_output;
+      if (t >= t_out) {
+        record(t);
+        ++next_output;
+      }
     }
     accumulate();
     result.x.resize(n);

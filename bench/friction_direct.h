@@ -111,6 +111,11 @@ struct FrictionRunOptions {
   // Installs other operations on the state vector (CVODE's clones inherit
   // them): mechflow's compiled ones, to compare with equal vector kernels.
   void (*vector_ops)(N_Vector) = nullptr;
+  // What each output time (and t = 0) appends to FrictionRunResult::rows, as
+  // a program writing a diagram's logged columns would: nothing; t and
+  // (x_i, v_i) per mass; or t and (x_i, v_i, friction force, mode) per mass.
+  enum class Rows { kNone, kStates, kStatesAndFriction };
+  Rows rows = Rows::kNone;
 };
 
 struct FrictionEvent {
@@ -126,6 +131,8 @@ struct FrictionRunResult {
   std::vector<double> modes, anchors;  // at t_end
   std::vector<FrictionEvent> events;  // every handled crossing, in order
   double work = 0.0, dissipated = 0.0;  // with energy_states
+  std::vector<double> rows;           // row after row, FrictionRunOptions::rows
+  int row_width = 0;
 };
 
 // Integrates the line from (x0, v0) (sizes of the line) with BDF + Newton;

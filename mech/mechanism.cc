@@ -275,7 +275,6 @@ void EvaluateElements(const Mechanism& mechanism, double t, std::span<const doub
 void EvaluateSensedElements(const Mechanism& mechanism, double t, std::span<const double> x,
                             std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
                             std::span<const int> elements) {
-  EvaluatePositions(mechanism, t, x, ws);
   SetParameterArgs(t, inputs, ws);
   ws->loads.Clear();  // the work sensors need each element's power
   if (mechanism.tracks_work()) ws->loads.TrackPower(x.subspan(mechanism.model().nq(), mechanism.model().nv()));

@@ -129,9 +129,10 @@ void EvaluateElements(const Mechanism& mechanism, double t, std::span<const doub
                       std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
                       std::span<double> xdot);
 
-// Kinematics and the listed elements' sensors (and state rates, into the
-// workspace), for output rows and root checks that read element sensors and
-// no loads: the workspace's loads are left incomplete.
+// The listed elements' sensors (and state rates, into the workspace) from the
+// kinematics of EvaluatePositions at the same (t, x), for output rows and
+// root checks that read element sensors and no loads: the workspace's loads
+// are left incomplete.
 void EvaluateSensedElements(const Mechanism& mechanism, double t, std::span<const double> x,
                             std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
                             std::span<const int> elements);

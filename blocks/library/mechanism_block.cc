@@ -79,6 +79,7 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
     }
   if (!mechanism_->constraints().empty() || mechanism_->model().has_quaternions()) DeclareProjection();
   for (const auto& sensor : sensors_) {
+    routes_.push_back(RouteOf(sensor));
     if (sensor.kind == mech::SensorKind::kReactionForce || sensor.kind == mech::SensorKind::kReactionTorque)
       ws_.want_reactions = true;
     if (sensor.kind == mech::SensorKind::kElement) sensed_elements_.push_back(sensor.index);
@@ -147,33 +148,51 @@ void MechanismBlock::EvaluateSensedElements(const BlockContext& ctx, bool inputs
   const std::uint64_t now = ctx.evaluation();
   if (full_at_ == now || elements_with_inputs_at_ == now || sensed_with_inputs_at_ == now) return;
   if (!inputs_computed && sensed_at_ == now) return;
-  mech::EvaluateSensedElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_,
-                               sensed_elements_);
+  const std::span<const double> inputs = Inputs(ctx);
+  // another port of this evaluation may have computed the kinematics
+  if (positions_at_ != now) mech::EvaluatePositions(*mechanism_, ctx.time(), ctx.state(), &ws_);
+  mech::EvaluateSensedElements(*mechanism_, ctx.time(), ctx.state(), inputs, ctx.discrete(), &ws_, sensed_elements_);
   sensed_at_ = positions_at_ = now;
   if (inputs_computed) sensed_with_inputs_at_ = now;
 }
 
+MechanismBlock::PortRoute MechanismBlock::RouteOf(const mech::SensorSpec& sensor) const {
+  if (mech::SensorReadsStateOnly(sensor)) return PortRoute::kState;
+  if (sensor.kind != mech::SensorKind::kElement)
+    return mech::SensorNeedsFullEvaluation(sensor) ? PortRoute::kSolve : PortRoute::kPositions;
+  return !mech::SensorDependsOnInputs(*mechanism_, sensor) && num_inputs() > 0 ? PortRoute::kElementBeforeInputs
+                                                                                : PortRoute::kElement;
+}
+
 void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
-  const mech::SensorSpec& sensor = sensors_[port];
-  if (mech::SensorReadsStateOnly(sensor)) {
-    // nothing to evaluate
-  } else if (sensor.kind == mech::SensorKind::kElement && !mech::SensorDependsOnInputs(*mechanism_, sensor) &&
-             num_inputs() > 0) {
-    // Its inputs may not be computed yet in this evaluation (it does not feed
-    // through): evaluate the sensed elements only, and keep no solve cached.
-    EvaluateSensedElements(ctx, false);
-  } else if (sensor.kind == mech::SensorKind::kElement && !ctx.derivatives_follow() &&
-             !mech::SensorNeedsAccelerations(sensor) && !StuckExactly(ctx)) {
-    // An output row or a root check: no derivatives will reuse a solve, and
-    // no holding force needs one; the sensed elements alone give the
-    // element's values (its inputs feed through, so they are computed).
-    EvaluateSensedElements(ctx, true);
-  } else {
-    // The kinematics, or the full solve (in a right-hand side, its
-    // derivatives and crossings reuse it: the elements are evaluated once).
-    EnsureEvaluated(ctx, mech::SensorNeedsFullEvaluation(sensor));
+  switch (routes_[port]) {
+    case PortRoute::kState:
+      break;
+    case PortRoute::kElementBeforeInputs:
+      // Its inputs may not be computed yet in this evaluation (it does not
+      // feed through): evaluate the sensed elements only, and keep no solve
+      // cached.
+      EvaluateSensedElements(ctx, false);
+      break;
+    case PortRoute::kElement:
+      // An output row or a root check: no derivatives will reuse a solve, and
+      // no holding force needs one; the sensed elements alone give the
+      // element's values (its inputs feed through, so they are computed).
+      // Else the full solve: in a right-hand side, its derivatives and
+      // crossings reuse it, so the elements are evaluated once.
+      if (!ctx.derivatives_follow() && !StuckExactly(ctx))
+        EvaluateSensedElements(ctx, true);
+      else
+        EnsureEvaluated(ctx, true);
+      break;
+    case PortRoute::kPositions:
+      EnsureEvaluated(ctx, false);
+      break;
+    case PortRoute::kSolve:
+      EnsureEvaluated(ctx, true);
+      break;
   }
-  mech::EvaluateSensor(*mechanism_, ws_, ctx.state(), sensor, ctx.output(port));
+  mech::EvaluateSensor(*mechanism_, ws_, ctx.state(), sensors_[port], ctx.output(port));
 }
 
 void MechanismBlock::DoCalcDerivatives(const BlockContext& ctx) const {

@@ -97,6 +97,16 @@ class MechanismBlock final : public Block {
   // Some element sticks exactly: its holding force needs the dynamics.
   bool StuckExactly(const BlockContext& ctx) const;
 
+  // What an output port evaluates, fixed by its sensor (DoCalcOutput).
+  enum class PortRoute : std::uint8_t {
+    kState,                // nothing: it reads the state
+    kElementBeforeInputs,  // the sensed elements, which read no input (the inputs may not be computed yet)
+    kElement,              // the sensed elements, or the solve when derivatives follow or an element sticks exactly
+    kPositions,            // the kinematics
+    kSolve,                // the dynamics (accelerations, reactions)
+  };
+  PortRoute RouteOf(const mech::SensorSpec& sensor) const;
+
   std::shared_ptr<const mech::Mechanism> mechanism_;
   std::vector<mech::SensorSpec> sensors_;
   mutable mech::MechanismWorkspace ws_;
@@ -106,6 +116,7 @@ class MechanismBlock final : public Block {
   mutable std::uint64_t positions_at_ = ~std::uint64_t{0}, full_at_ = ~std::uint64_t{0},
                         elements_with_inputs_at_ = ~std::uint64_t{0}, sensed_at_ = ~std::uint64_t{0},
                         sensed_with_inputs_at_ = ~std::uint64_t{0};
+  std::vector<PortRoute> routes_;     // per output port
   std::vector<int> sensed_elements_;  // the elements an element sensor reads, in order
   mutable double worst_residual_ = 0.0;
   mutable bool initial_state_pending_ = false;  // driven segments: redo InitialState with the drives

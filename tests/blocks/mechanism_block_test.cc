@@ -275,8 +275,9 @@ TEST(MechanismBlockTest, FourBarStaysClosedWithProjection) {
             << sim.stats().steps << "\n";
 }
 
-mech::SensorSpec PointSensor(const std::string& name, mech::SensorKind kind, int body, const mech::Vec3& point) {
-  mech::SensorSpec s = Sensor(name, kind, body);
+mech::SensorSpec PointSensor(const std::string& name, mech::SensorKind kind, int body, const mech::Vec3& point,
+                             int component = -1) {
+  mech::SensorSpec s = Sensor(name, kind, body, component);
   s.point = point;
   return s;
 }
@@ -572,6 +573,67 @@ TEST(MechanismBlockTest, RowsEvaluateOnlyTheSensedElements) {
     if (i > 0 && r.at(i, 1) > 0.0) {
       EXPECT_GT(r.at(i, 3), r.at(i - 500, 3)) << r.at(i, 0);
     }
+  }
+}
+
+// Counts its evaluations: one per evaluation of the kinematics.
+class CountedMotion final : public mech::TimeFunction {
+ public:
+  CountedMotion(double speed, long* calls) : speed_(speed), calls_(calls) {}
+  mech::Jet Evaluate(double t) const override {
+    ++*calls_;
+    return {speed_ * t, speed_, 0.0};
+  }
+
+ private:
+  double speed_;
+  long* calls_;
+};
+
+// A root check at an output time and the row there share one evaluation: the
+// kinematics are computed once for both, whichever port (a position sensor
+// or an element sensor) asks first.
+TEST(MechanismBlockTest, ARowSharesTheKinematicsOfTheRootCheckAtItsTime) {
+  long motions = 0;
+  mech::ModelBuilder m;
+  m.SetGravity(mech::Vec3::Zero());
+  m.AddBody(mech::testing::Box("Cart", 1.0, {0.1, 0.1, 0.1}));
+  m.AddBody(Rod("Rod", 1.0, 1.0));
+  mech::TransformSpec slide = Et(T::kTt, mech::Vec3::UnitY());
+  slide.function = std::make_shared<CountedMotion>(0.1, &motions);
+  m.AddJoint(mech::testing::ChainJoint("slide", "Base0", "Cart", {slide}));
+  m.AddJoint(mech::testing::ChainJoint("hinge", "Cart", "Rod", {Et(T::kRv, mech::Vec3::UnitX(), 0.3)}));
+  auto model = m.Build();
+  std::vector<std::unique_ptr<mech::ForceElement>> elements;
+  elements.push_back(std::make_unique<BangBang>(model->dofs()[0], 1.0));
+  auto mechanism = std::make_shared<mech::Mechanism>(model, std::move(elements), std::vector<std::string>{});
+  // a position port on either side of the element ports: one of them comes
+  // first in any schedule
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<MechanismBlock>(
+      "m", mechanism,
+      std::vector<mech::SensorSpec>{PointSensor("cart_first", mech::SensorKind::kPointPosition, 1, mech::Vec3::Zero(), 1),
+                                    ElementSensor("torque", 0, 0), ElementSensor("integral", 0, 1),
+                                    PointSensor("cart_last", mech::SensorKind::kPointPosition, 1, mech::Vec3::Zero(), 1)}));
+  auto diagram = builder.Build();
+  SolverOptions options;
+  options.t_end = 1.0;
+  options.output_interval = 1e-4;
+  Simulator sim(*diagram, options,
+                {diagram->ResolveSignal("m.cart_first"), diagram->ResolveSignal("m.torque"),
+                 diagram->ResolveSignal("m.integral"), diagram->ResolveSignal("m.cart_last")});
+  const RunOutcome outcome = sim.Run();
+  ASSERT_TRUE(outcome.ok) << outcome.failure;
+  const Results& r = sim.results();
+  ASSERT_EQ(r.num_rows(), 10001);
+  const SolverStats& s = sim.stats();
+  ASSERT_GE(s.root_evals, 10001);  // CVODE checks the roots at every output time
+  // each right-hand side and root check evaluates the kinematics once, and
+  // the rows add none (else 10001 more)
+  EXPECT_LE(motions, s.rhs_evals + s.jac_rhs_evals + s.root_evals + 50);
+  for (int i = 0; i < r.num_rows(); i += 1000) {
+    EXPECT_DOUBLE_EQ(r.at(i, 1), 0.1 * r.at(i, 0));
+    EXPECT_EQ(r.at(i, 4), r.at(i, 1));
   }
 }
 
