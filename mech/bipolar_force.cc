@@ -37,9 +37,13 @@ double BipolarLength(const Kinematics& kin, int body1, const Vec3& point1, int b
 }
 
 BipolarGeometry MeasureBipolar(const Kinematics& kin, int body1, const Vec3& point1, int body2, const Vec3& point2) {
+  // A point at its body's origin (the usual case: chains of masses) is the
+  // body's position and moves with its velocity: nothing to rotate. The same
+  // numbers, up to the sign of a zero.
+  const bool origin1 = point1 == Vec3::Zero(), origin2 = point2 == Vec3::Zero();
   BipolarGeometry g;
-  g.pa = PointPosition(kin, body1, point1);
-  g.pb = PointPosition(kin, body2, point2);
+  g.pa = origin1 ? kin.body_pose[body1].p : PointPosition(kin, body1, point1);
+  g.pb = origin2 ? kin.body_pose[body2].p : PointPosition(kin, body2, point2);
   const Vec3 d = g.pb - g.pa;
   // Along a coordinate axis (a line of masses along x, say) the length is
   // that component's magnitude: the same numbers without the square root and
@@ -53,7 +57,9 @@ BipolarGeometry MeasureBipolar(const Kinematics& kin, int body1, const Vec3& poi
     g.x = d.norm();
     g.u = g.x > 0.0 ? Vec3(d / g.x) : Vec3(Vec3::Zero());
   }
-  g.v = (PointVelocity(kin, body2, point2) - PointVelocity(kin, body1, point1)).dot(g.u);
+  const Vec3 va = origin1 ? kin.body_velocity[body1] : PointVelocity(kin, body1, point1);
+  const Vec3 vb = origin2 ? kin.body_velocity[body2] : PointVelocity(kin, body2, point2);
+  g.v = (vb - va).dot(g.u);
   return g;
 }
 

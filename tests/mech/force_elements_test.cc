@@ -385,6 +385,33 @@ TEST(BipolarForceTest, LinesAlongAnAxisMeasureAsTheGeneralFormula) {
     }
 }
 
+// A point at its body's origin is measured without turning it: the same
+// numbers as the general formula, on a turned and spinning body, at either end.
+TEST(BipolarForceTest, PointsAtTheBodyOriginMeasureAsTheGeneralFormula) {
+  ModelBuilder m;
+  m.SetGravity(Vec3::Zero());
+  m.AddBody(testing::Box("Box", 1.0, {0.1, 0.1, 0.1}));
+  m.AddJoint(Cardan("j", "Base0", "Box", {0.1, -0.2, 0.3, 0.4, -0.5, 0.6}));
+  auto model = m.Build();
+  Kinematics kin(*model);
+  const std::vector<double> v{0.3, -1.1, 0.7, 2.0, -3.0, 1.5};
+  UpdateKinematics(*model, 0.0, model->initial_q(), v, &kin);
+  const Vec3 anchor(0.9, 0.4, -0.3);
+  for (const Vec3& on_box : {Vec3(Vec3::Zero()), Vec3(0.05, -0.02, 0.03)})
+    for (const bool box_first : {false, true}) {
+      const int b1 = box_first ? 1 : 0, b2 = box_first ? 0 : 1;
+      const Vec3 p1 = box_first ? on_box : anchor, p2 = box_first ? anchor : on_box;
+      const BipolarGeometry g = MeasureBipolar(kin, b1, p1, b2, p2);
+      const Vec3 d = PointPosition(kin, b2, p2) - PointPosition(kin, b1, p1);
+      const Vec3 u = d / d.norm();
+      EXPECT_EQ(g.pa, PointPosition(kin, b1, p1));
+      EXPECT_EQ(g.pb, PointPosition(kin, b2, p2));
+      EXPECT_EQ(g.x, d.norm());
+      EXPECT_EQ(g.u, u);
+      EXPECT_EQ(g.v, (PointVelocity(kin, b2, p2) - PointVelocity(kin, b1, p1)).dot(u));
+    }
+}
+
 TEST(BipolarForceTest, ObliqueLineProjectsOntoTheJoint) {
   // Ground point A = (0.3, 0, 0), box point B = its centre at z = 0.4:
   // x = 0.5, u = (-0.6, 0, 0.8); F = -100 (0.5 - 1) = 50 pushes the box along
