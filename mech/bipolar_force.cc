@@ -8,11 +8,8 @@
 namespace mechflow::mech {
 namespace {
 
-// The coordinate axis d lies on (its only non-zero component), or -1.
-int AlignedAxis(const Vec3& d) {
-  const bool x = d.x() != 0.0, y = d.y() != 0.0, z = d.z() != 0.0;
-  return x && !y && !z ? 0 : y && !x && !z ? 1 : z && !x && !y ? 2 : -1;
-}
+// True when d lies on a coordinate axis (one non-zero component).
+bool AlongAnAxis(const Vec3& d) { return (d.x() != 0.0) + (d.y() != 0.0) + (d.z() != 0.0) == 1; }
 
 }  // namespace
 
@@ -41,26 +38,28 @@ BipolarGeometry MeasureBipolar(const Kinematics& kin, int body1, const Vec3& poi
   // body's position and moves with its velocity: nothing to rotate. The same
   // numbers, up to the sign of a zero.
   const bool origin1 = point1 == Vec3::Zero(), origin2 = point2 == Vec3::Zero();
-  BipolarGeometry g;
-  g.pa = origin1 ? kin.body_pose[body1].p : PointPosition(kin, body1, point1);
-  g.pb = origin2 ? kin.body_pose[body2].p : PointPosition(kin, body2, point2);
-  const Vec3 d = g.pb - g.pa;
+  const Vec3 pa = origin1 ? kin.body_pose[body1].p : PointPosition(kin, body1, point1);
+  const Vec3 pb = origin2 ? kin.body_pose[body2].p : PointPosition(kin, body2, point2);
+  const Vec3 d = pb - pa;
   // Along a coordinate axis (a line of masses along x, say) the length is
   // that component's magnitude: the same numbers without the square root and
   // the divisions (sqrt(a^2) = |a| and (+-0)/x = +-0 in IEEE arithmetic).
-  const int axis = AlignedAxis(d);
-  if (axis >= 0) {
-    g.x = std::abs(d(axis));
-    g.u = d;
-    g.u(axis) = d(axis) > 0.0 ? 1.0 : -1.0;
+  // Locals, not the result's fields, until the end: a field written by index
+  // and read back as a vector stalls the store forwarding.
+  double x;
+  Vec3 u;
+  if (AlongAnAxis(d)) {
+    const double along = d.x() + d.y() + d.z();  // the non-zero component, exactly (the others are zeros)
+    const double s = along > 0.0 ? 1.0 : -1.0;
+    x = std::abs(along);
+    u = Vec3(d.x() != 0.0 ? s : d.x(), d.y() != 0.0 ? s : d.y(), d.z() != 0.0 ? s : d.z());
   } else {
-    g.x = d.norm();
-    g.u = g.x > 0.0 ? Vec3(d / g.x) : Vec3(Vec3::Zero());
+    x = d.norm();
+    u = x > 0.0 ? Vec3(d / x) : Vec3(Vec3::Zero());
   }
   const Vec3 va = origin1 ? kin.body_velocity[body1] : PointVelocity(kin, body1, point1);
   const Vec3 vb = origin2 ? kin.body_velocity[body2] : PointVelocity(kin, body2, point2);
-  g.v = (vb - va).dot(g.u);
-  return g;
+  return {pa, pb, u, x, (vb - va).dot(u)};
 }
 
 void BipolarForce::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
