@@ -53,6 +53,31 @@ TEST(FrictionReference, FreeSlideStopsAtTheClosedFormAndStays) {
   EXPECT_LT(std::abs(r.v[0]), 1e-9);
 }
 
+// The rows the benchmark's direct program keeps: t, then per mass x, v, the
+// friction force and mode, at t = 0 and every output time.
+TEST(FrictionReference, FreeSlideRowsFollowTheClosedForm) {
+  mb::FrictionRunOptions o = Tight(2.0);
+  o.num_outputs = 20;
+  o.rows = mb::FrictionRunOptions::Rows::kStatesAndFriction;
+  const mb::FrictionRunResult r = mb::RunFrictionLine(mb::FreeSlideLine(), {0.0}, {1.5}, o);
+  ASSERT_EQ(r.row_width, 5);
+  ASSERT_EQ(r.rows.size(), 21u * 5u);
+  for (int k = 0; k <= 20; ++k) {
+    const double* row = &r.rows[5 * k];
+    const double t = 0.1 * k;
+    EXPECT_NEAR(row[0], t, 1e-12);
+    const bool sliding = t < 1.5 - 1e-9;  // a = -1 m/s^2 until the stop at 1.5 s
+    EXPECT_NEAR(row[1], sliding ? 1.5 * t - 0.5 * t * t : 1.125, 1e-8) << t;
+    EXPECT_NEAR(row[2], sliding ? 1.5 - t : 0.0, 1e-8) << t;
+    if (k == 15) continue;  // the stop's instant: either mode
+    EXPECT_NEAR(row[3], sliding ? -10.0 : 0.0, 1e-6) << t;  // stuck at rest: no holding force
+    EXPECT_EQ(row[4], sliding ? 1.0 : 0.0) << t;
+  }
+  EXPECT_EQ(r.rows[5 * 20 + 1], r.x[0]);
+  o.rows = mb::FrictionRunOptions::Rows::kStates;
+  EXPECT_EQ(mb::RunFrictionLine(mb::FreeSlideLine(), {0.0}, {1.5}, o).rows.size(), 21u * 3u);
+}
+
 TEST(FrictionReference, CoulombStickSlipMatchesTheCt4Figures) {
   // ELEMENTS.md CT-4, mu_s 0.4, mu_k 0.3: stick 0.1962 s + slip 0.4732 s = 0.6694 s (four digits)
   const mb::StickSlipCycle c = mb::CoulombStickSlip(1.0, 100.0, 0.1, 0.4, 0.3, 9.81);
