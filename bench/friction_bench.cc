@@ -35,6 +35,7 @@
 // --repeat timed runs, the starting contender rotating.
 //
 // Usage: bench_friction [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000,10000] [--dense-max N] [--mechflow-max N]
+//                       [--only mechflow,direct-dense]   (the contenders to run, e.g. to profile one)
 
 #include <algorithm>
 #include <chrono>
@@ -77,6 +78,14 @@ struct Contender {
   std::string name;
   std::function<Outcome()> run;  // empty: not measured
 };
+
+// --only: the contenders to run (all when empty), e.g. to profile one alone
+std::vector<std::string> only_contenders;
+
+bool Selected(const std::string& name) {
+  return only_contenders.empty() ||
+         std::find(only_contenders.begin(), only_contenders.end(), name) != only_contenders.end();
+}
 
 // ---------------------------------------------------------------------------
 // the two kinds of runs
@@ -183,17 +192,19 @@ Measured Measure(const std::vector<Contender>& contenders, int repeat, const Out
   const std::size_t nc = contenders.size();
   Measured m{std::vector<Outcome>(nc), std::vector<double>(nc, kNaN)};
   std::vector<std::vector<double>> seconds(nc);
+  std::vector<bool> runs(nc);
+  for (std::size_t c = 0; c < nc; ++c) runs[c] = contenders[c].run && Selected(contenders[c].name);
   for (std::size_t c = 0; c < nc; ++c)
-    if (contenders[c].run) contenders[c].run();
+    if (runs[c]) contenders[c].run();
   for (int k = 0; k < repeat; ++k)
     for (std::size_t i = 0; i < nc; ++i) {
       const std::size_t c = (i + k) % nc;
-      if (!contenders[c].run) continue;
+      if (!runs[c]) continue;
       m.last[c] = contenders[c].run();
       seconds[c].push_back(m.last[c].seconds);
     }
   for (std::size_t c = 0; c < nc; ++c) {
-    if (!contenders[c].run) {
+    if (!runs[c]) {
       std::printf("%6s  %-16s not measured\n", label, contenders[c].name.c_str());
       continue;
     }
@@ -205,7 +216,7 @@ Measured Measure(const std::vector<Contender>& contenders, int repeat, const Out
   }
   // ratios of mechflow (first) to each direct contender
   for (std::size_t c = 1; c < nc; ++c)
-    if (contenders[0].run && contenders[c].run)
+    if (runs[0] && runs[c])
       std::printf("        %s / %s: wall time %.2f, steps %.2f, RHS evaluations (all) %.2f\n",
                   contenders[0].name.c_str(), contenders[c].name.c_str(), m.median[0] / m.median[c],
                   double(m.last[0].steps) / m.last[c].steps,
@@ -272,6 +283,7 @@ void RunP1(int repeat) {
   std::printf("        closed form: stop at t = %.6f s after %.6f m\n", exact.time, exact.distance);
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     const Outcome& o = m.last[c];
+    if (std::isnan(m.median[c])) continue;
     const double stop = o.stops.empty() ? kNaN : o.stops.front();
     std::printf("        %-16s stop at t = %.9f s (%zu stop events), x_s = %.9f m, creep x - x_s at t_end = %.2e m\n",
                 contenders[c].name.c_str(), stop, o.stops.size(), o.x[0] - o.creep, o.creep);
@@ -316,7 +328,8 @@ void RunP2(int repeat) {
                 "first break-away at %.6f s\n",
                 name, o.breaks.size() - 1, mean, lo, hi, mean / exact.period() - 1.0, o.breaks.front());
   };
-  for (std::size_t c = 0; c < contenders.size(); ++c) report(contenders[c].name.c_str(), m.last[c]);
+  for (std::size_t c = 0; c < contenders.size(); ++c)
+    if (!std::isnan(m.median[c])) report(contenders[c].name.c_str(), m.last[c]);
   report("tight direct", tight);
   std::printf("        closed form: first break-away at mu_s m g/(c V) = %.6f s\n\n", 0.6 * 9.81 / (100.0 * 0.1));
 }
@@ -351,7 +364,7 @@ void RunP3(int repeat, const std::vector<int>& sizes, int dense_max, int mechflo
         {names[5], direct(mb::LinearSolver::kBandAnalytic, true, true)}};
     const Measured m = Measure(contenders, repeat, tight, ("N=" + std::to_string(n)).c_str());
     for (std::size_t c = 0; c < names.size(); ++c)
-      if (contenders[c].run) ns[c].push_back(n), cost[c].push_back(m.median[c]);
+      if (!std::isnan(m.median[c])) ns[c].push_back(n), cost[c].push_back(m.median[c]);
   }
   std::printf("\ngrowth of wall time with N (log-log least-squares slope over the sizes measured):");
   for (std::size_t c = 0; c < names.size(); ++c)
@@ -367,7 +380,7 @@ std::vector<int> List(const char* text) {
 }
 
 int Usage(const char* argv0) {
-  std::fprintf(stderr, "usage: %s [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000,10000] [--dense-max N] [--mechflow-max N]\n",
+  std::fprintf(stderr, "usage: %s [--problems 1,2,3] [--repeat K] [--sizes 10,100,1000,10000] [--dense-max N] [--mechflow-max N] [--only NAME,...]\n",
                argv0);
   return 2;
 }
@@ -390,6 +403,9 @@ int main(int argc, char** argv) {
       problems = List(argv[++i]);
     } else if (arg == "--sizes") {
       sizes = List(argv[++i]);
+    } else if (arg == "--only") {
+      std::stringstream names(argv[++i]);
+      for (std::string name; std::getline(names, name, ',');) only_contenders.push_back(name);
     } else {
       return Usage(argv[0]);
     }

@@ -12,6 +12,7 @@
 
 #include "blocks/analytic_jacobian.h"
 #include "blocks/coloured_jacobian.h"
+#include "blocks/crossing_search.h"
 #include "blocks/evaluation.h"
 #include "blocks/flush_denormals.h"
 #include "blocks/second_order_solver.h"
@@ -125,8 +126,14 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   last_fired_.assign(diagram_.num_zero_crossings(), 0.0);
   fired_in_a_row_.assign(diagram_.num_zero_crossings(), 0);
   next_hit_.assign(diagram_.periodic_blocks().size(), 0);
-  reuse_evaluations_ = diagram_.loops().empty();
-  evaluated_g_.assign(diagram_.num_zero_crossings(), 0.0);
+  std::vector<int> directions;
+  for (const int b : diagram_.crossing_blocks())
+    for (int i = 0; i < diagram_.block(b).num_zero_crossings(); ++i) {
+      const CrossingDirection dir = diagram_.block(b).crossing_direction(i);
+      directions.push_back(dir == CrossingDirection::kRising ? 1 : dir == CrossingDirection::kFalling ? -1 : 0);
+    }
+  crossings_ = std::make_unique<CrossingSearch>(std::move(directions));
+  crossing_values_.assign(diagram_.num_zero_crossings(), 0.0);
   // the Jacobian's structure is the diagram's: found and coloured once
   const int n = std::max(1, diagram_.num_states());
   const LinearSolverKind kind = options_.linear_solver;
@@ -159,6 +166,7 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
 
 Simulator::~Simulator() {
   if (watch_vector_) N_VDestroy(watch_vector_);
+  if (check_vector_) N_VDestroy(check_vector_);
 }
 
 void Simulator::SetReports(std::vector<ReportRequest> reports) {
@@ -226,59 +234,10 @@ void Simulator::WatchStep(double ta, double tb) {
   }
 }
 
-int Simulator::Advance(double t_out, N_Vector yout, double* t_ret) {
-  void* mem = solver_->cvode.get();
-  double* out = N_VGetArrayPointer(yout);
-  if (root_pending_) {
-    if (pending_root_time_ <= t_out) {
-      if (pending_root_time_ > watched_to_) WatchStep(watched_to_, pending_root_time_);
-      watched_to_ = pending_root_time_;
-      root_pending_ = false;
-      std::copy(pending_root_y_.begin(), pending_root_y_.end(), out);
-      *t_ret = pending_root_time_;
-      return CV_ROOT_RETURN;
-    }
-    Check(CVodeGetDky(mem, t_out, 0, yout), "CVodeGetDky");
-    *t_ret = t_out;
-    return CV_SUCCESS;
-  }
-  double tn = 0.0;
-  Check(CVodeGetCurrentTime(mem, &tn), "CVodeGetCurrentTime");
-  // the part of the last step beyond the previous output time: watched only
-  // now, since a control may have re-initialised the solver at that time
-  if (const double end = std::min(tn, t_out); end > watched_to_) {
-    WatchStep(watched_to_, end);
-    watched_to_ = end;
-  }
-  // as in CV_NORMAL: max_steps counts the steps towards one output time
-  for (long steps = 0; tn < t_out; ++steps) {
-    if (steps >= options_.max_steps) {
-      solver_message_ = "at t = " + std::to_string(tn) + ", " + std::to_string(options_.max_steps) +
-                        " steps taken before reaching the output time";
-      return CV_TOO_MUCH_WORK;
-    }
-    const double ta = tn;
-    const int flag = CVode(mem, t_out, yout, t_ret, CV_ONE_STEP);
-    if (flag < 0) return flag;
-    Check(CVodeGetCurrentTime(mem, &tn), "CVodeGetCurrentTime");
-    // a root ends the watched part of the step: beyond it the modes change;
-    // so does the output time, until the solver goes on from there
-    const double tb = std::min(flag == CV_ROOT_RETURN ? *t_ret : tn, t_out);
-    if (tb > std::max(ta, watched_to_)) WatchStep(std::max(ta, watched_to_), tb);
-    watched_to_ = std::max(watched_to_, tb);
-    if (flag == CV_ROOT_RETURN && *t_ret > t_out) {
-      root_pending_ = true;
-      pending_root_time_ = *t_ret;
-      std::copy(out, out + pending_root_y_.size(), pending_root_y_.begin());
-      break;
-    }
-    // the stop time (a sample hit, t_end) beyond t_out: rows come first
-    if (flag == CV_TSTOP_RETURN && *t_ret > t_out) break;
-    if (flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN) return flag;
-  }
-  Check(CVodeGetDky(mem, t_out, 0, yout), "CVodeGetDky");
-  *t_ret = t_out;
-  return CV_SUCCESS;
+void Simulator::WatchTo(double t) {
+  if (reports_.empty() || !(t > watched_to_)) return;
+  WatchStep(watched_to_, t);
+  watched_to_ = t;
 }
 
 void Simulator::EvaluateAt(double t, double* x, bool dynamics_only) {
@@ -288,37 +247,58 @@ void Simulator::EvaluateAt(double t, double* x, bool dynamics_only) {
   EvaluateOutputs(diagram_, dynamics_only ? diagram_.dynamics_schedule() : diagram_.schedule(), &ctx_);
 }
 
-bool Simulator::StillEvaluated(double t, const double* x) const {
-  return evaluated_valid_ && evaluated_at_ == ctx_.evaluation && t == evaluated_t_ &&
-         std::memcmp(x, evaluated_x_.data(), evaluated_x_.size() * sizeof(double)) == 0;
+void Simulator::EvaluateCrossingsAt(double t, double* x, bool row) {
+  EvaluateAt(t, x, !row);
+  ctx_.crossings = crossing_values_.data();
+  EvaluateZeroCrossings(diagram_, &ctx_);
+  ++stats_.root_evals;
 }
 
-void Simulator::CompleteAt(double t, double* x) {
-  if (!StillEvaluated(t, x)) {
-    EvaluateAt(t, x);
-    RememberEvaluated(t, x, nullptr, true);
-  } else if (!evaluated_complete_) {
-    ctx_.time = t;
-    ctx_.x = x;  // the same values, perhaps in another buffer
-    EvaluateOutputs(diagram_, diagram_.rest_schedule(), &ctx_);
-    evaluated_complete_ = true;
+void Simulator::StartCrossings(double t, double* x) {
+  if (crossings_->size() == 0) return;
+  EvaluateCrossingsAt(t, x, false);
+  crossings_->Start(t, crossing_values_);
+  probe_pending_ = crossings_->AnyInactive();
+}
+
+bool Simulator::CheckCrossings(double t, double* x, bool row, double* t_root, double* x_root) {
+  void* mem = solver_->cvode.get();
+  if (probe_pending_) {
+    // CVODE's look just after the start, for functions exactly zero there:
+    // a tenth of the first step on (inside it, on its interpolant)
+    probe_pending_ = false;
+    const double t_probe = crossings_->lower_time() + 0.1 * (t - crossings_->lower_time());
+    Check(CVodeGetDky(mem, t_probe, 0, check_vector_), "CVodeGetDky");
+    EvaluateCrossingsAt(t_probe, check_y_.data(), false);
+    crossings_->Probe(crossing_values_);
   }
+  EvaluateCrossingsAt(t, x, row);
+  if (!crossings_->Crosses(crossing_values_)) {
+    crossings_->Accept(t, crossing_values_);
+    return false;
+  }
+  double tn = t, h = 0.0;
+  CVodeGetCurrentTime(mem, &tn);
+  CVodeGetLastStep(mem, &h);
+  // CVODE's tolerance on the crossing time: a hundred units of round-off
+  const double ttol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(tn) + std::abs(h));
+  *t_root = crossings_->Locate(t, crossing_values_, ttol, [&](double tm, std::span<double> g) {
+    Check(CVodeGetDky(mem, tm, 0, check_vector_), "CVodeGetDky");
+    EvaluateCrossingsAt(tm, check_y_.data(), false);
+    std::copy(crossing_values_.begin(), crossing_values_.end(), g.begin());
+  });
+  std::copy(crossings_->directions_found().begin(), crossings_->directions_found().end(), roots_found_.begin());
+  if (*t_root == t) {
+    std::copy(x, x + check_y_.size(), x_root);
+  } else {
+    Check(CVodeGetDky(mem, *t_root, 0, check_vector_), "CVodeGetDky");
+    std::copy(check_y_.begin(), check_y_.end(), x_root);
+  }
+  return true;
 }
 
-void Simulator::RememberEvaluated(double t, const double* x, const double* g, bool complete) {
-  if (!reuse_evaluations_) return;
-  evaluated_valid_ = true;
-  evaluated_complete_ = complete;
-  evaluated_at_ = ctx_.evaluation;
-  evaluated_t_ = t;
-  std::copy(x, x + evaluated_x_.size(), evaluated_x_.begin());
-  evaluated_crossings_ = g != nullptr;
-  if (g) std::copy(g, g + evaluated_g_.size(), evaluated_g_.begin());
-}
-
-void Simulator::Record(double t, double* x) {
-  // the signals of the root functions' evaluation at this output time, if any
-  CompleteAt(t, x);
+void Simulator::Record(double t, double* x, bool evaluated) {
+  if (!evaluated) EvaluateAt(t, x);
   row_[0] = t;
   int column = 1;
   for (const SignalRef& s : logged_)
@@ -519,29 +499,6 @@ int Simulator::Project(double t, N_Vector y, N_Vector correction, double, N_Vect
   return 0;
 }
 
-int Simulator::Roots(double t, N_Vector y, double* g, void* user) {
-  auto* self = static_cast<Simulator*>(user);
-  const double* x = N_VGetArrayPointer(y);
-  if (self->StillEvaluated(t, x) && self->evaluated_crossings_) {
-    std::copy(self->evaluated_g_.begin(), self->evaluated_g_.end(), g);
-    return 0;
-  }
-  try {
-    Context& ctx = self->ctx_;
-    ctx.time = t;
-    ctx.x = N_VGetArrayPointer(y);
-    ctx.crossings = g;
-    ++ctx.evaluation;
-    EvaluateOutputs(self->diagram_, self->diagram_.dynamics_schedule(), &ctx);
-    EvaluateZeroCrossings(self->diagram_, &ctx);
-    self->RememberEvaluated(t, x, g, false);
-  } catch (const std::exception& e) {
-    self->callback_failure_ = e.what();
-    return -1;
-  }
-  return 0;
-}
-
 void Simulator::ErrorHandler(int, const char*, const char* function, char* msg, void* user) {
   auto* self = static_cast<Simulator*>(user);
   self->solver_message_ = std::string(function) + ": " + msg;
@@ -558,7 +515,6 @@ double Simulator::NextSampleHit() const {
 }
 
 void Simulator::HandleSampleHits(double t) {
-  evaluated_valid_ = false;  // discrete states change
   const auto& periodic = diagram_.periodic_blocks();
   EvaluateAt(t, ctx_.x);
   for (size_t i = 0; i < periodic.size(); ++i) {
@@ -573,8 +529,7 @@ void Simulator::HandleSampleHits(double t) {
 }
 
 void Simulator::HandleCrossings(double t) {
-  evaluated_valid_ = false;  // states and modes change
-  Check(CVodeGetRootInfo(solver_->cvode.get(), roots_found_.data()), "CVodeGetRootInfo");
+  // roots_found_: the crossings CheckCrossings located at t
   EvaluateAt(t, ctx_.x);
   const double instant = kInstant * std::max(1.0, std::abs(t));
   for (int i = 0; i < diagram_.num_zero_crossings(); ++i) {
@@ -622,9 +577,7 @@ void Simulator::AccumulateStats() {
 }
 
 void Simulator::Reinitialize(double t) {
-  evaluated_valid_ = false;
-  // what the solver found beyond t (a root, a watched stretch) is void now
-  root_pending_ = false;
+  // what the solver found beyond t (a watched stretch) is void now
   watched_to_ = t;
   if (!SettleModes(diagram_, &ctx_))
     throw SimulationError("modes did not settle at t = " + std::to_string(t) +
@@ -633,6 +586,7 @@ void Simulator::Reinitialize(double t) {
   Check(CVodeReInit(solver_->cvode.get(), t, solver_->y.get()), "CVodeReInit");
   frozen_valid_ = false;  // a new start: the history compared against is gone
   ++stats_.reinits;
+  StartCrossings(t, solver_->y.data());
 }
 
 class Simulator::Point final : public ControlPoint {
@@ -644,7 +598,6 @@ class Simulator::Point final : public ControlPoint {
   std::span<double> discrete() override { return sim_.ctx_.discrete; }
   void Changed() override {
     sim_.control_changed_ = true;
-    sim_.evaluated_valid_ = false;
     sim_.EvaluateAt(sim_.ctx_.time, sim_.ctx_.x);
   }
   void Stop(std::string reason) override {
@@ -656,8 +609,8 @@ class Simulator::Point final : public ControlPoint {
   Simulator& sim_;
 };
 
-bool Simulator::CallControl(double t, double* x, void (RunControl::*call)(ControlPoint&)) {
-  CompleteAt(t, x);
+bool Simulator::CallControl(double t, double* x, void (RunControl::*call)(ControlPoint&), bool evaluated) {
+  if (!evaluated) EvaluateAt(t, x);
   control_changed_ = false;
   Point point(*this);
   (control_->*call)(point);
@@ -704,14 +657,14 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   projection_attached_ = false;
   for (auto& tracker : trackers_) tracker.Reset();
   for (auto& accumulator : accumulators_) accumulator.Reset();
-  root_pending_ = false;
   watched_to_ = t0;
-  pending_root_y_.assign(n, 0.0);
   watch_y_.assign(n, 0.0);
-  evaluated_valid_ = false;
-  evaluated_x_.assign(n, 0.0);
   if (watch_vector_) N_VDestroy(watch_vector_);
   watch_vector_ = sundials::WrapArray(n, watch_y_.data(), solver_->ctx);
+  check_y_.assign(n, 0.0);
+  if (check_vector_) N_VDestroy(check_vector_);
+  check_vector_ = sundials::WrapArray(n, check_y_.data(), solver_->ctx);
+  probe_pending_ = false;
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
 
@@ -755,21 +708,11 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       projection_attached_ = true;
       break;
     }
-    if (diagram_.num_zero_crossings() > 0) {
-      Check(CVodeRootInit(mem, diagram_.num_zero_crossings(), &Simulator::Roots), "CVodeRootInit");
-      std::vector<int> directions;
-      for (const int b : diagram_.crossing_blocks())
-        for (int i = 0; i < diagram_.block(b).num_zero_crossings(); ++i) {
-          const CrossingDirection dir = diagram_.block(b).crossing_direction(i);
-          directions.push_back(dir == CrossingDirection::kRising ? 1 : dir == CrossingDirection::kFalling ? -1 : 0);
-        }
-      Check(CVodeSetRootDirection(mem, directions.data()), "CVodeSetRootDirection");
-      Check(CVodeSetNoInactiveRootWarn(mem), "CVodeSetNoInactiveRootWarn");
-    }
 
     Record(t0, y);
     if (progress) progress(t0);
-    std::vector<double> interpolated(n);
+    StartCrossings(t0, y);
+    std::vector<double> interpolated(n), at_root(n);
     N_Vector yout = sundials::WrapArray(n, interpolated.data(), solver_->ctx);
     struct Release {
       N_Vector v;
@@ -777,7 +720,8 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     } release{yout};
 
     long next_output = 1;
-    double t = t0;
+    double t = t0;        // the last row, event or stop: the run's results reach here
+    long steps = 0;       // since then (options_.max_steps)
     // output times are computed from an integer index: no drift over long runs
     auto output_time = [&](long k) { return std::min(t0 + k * options_.output_interval, t_end); };
     while (t < t_end && !stop_requested_ && !Interrupted()) {
@@ -793,8 +737,19 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
         continue;
       }
       Check(CVodeSetStopTime(mem, stop), "CVodeSetStopTime");
+      // One step at a time: its rows come from its interpolant. t_out only
+      // sizes the first step after a start, as it would in CV_NORMAL mode.
       double t_ret = t;
-      const int flag = reports_.empty() ? CVode(mem, t_out, yout, &t_ret, CV_NORMAL) : Advance(t_out, yout, &t_ret);
+      int flag = CV_TOO_MUCH_WORK;
+      if (steps < options_.max_steps) {
+        flag = CVode(mem, t_out, yout, &t_ret, CV_ONE_STEP);
+        ++steps;
+      } else {
+        double tn = t;
+        CVodeGetCurrentTime(mem, &tn);
+        solver_message_ = "at t = " + std::to_string(tn) + ", " + std::to_string(options_.max_steps) +
+                          " steps taken before reaching the output time";
+      }
       if (flag == CV_ERR_FAILURE || flag == CV_CONV_FAILURE) {
         // Repeated error-test or convergence failures at one step: restart
         // the method from the last accepted point (order 1, a fresh history)
@@ -804,12 +759,14 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
         // after 2061 error-test failures); error control stays as it was.
         double t_last = t;
         CVodeGetCurrentTime(mem, &t_last);
-        long steps = 0;  // since CVODE last started (CVodeReInit resets the count)
-        CVodeGetNumSteps(mem, &steps);
-        if (callback_failure_.empty() && steps >= kRestartSteps && CVodeGetDky(mem, t_last, 0, yout) == CV_SUCCESS) {
+        long since_start = 0;  // steps since CVODE last started (CVodeReInit resets the count)
+        CVodeGetNumSteps(mem, &since_start);
+        if (callback_failure_.empty() && since_start >= kRestartSteps &&
+            CVodeGetDky(mem, t_last, 0, yout) == CV_SUCCESS) {
           std::copy(interpolated.begin(), interpolated.end(), y);
           ctx_.x = y;
           t = std::max(t, t_last);
+          steps = 0;
           Reinitialize(t_last);
           ++stats_.restarts;
           continue;
@@ -843,43 +800,86 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
         }
         break;
       }
-      if (flag == CV_ROOT_RETURN) {
-        // an event: continue from the located instant with the new modes
-        std::copy(interpolated.begin(), interpolated.end(), y);
-        t = t_ret;
-        ctx_.x = y;
-        HandleCrossings(t);
-        Reinitialize(t);
-        continue;
-      }
+      // The step reached t_ret (its end, or the stop time). Its output times
+      // and then its end are checked for crossings in order, as CVODE checks
+      // them in CV_NORMAL mode; each output time gets its row, all outputs
+      // evaluated once for both.
       const bool at_stop = flag == CV_TSTOP_RETURN || t_ret >= stop;
-      if (at_stop) std::copy(interpolated.begin(), interpolated.end(), y);
-      if (at_stop) {
-        // a sample hit or control timer (also one at t_end): update before
-        // the row is taken
-        ctx_.x = y;
-        HandleSampleHits(t_ret);
-        if (control_ && SameInstant(control_->NextTimer(), t_ret)) CallControl(t_ret, y, &RunControl::Timer);
-        if (t_ret < t_end) Reinitialize(t_ret);
-      }
-      if (t_ret >= t_out) {
-        // reached an output time (with interpolation, the solver may be ahead)
-        double* x_out = at_stop ? y : interpolated.data();
-        if (control_ && CallControl(t_ret, x_out, &RunControl::Output)) {
+      bool restarted = false;  // an event, or a control's change at a row: the rest of the step is void
+      bool frozen_checked = false;
+      for (;;) {
+        double t_check = std::min(output_time(next_output), stop);
+        if (SameInstant(stop, t_check)) t_check = stop;
+        // a row at the stop time comes after its sample hits (below)
+        const bool row = t_check <= t_ret && !(at_stop && t_check >= t_ret);
+        if (!row) {
+          t_check = t_ret;  // the step's end
+          if (t_check <= crossings_->lower_time() || crossings_->size() == 0) {
+            WatchTo(t_ret);
+            break;
+          }
+        }
+        double* x = check_y_.data();
+        if (t_check == t_ret) std::copy(interpolated.begin(), interpolated.end(), check_y_.begin());
+        else Check(CVodeGetDky(mem, t_check, 0, check_vector_), "CVodeGetDky");
+        double t_root = 0.0;
+        if (crossings_->size() > 0 && CheckCrossings(t_check, x, row, &t_root, at_root.data())) {
+          // an event: continue from the located instant with the new modes
+          WatchTo(t_root);
+          std::copy(at_root.begin(), at_root.end(), y);
+          t = t_root;
+          ctx_.x = y;
+          steps = 0;
+          HandleCrossings(t);
+          Reinitialize(t);
+          restarted = true;
+          break;
+        }
+        WatchTo(t_check);
+        if (!row) break;
+        if (crossings_->size() == 0 || !reports_.empty()) EvaluateAt(t_check, x);  // else the check did
+        if (!frozen_checked) RefuseFrozenState();
+        frozen_checked = true;
+        bool changed = false;
+        if (control_) changed = CallControl(t_check, x, &RunControl::Output, true);
+        if (changed) {
           // the control changed the model here: the solver must not go on
           // from a point beyond it, computed with the old values
-          if (x_out != y) std::copy(interpolated.begin(), interpolated.end(), y);
+          std::copy(check_y_.begin(), check_y_.end(), y);
           ctx_.x = y;
-          Reinitialize(t_ret);
-          x_out = y;
+          Reinitialize(t_check);
+          x = y;
         }
+        Record(t_check, x, !changed);
+        if (progress) progress(t_check);
+        ++next_output;
+        t = t_check;
+        steps = 0;
+        if (changed || stop_requested_ || Interrupted()) {
+          restarted = true;
+          break;
+        }
+      }
+      if (restarted || !at_stop) continue;
+      // a sample hit or control timer (also one at t_end): update before
+      // the row is taken
+      std::copy(interpolated.begin(), interpolated.end(), y);
+      ctx_.x = y;
+      t = t_ret;
+      steps = 0;
+      HandleSampleHits(t_ret);
+      if (control_ && SameInstant(control_->NextTimer(), t_ret)) CallControl(t_ret, y, &RunControl::Timer);
+      if (t_ret < t_end) Reinitialize(t_ret);
+      double t_row = std::min(output_time(next_output), stop);
+      if (SameInstant(stop, t_row)) t_row = stop;
+      if (t_row <= t_ret) {
+        if (control_ && CallControl(t_ret, y, &RunControl::Output)) Reinitialize(t_ret);
         RefuseFrozenState();
-        Record(t_ret, x_out);
+        Record(t_ret, y);
         if (progress) progress(t_ret);
         ++next_output;
       }
-      t = std::max(t, t_ret);
-      if (at_stop && t >= t_end) break;
+      if (t >= t_end) break;
     }
     if (outcome.ok && Interrupted()) {
       outcome.ok = false;

@@ -41,17 +41,26 @@
 //
 // One run, as pseudocode:
 //   initialise block states; settle modes; sample hits due at t_start
-//   record row at t_start
+//   record row at t_start; start the crossing search there
 //   while t < t_end:
 //     stop := min(next sample hit, t_end)         (the integrator never passes it)
-//     integrate towards min(next output time, stop), locating zero crossings
-//       (and, when a block declares a projection, projecting after each step)
-//     on reaching an output time: record a row from the dense interpolant
-//     on a zero crossing at t_e: outputs at t_e; each fired block handles its
-//       crossing (may change modes and states); settle modes; re-initialise;
-//       a crossing that fires 100 times at one instant fails the run
+//     take one step (CV_ONE_STEP) towards stop (and, when a block declares a
+//       projection, project after it)
+//     at each output time inside the step, then at its end: interpolate the
+//       state, evaluate the crossing functions (at an output time with every
+//       output, which the row then takes) and compare them with the last
+//       check (blocks/crossing_search.h, CVODE's rules)
+//     on a crossing: locate it on the step's interpolant; at t_e: outputs at
+//       t_e; each fired block handles its crossing (may change modes and
+//       states); settle modes; re-initialise; a crossing that fires 100 times
+//       at one instant fails the run
+//     else at an output time: record the row
 //     on reaching a sample hit: periodic blocks update; settle; re-initialise
 //   on solver failure: record the last state reached and report time and flag
+// The crossings are checked where CVODE's own root finding, driven to each
+// output time in CV_NORMAL mode, would check them, so events and rows are
+// those of that scheme; driving it so cost a CVode call, two interpolations
+// and two evaluations per row (bench/README.md, P1).
 //
 // Modes (stick/slip, saturation, limits) change only at those event points, so
 // the right-hand side is smooth inside every step.
@@ -79,6 +88,7 @@ namespace mechflow::blocks {
 
 class AnalyticJacobian;
 class ColouredJacobian;
+class CrossingSearch;
 
 enum class LinearSolverKind { kAuto, kDense, kSparse, kKrylov };
 // Where the Newton matrices' Jacobian comes from: kAuto takes the analytic
@@ -217,7 +227,6 @@ class Simulator {
                           sunbooleantype* jcur, double gamma, void* self, N_Vector, N_Vector, N_Vector);
   static int DenseJacobian(double t, N_Vector y, N_Vector fy, SUNMatrix j, void* self, N_Vector, N_Vector,
                            N_Vector);
-  static int Roots(double t, N_Vector y, double* g, void* self);
   static int PreconditionRatePairs(double t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z, double gamma,
                                    double delta, int side, void* self);
   static int Project(double t, N_Vector y, N_Vector correction, double tolerance, N_Vector error, void* self);
@@ -230,14 +239,19 @@ class Simulator {
   int EvaluateAnalyticJacobian(double t, double* x);
   // Every output at (t, x), or the dynamics schedule's alone.
   void EvaluateAt(double t, double* x, bool dynamics_only = false);
-  // Every output at (t, x), from the last evaluation when it was there: then
-  // only the outputs it left out (a root check computes the dynamics
-  // schedule alone) are computed.
-  void CompleteAt(double t, double* x);
-  bool StillEvaluated(double t, const double* x) const;
-  // `complete`: every output was computed, not only the dynamics schedule.
-  void RememberEvaluated(double t, const double* x, const double* g, bool complete);
-  void Record(double t, double* x);
+  // The zero-crossing functions at (t, x) into crossing_values_, after
+  // evaluating the outputs there (all of them for a row, else the dynamics
+  // schedule's).
+  void EvaluateCrossingsAt(double t, double* x, bool row);
+  // A new start of the crossing search at (t, x) (with CVODE's).
+  void StartCrossings(double t, double* x);
+  // Checks the crossings at (t, x) after a step: all outputs evaluated
+  // there when `row`. On a crossing between the last check and t, returns
+  // true with it located (roots_found_) and the state there in x_root, at
+  // *t_root; otherwise the check is accepted.
+  bool CheckCrossings(double t, double* x, bool row, double* t_root, double* x_root);
+  // Writes a row at (t, x); `evaluated`: every output is current there.
+  void Record(double t, double* x, bool evaluated = false);
   // Before an output row: when CVODE's own time advanced since the last row
   // (no re-initialisation between) while its own state stayed the same bit
   // for bit, although its derivative there is not zero, the motion froze
@@ -254,12 +268,12 @@ class Simulator {
   void Reinitialize(double t);
   void AccumulateStats();
   // Calls the control (`call` is one of its methods) with the outputs
-  // evaluated at (t, x); returns true when it changed something.
-  bool CallControl(double t, double* x, void (RunControl::*call)(ControlPoint&));
+  // evaluated at (t, x) (`evaluated`: they are current there); returns true
+  // when it changed something.
+  bool CallControl(double t, double* x, void (RunControl::*call)(ControlPoint&), bool evaluated = false);
   double NextStop() const;
-  // CVode towards t_out one internal step at a time, watching each step for
-  // the reports; returns as CVode(..., CV_NORMAL) would.
-  int Advance(double t_out, N_Vector yout, double* t_ret);
+  // Lets the reports see the solution on (watched_to_, t], within the last step.
+  void WatchTo(double t);
   void WatchStep(double ta, double tb);
 
   const Diagram& diagram_;
@@ -299,24 +313,14 @@ class Simulator {
   std::vector<SignalAccumulator> accumulators_;  // one per report (the other kinds)
   std::vector<double> watch_y_;          // the state on a watched step
   N_Vector watch_vector_ = nullptr;      // wraps watch_y_ for CVodeGetDky
-  // a root that a step found beyond the output time it was asked for: the
-  // output row comes first, the root on the next Advance
-  bool root_pending_ = false;
   double watched_to_ = 0.0;  // reports have watched the solution up to here
-  double pending_root_time_ = 0.0;
-  std::vector<double> pending_root_y_;
-  // The signals (and root functions) of the last evaluation at (t, x): CVODE
-  // evaluates the root functions at an output time, the row is recorded
-  // there, and the next CVode call evaluates them there again. Reused only
-  // while no other evaluation, event or sample hit came in between, and not
-  // with algebraic loops (a new solve may differ in the last bits).
-  bool reuse_evaluations_ = false;
-  bool evaluated_valid_ = false;
-  bool evaluated_crossings_ = false;
-  bool evaluated_complete_ = false;
-  std::uint64_t evaluated_at_ = 0;  // ctx_.evaluation of it
-  double evaluated_t_ = 0.0;
-  std::vector<double> evaluated_x_, evaluated_g_;
+  // The crossings are checked by the simulator at every step end and output
+  // time, as CVODE's root finding would in CV_NORMAL mode (see Run).
+  std::unique_ptr<CrossingSearch> crossings_;
+  std::vector<double> crossing_values_;  // at the last check
+  bool probe_pending_ = false;           // a function was exactly zero at the start
+  std::vector<double> check_y_;          // the state at a check inside a step
+  N_Vector check_vector_ = nullptr;      // wraps check_y_ for CVodeGetDky
   std::unique_ptr<ColouredJacobian> jacobian_;  // sparse runs only
   std::unique_ptr<AnalyticJacobian> analytic_;  // when the run uses one
   std::vector<double> analytic_values_;         // sparse: its values on the pattern

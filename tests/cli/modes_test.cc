@@ -15,14 +15,17 @@ std::string Example(const std::string& name) {
   return std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + name;
 }
 
-// Rows of modes.csv after running `mechflow modes` on an example.
+// Rows of NAME.modes.csv after running `mechflow modes` on an example
+// (each example's diagram is named after its file).
 std::vector<std::vector<double>> Modes(const std::string& example, std::vector<std::string> extra = {}) {
   const std::string dir = ::testing::TempDir() + "/modes_" + example;
   std::vector<std::string> argv = {"modes", Example(example), "--out", dir};
   argv.insert(argv.end(), extra.begin(), extra.end());
   std::ostringstream out, err;
   EXPECT_EQ(Main(argv, out, err), 0) << err.str();
-  std::ifstream csv(dir + "/modes.csv");
+  const std::string name = example.substr(0, example.find('.'));
+  std::ifstream csv(dir + "/" + name + ".modes.csv");
+  EXPECT_TRUE(csv) << "no " << name << ".modes.csv in " << dir;
   std::string line;
   std::getline(csv, line);  // header
   std::vector<std::vector<double>> rows;
