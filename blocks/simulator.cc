@@ -167,6 +167,7 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
 Simulator::~Simulator() {
   if (watch_vector_) N_VDestroy(watch_vector_);
   if (check_vector_) N_VDestroy(check_vector_);
+  if (search_vector_) N_VDestroy(search_vector_);
 }
 
 void Simulator::SetReports(std::vector<ReportRequest> reports) {
@@ -263,13 +264,15 @@ void Simulator::StartCrossings(double t, double* x) {
 
 bool Simulator::CheckCrossings(double t, double* x, bool row, double* t_root, double* x_root) {
   void* mem = solver_->cvode.get();
+  // the probe and the search interpolate into their own buffer: x stays
+  double* trial = search_y_.data();
   if (probe_pending_) {
     // CVODE's look just after the start, for functions exactly zero there:
     // a tenth of the first step on (inside it, on its interpolant)
     probe_pending_ = false;
     const double t_probe = crossings_->lower_time() + 0.1 * (t - crossings_->lower_time());
-    Check(CVodeGetDky(mem, t_probe, 0, check_vector_), "CVodeGetDky");
-    EvaluateCrossingsAt(t_probe, check_y_.data(), false);
+    Check(CVodeGetDky(mem, t_probe, 0, search_vector_), "CVodeGetDky");
+    EvaluateCrossingsAt(t_probe, trial, false);
     crossings_->Probe(crossing_values_);
   }
   EvaluateCrossingsAt(t, x, row);
@@ -283,16 +286,17 @@ bool Simulator::CheckCrossings(double t, double* x, bool row, double* t_root, do
   // CVODE's tolerance on the crossing time: a hundred units of round-off
   const double ttol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(tn) + std::abs(h));
   *t_root = crossings_->Locate(t, crossing_values_, ttol, [&](double tm, std::span<double> g) {
-    Check(CVodeGetDky(mem, tm, 0, check_vector_), "CVodeGetDky");
-    EvaluateCrossingsAt(tm, check_y_.data(), false);
+    Check(CVodeGetDky(mem, tm, 0, search_vector_), "CVodeGetDky");
+    EvaluateCrossingsAt(tm, trial, false);
     std::copy(crossing_values_.begin(), crossing_values_.end(), g.begin());
   });
   std::copy(crossings_->directions_found().begin(), crossings_->directions_found().end(), roots_found_.begin());
+  const std::size_t n = search_y_.size();
   if (*t_root == t) {
-    std::copy(x, x + check_y_.size(), x_root);
+    std::copy(x, x + n, x_root);
   } else {
-    Check(CVodeGetDky(mem, *t_root, 0, check_vector_), "CVodeGetDky");
-    std::copy(check_y_.begin(), check_y_.end(), x_root);
+    Check(CVodeGetDky(mem, *t_root, 0, search_vector_), "CVodeGetDky");
+    std::copy(trial, trial + n, x_root);
   }
   return true;
 }
@@ -664,6 +668,9 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   check_y_.assign(n, 0.0);
   if (check_vector_) N_VDestroy(check_vector_);
   check_vector_ = sundials::WrapArray(n, check_y_.data(), solver_->ctx);
+  search_y_.assign(n, 0.0);
+  if (search_vector_) N_VDestroy(search_vector_);
+  search_vector_ = sundials::WrapArray(n, search_y_.data(), solver_->ctx);
   probe_pending_ = false;
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));

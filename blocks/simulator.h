@@ -321,6 +321,8 @@ class Simulator {
   bool probe_pending_ = false;           // a function was exactly zero at the start
   std::vector<double> check_y_;          // the state at a check inside a step
   N_Vector check_vector_ = nullptr;      // wraps check_y_ for CVodeGetDky
+  std::vector<double> search_y_;         // the state at a probe or a trial of the crossing search
+  N_Vector search_vector_ = nullptr;     // wraps search_y_
   std::unique_ptr<ColouredJacobian> jacobian_;  // sparse runs only
   std::unique_ptr<AnalyticJacobian> analytic_;  // when the run uses one
   std::vector<double> analytic_values_;         // sparse: its values on the pattern

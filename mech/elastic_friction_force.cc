@@ -99,13 +99,18 @@ void ElasticFrictionForce::Derivatives(const ElementContext& ctx, double, double
 
 void ElasticFrictionForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
   const double mode = ctx.modes[0];
+  const bool active = p_.damping.Get(ctx) > 0.0 || p_.stiffness.Get(ctx) > 0.0;
+  if (!active) {  // switched off: every function on the side that cannot trigger, nothing measured
+    values[kBreaksForward] = values[kBreaksBackward] = values[kSlipMinusStops] = -1.0;
+    values[kSlipPlusStops] = 1.0;
+    return;
+  }
   const Values r = Compute(ctx, mode);
   const double limit = BreakawayLimit(p_.ratio.Get(ctx) * p_.friction.Get(ctx));
-  const bool active = p_.damping.Get(ctx) > 0.0 || p_.stiffness.Get(ctx) > 0.0;
-  values[kBreaksForward] = active && mode == 0.0 ? r.tension - limit : -1.0;
-  values[kBreaksBackward] = active && mode == 0.0 ? -r.tension - limit : -1.0;
-  values[kSlipPlusStops] = active && mode == 1.0 ? r.v - r.delta_rate : 1.0;
-  values[kSlipMinusStops] = active && mode == -1.0 ? r.v - r.delta_rate : -1.0;
+  values[kBreaksForward] = mode == 0.0 ? r.tension - limit : -1.0;
+  values[kBreaksBackward] = mode == 0.0 ? -r.tension - limit : -1.0;
+  values[kSlipPlusStops] = mode == 1.0 ? r.v - r.delta_rate : 1.0;
+  values[kSlipMinusStops] = mode == -1.0 ? r.v - r.delta_rate : -1.0;
 }
 
 void ElasticFrictionForce::OnCrossing(int index, int, const ElementContext& ctx, std::span<double> state,

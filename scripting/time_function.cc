@@ -355,6 +355,17 @@ class TimeFunctionCompiler {
     node.begin = begin;
     node.end = end;
     node.constant = nodes_[a].constant && (b < 0 || nodes_[b].constant);
+    // A product with a constant zero is that zero: a part an identifier
+    // switches off (ampl*sin(2*pi*om*t) with ampl = 0) costs nothing at run
+    // time, and its other factor is not evaluated at all.
+    const auto zero = [&](int n) { return n >= 0 && nodes_[n].constant && nodes_[n].value == 0.0; };
+    if (op == Op::kMul && !node.constant && (zero(a) || zero(b))) {
+      node.op = Op::kConst;
+      node.value = zero(a) ? nodes_[a].value : nodes_[b].value;
+      node.a = node.b = -1;
+      node.constant = true;
+      return Add(node);
+    }
     if (node.constant) {
       // the same code as at run time, on operands without derivatives
       Instruction program[3] = {{Op::kConst, nodes_[a].value}, {Op::kConst, b < 0 ? 0.0 : nodes_[b].value}, {op}};
@@ -764,6 +775,9 @@ Jet CompiledTimeFunction::RunProgram(const Instruction* code, int size, double t
 }
 
 Jet CompiledTimeFunction::Evaluate(double t) const {
+  // a constant (folded at compilation): its value, without running the program
+  if (program_.size() == 1 && program_[0].op == Op::kConst && std::isfinite(program_[0].c))
+    return {program_[0].c, 0.0, 0.0};
   const Jet result = RunProgram<false>(program_.data(), static_cast<int>(program_.size()), t, nullptr);
   if (!(std::isfinite(result.value) && std::isfinite(result.rate) && std::isfinite(result.acceleration)))
     ThrowNotFinite(t, result);

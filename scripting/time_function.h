@@ -50,8 +50,10 @@
 // identifiers' values (`ln(alpha-30)` with alpha = 30).
 //
 // Compilation: parse to a tree; fold every part that does not depend on t into
-// one constant; emit a flat postfix program, with constant operands stored in
-// the instruction (`omega*t + phase` is: push t, multiply by omega, add phase).
+// one constant, and a product with a constant zero into that zero (its other
+// factor is never evaluated: `0*ln(t-1)` is 0 at t = 0.5); emit a flat
+// postfix program, with constant operands stored in the instruction
+// (`omega*t + phase` is: push t, multiply by omega, add phase).
 //
 // Evaluation runs the program on triples (s, ds/dt, d2s/dt2) held on a
 // fixed-size stack of kMaxStackDepth slots on the C++ stack: no allocation,

@@ -78,8 +78,14 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
                                                           : CrossingDirection::kEither);
     }
   if (!mechanism_->constraints().empty() || mechanism_->model().has_quaternions()) DeclareProjection();
+  const mech::Model& model = mechanism_->model();
   for (const auto& sensor : sensors_) {
     routes_.push_back(RouteOf(sensor));
+    slots_.push_back(sensor.kind == mech::SensorKind::kCoordinate ? model.dofs()[sensor.index].q_index
+                     : sensor.kind == mech::SensorKind::kVelocity ? model.nq() + model.dofs()[sensor.index].v_index
+                     : sensor.kind == mech::SensorKind::kElement
+                         ? mechanism_->sensor_offset(sensor.index) + sensor.element_sensor
+                         : -1);
     if (sensor.kind == mech::SensorKind::kReactionForce || sensor.kind == mech::SensorKind::kReactionTorque)
       ws_.want_reactions = true;
     if (sensor.kind == mech::SensorKind::kElement) sensed_elements_.push_back(sensor.index);
@@ -134,6 +140,7 @@ void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
 }
 
 bool MechanismBlock::StuckExactly(const BlockContext& ctx) const {
+  if (mechanism_->exact_stick_elements().empty()) return false;
   return mech::AnyStuckExactly(*mechanism_, ctx.time(), ctx.state(), ctx.discrete(), ws_);
 }
 
@@ -167,7 +174,8 @@ MechanismBlock::PortRoute MechanismBlock::RouteOf(const mech::SensorSpec& sensor
 void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
   switch (routes_[port]) {
     case PortRoute::kState:
-      break;
+      ctx.output(port)[0] = ctx.state()[slots_[port]];
+      return;
     case PortRoute::kElementBeforeInputs:
       // Its inputs may not be computed yet in this evaluation (it does not
       // feed through): evaluate the sensed elements only, and keep no solve
@@ -191,6 +199,10 @@ void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
     case PortRoute::kSolve:
       EnsureEvaluated(ctx, true);
       break;
+  }
+  if (slots_[port] >= 0) {  // an element's sensor: copied as mech::EvaluateSensor would
+    ctx.output(port)[0] = ws_.sensors[slots_[port]];
+    return;
   }
   mech::EvaluateSensor(*mechanism_, ws_, ctx.state(), sensors_[port], ctx.output(port));
 }

@@ -117,6 +117,10 @@ class MechanismBlock final : public Block {
                         elements_with_inputs_at_ = ~std::uint64_t{0}, sensed_at_ = ~std::uint64_t{0},
                         sensed_with_inputs_at_ = ~std::uint64_t{0};
   std::vector<PortRoute> routes_;     // per output port
+  // Per output port: where its scalar value is read, for the sensors that
+  // only copy one (coordinates and velocities: the state's index; element
+  // sensors: the workspace's sensor index); -1 for the others.
+  std::vector<int> slots_;
   std::vector<int> sensed_elements_;  // the elements an element sensor reads, in order
   mutable double worst_residual_ = 0.0;
   mutable bool initial_state_pending_ = false;  // driven segments: redo InitialState with the drives

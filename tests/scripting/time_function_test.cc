@@ -130,6 +130,19 @@ TEST_F(TimeFunctionTest, CircularMotionHasExactDerivatives) {
   }
 }
 
+TEST_F(TimeFunctionTest, AProductWithAConstantZeroIsThatZero) {
+  // the seed's base motion ampl*sin(2*pi*om*t), switched off by its amplitude
+  for (const char* text : {"0*sin(2*pi*t)", "sin(2*pi*t)*(alpha-30)", "0*ln(t-1)"}) {
+    const CompiledTimeFunction f(text, ids_, kWhat);
+    EXPECT_EQ(f.num_instructions(), 1) << text;
+    EXPECT_TRUE(f.depends_on_time()) << text;  // its text names t
+    const mech::Jet j = f.Evaluate(0.5);  // ln(t-1) is not evaluated there
+    EXPECT_EQ(j.value, 0.0) << text;
+    EXPECT_EQ(j.rate, 0.0) << text;
+    EXPECT_EQ(j.acceleration, 0.0) << text;
+  }
+}
+
 TEST_F(TimeFunctionTest, ExpressionsWithoutTAreConstantsWithZeroDerivatives) {
   const CompiledTimeFunction f("alpha*pi/180", ids_, kWhat);
   EXPECT_FALSE(f.depends_on_time());
