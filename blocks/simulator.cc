@@ -168,6 +168,7 @@ Simulator::~Simulator() {
   if (watch_vector_) N_VDestroy(watch_vector_);
   if (check_vector_) N_VDestroy(check_vector_);
   if (search_vector_) N_VDestroy(search_vector_);
+  for (N_Vector v : taylor_vectors_) N_VDestroy(v);
 }
 
 void Simulator::SetReports(std::vector<ReportRequest> reports) {
@@ -239,6 +240,30 @@ void Simulator::WatchTo(double t) {
   if (reports_.empty() || !(t > watched_to_)) return;
   WatchStep(watched_to_, t);
   watched_to_ = t;
+}
+
+void Simulator::InterpolateInStep(double t, double* out) {
+  const std::size_t n = check_y_.size();
+  if (taylor_order_ < 0) {
+    // the step's polynomial about its end tn: y(t) = sum_k y^(k)(tn) (t - tn)^k / k!
+    void* mem = solver_->cvode.get();
+    Check(CVodeGetLastOrder(mem, &taylor_order_), "CVodeGetLastOrder");
+    Check(CVodeGetCurrentTime(mem, &taylor_tn_), "CVodeGetCurrentTime");
+    double factorial = 1.0;
+    for (int k = 0; k <= taylor_order_; ++k) {
+      Check(CVodeGetDky(mem, taylor_tn_, k, taylor_vectors_[k]), "CVodeGetDky");
+      if (k > 1) factorial *= k;
+      double* a = taylor_.data() + k * n;
+      if (k > 1) for (std::size_t i = 0; i < n; ++i) a[i] /= factorial;
+    }
+  }
+  const double dt = t - taylor_tn_;
+  const double* a = taylor_.data() + taylor_order_ * n;
+  std::copy(a, a + n, out);
+  for (int k = taylor_order_ - 1; k >= 0; --k) {
+    a = taylor_.data() + k * n;
+    for (std::size_t i = 0; i < n; ++i) out[i] = out[i] * dt + a[i];
+  }
 }
 
 void Simulator::EvaluateAt(double t, double* x, bool dynamics_only) {
@@ -671,6 +696,11 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   search_y_.assign(n, 0.0);
   if (search_vector_) N_VDestroy(search_vector_);
   search_vector_ = sundials::WrapArray(n, search_y_.data(), solver_->ctx);
+  taylor_.assign(n * (kMaxOrder + 1), 0.0);
+  for (N_Vector v : taylor_vectors_) N_VDestroy(v);
+  taylor_vectors_.clear();
+  for (int k = 0; k <= kMaxOrder; ++k)
+    taylor_vectors_.push_back(sundials::WrapArray(n, taylor_.data() + k * n, solver_->ctx));
   probe_pending_ = false;
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
@@ -812,6 +842,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       // them in CV_NORMAL mode; each output time gets its row, all outputs
       // evaluated once for both.
       const bool at_stop = flag == CV_TSTOP_RETURN || t_ret >= stop;
+      taylor_order_ = -1;  // a new step: its polynomial is not known yet
       bool restarted = false;  // an event, or a control's change at a row: the rest of the step is void
       bool frozen_checked = false;
       for (;;) {
@@ -827,8 +858,13 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
           }
         }
         double* x = check_y_.data();
-        if (t_check == t_ret) std::copy(interpolated.begin(), interpolated.end(), check_y_.begin());
-        else Check(CVodeGetDky(mem, t_check, 0, check_vector_), "CVodeGetDky");
+        if (t_check == t_ret) {
+          std::copy(interpolated.begin(), interpolated.end(), check_y_.begin());
+        } else if (taylor_order_ >= 0 || output_time(next_output + 1) <= t_ret) {
+          InterpolateInStep(t_check, x);  // several rows in this step: its polynomial, once
+        } else {
+          Check(CVodeGetDky(mem, t_check, 0, check_vector_), "CVodeGetDky");
+        }
         double t_root = 0.0;
         if (crossings_->size() > 0 && CheckCrossings(t_check, x, row, &t_root, at_root.data())) {
           // an event: continue from the located instant with the new modes
