@@ -17,20 +17,21 @@ CrossingSearch::CrossingSearch(std::vector<int> directions)
 
 void CrossingSearch::Start(double t, std::span<const double> g) {
   t_lo_ = t;
+  inactive_ = 0;
   for (int i = 0; i < size(); ++i) {
     g_lo_[i] = g[i];
     active_[i] = g[i] != 0.0;
+    inactive_ += !active_[i];
   }
 }
 
-bool CrossingSearch::AnyInactive() const {
-  return std::find(active_.begin(), active_.end(), 0) != active_.end();
-}
+bool CrossingSearch::AnyInactive() const { return inactive_ > 0; }
 
 void CrossingSearch::Probe(std::span<const double> g) {
   for (int i = 0; i < size(); ++i) {
     if (active_[i] || g[i] == 0.0) continue;
     active_[i] = 1;
+    --inactive_;
     g_lo_[i] = g[i];
   }
 }
@@ -53,16 +54,21 @@ int CrossingSearch::Leader(std::span<const double> lo, std::span<const double> h
 }
 
 bool CrossingSearch::Crosses(std::span<const double> g) const {
-  bool zero = false;
-  return Leader(g_lo_, g, &zero) >= 0 || zero;
+  // Leader's test without its fractions, the rare sign change first: this
+  // runs at every check
+  const double* lo = g_lo_.data();
+  const double* hi = g.data();
+  for (int i = 0, n = size(); i < n; ++i)
+    if ((hi[i] == 0.0 || lo[i] * hi[i] < 0.0) && active_[i] && Counts(i, lo[i])) return true;
+  return false;
 }
 
 void CrossingSearch::Accept(double t, std::span<const double> g) {
   t_lo_ = t;
-  for (int i = 0; i < size(); ++i) {
-    if (!active_[i] && g[i] != 0.0) active_[i] = 1;
-    g_lo_[i] = g[i];
-  }
+  std::copy(g.begin(), g.end(), g_lo_.begin());
+  if (inactive_ == 0) return;
+  for (int i = 0; i < size(); ++i)
+    if (!active_[i] && g[i] != 0.0) active_[i] = 1, --inactive_;
 }
 
 double CrossingSearch::Locate(double t_hi, std::span<const double> g_hi, double ttol,

@@ -70,6 +70,7 @@ class CrossingSearch {
 
   std::vector<int> directions_;
   std::vector<char> active_;
+  int inactive_ = 0;  // functions not active
   std::vector<double> g_lo_;                            // at the last accepted check
   std::vector<double> bracket_lo_, bracket_hi_, trial_;  // Locate's
   std::vector<int> found_;

@@ -40,6 +40,9 @@ struct ElementContext {
   // An exact-stick element's holding force while it sticks (see
   // ForceElement::StuckExactly); 0 otherwise.
   double stick_force = 0.0;
+  // ZeroCrossings only: this element's sensors, when Evaluate computed them
+  // on the same kinematics; empty otherwise.
+  std::span<const double> sensors;
 };
 
 class DynamicsWorkspace;

@@ -157,7 +157,11 @@ bool FrictionalForce::UpdateModes(const ElementContext& ctx, std::span<double>, 
 }
 
 void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
-  const Slide g = Measure(ctx);
+  Slide g;
+  if (!ctx.sensors.empty() && q_index_ < 0)
+    g.v = ctx.sensors[2];  // its rate, measured by Evaluate on these kinematics
+  else
+    g = Measure(ctx);
   const double mode = ctx.modes[0];
   // Inactive functions sit at a constant away from zero, on the side that
   // cannot trigger.

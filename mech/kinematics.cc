@@ -63,6 +63,7 @@ Jet MotionOf(const SegmentRecord& seg, std::size_t i, double t, std::span<const 
 void UpdateSlidingKinematics(const Model& model, double t, std::span<const double> q, std::span<const double> v,
                              Kinematics* kin) {
   kin->time = t;
+  ++kin->stamp;
   const SlidingStructure& sliding = *model.sliding();
   for (std::size_t i = 0; i < sliding.slides.size(); ++i) {
     const SlidingStructure::Slide& seg = sliding.slides[i];
@@ -104,6 +105,7 @@ void UpdateKinematics(const Model& model, double t, std::span<const double> q, s
 void UpdateKinematicsOfTree(const Model& model, double t, std::span<const double> q, std::span<const double> v,
                             Kinematics* kin) {
   kin->time = t;
+  ++kin->stamp;
   const auto& segments = model.segments();
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const Segment& seg = segments[i];

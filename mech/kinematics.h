@@ -7,6 +7,7 @@
 // nothing. Spatial quantities of a segment are in its own frame, about its
 // origin; body quantities are global.
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -18,6 +19,9 @@ struct Kinematics {
   explicit Kinematics(const Model& model);
 
   double time = 0.0;
+  // Counts the updates: what was computed from these kinematics (element
+  // sensors) is known to be current while it is unchanged.
+  std::uint64_t stamp = 0;
   // per segment
   std::vector<SpatialTransform> X;  // parent -> segment
   std::vector<Pose> pose;           // segment frame in global

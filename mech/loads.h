@@ -36,7 +36,7 @@ class Loads {
   // Loads on Base0 (or bodies welded to it) are taken by the ground.
   void AddForce(const Kinematics& kin, int body, const Vec3& x, const Vec3& force) {
     const int s = segment_of_body_[body];
-    if (s == kGround) return;
+    if (s == kGround || discard_) return;
     const Pose& pose = kin.pose[s];
     const Vec3 f = pose.R.transpose() * force;
     const Vec3 r = pose.R.transpose() * (x - pose.p);
@@ -50,16 +50,22 @@ class Loads {
   // A pure moment (global components) on `body`.
   void AddTorque(const Kinematics& kin, int body, const Vec3& torque) {
     const int s = segment_of_body_[body];
-    if (s == kGround) return;
+    if (s == kGround || discard_) return;
     const Vec3 moment = kin.pose[s].R.transpose() * torque;
     segment_[s].head<3>() += moment;
     if (!v_.empty()) power_ += moment.dot(kin.velocity[s].head<3>());
   }
   // A generalized force on velocity coordinate `v_index` (a joint force).
   void AddGeneralizedForce(int v_index, double value) {
+    if (discard_) return;
     tau_[v_index] += value;
     if (!v_.empty()) power_ += value * v_[v_index];
   }
+
+  // While set, the Add* calls take nothing: an evaluation for sensors
+  // alone (an output row) needs the elements' values, not their loads.
+  // Not with TrackPower (the work sensors need the loads' power).
+  void SetDiscard(bool discard) { discard_ = discard; }
 
   std::span<const Vec6> segment_loads() const { return segment_; }
   std::span<const double> generalized() const { return tau_; }
@@ -70,6 +76,7 @@ class Loads {
   std::vector<double> tau_;
   std::span<const double> v_;  // empty: no power sums
   double power_ = 0.0;
+  bool discard_ = false;
 };
 
 }  // namespace mechflow::mech

@@ -37,6 +37,7 @@ void EvaluateElement(const Mechanism& mechanism, int e, double t, std::span<cons
       std::span<double>(ws->sensors).subspan(mechanism.sensor_offset(e), element.num_sensors());
   const double before = ws->loads.power();
   element.Evaluate(ctx, &ws->loads, rates, sensors);
+  ws->sensors_on[e] = ws->kin.stamp;
   if (!element.tracks_work()) return;
   const double work = ctx.state[element.work_state()];
   rates[element.work_state()] = ws->loads.power() - before;
@@ -250,6 +251,7 @@ MechanismWorkspace::MechanismWorkspace(const Mechanism& mechanism)
       stick(mechanism.num_elements(), static_cast<int>(mechanism.exact_stick_elements().size())),
       vdot(mechanism.model().nv(), 0.0),
       sensors(mechanism.num_sensor_values(), 0.0),
+      sensors_on(mechanism.num_elements(), ~std::uint64_t{0}),
       rates(mechanism.num_states(), 0.0),
       parameter_args(1 + mechanism.num_inputs(), 0.0),
       initial_stored_energy(mechanism.num_elements(), 0.0) {}
@@ -276,9 +278,16 @@ void EvaluateSensedElements(const Mechanism& mechanism, double t, std::span<cons
                             std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws,
                             std::span<const int> elements) {
   SetParameterArgs(t, inputs, ws);
-  ws->loads.Clear();  // the work sensors need each element's power
-  if (mechanism.tracks_work()) ws->loads.TrackPower(x.subspan(mechanism.model().nq(), mechanism.model().nv()));
+  if (mechanism.tracks_work()) {  // the work sensors need each element's power
+    ws->loads.Clear();
+    ws->loads.TrackPower(x.subspan(mechanism.model().nq(), mechanism.model().nv()));
+    for (const int e : elements) EvaluateElement(mechanism, e, t, x, modes, ws, ws->rates);
+    return;
+  }
+  // sensors alone: their loads are not wanted (a full evaluation clears the loads first)
+  ws->loads.SetDiscard(true);
   for (const int e : elements) EvaluateElement(mechanism, e, t, x, modes, ws, ws->rates);
+  ws->loads.SetDiscard(false);
 }
 
 void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const double> x,
@@ -316,7 +325,10 @@ void EvaluateCrossings(const Mechanism& mechanism, std::span<const double> x, st
   for (int e = 0; e < mechanism.num_elements(); ++e) {
     const ForceElement& element = mechanism.element(e);
     if (element.num_crossings() == 0) continue;
-    const ElementContext ctx = MakeElementContext(mechanism, ws->kin.time, x, modes, *ws, e);
+    ElementContext ctx = MakeElementContext(mechanism, ws->kin.time, x, modes, *ws, e);
+    // evaluated on these kinematics (in the same modes: a mode change makes the caller update them)
+    if (ws->sensors_on[e] == ws->kin.stamp)
+      ctx.sensors = std::span<const double>(ws->sensors).subspan(mechanism.sensor_offset(e), element.num_sensors());
     element.ZeroCrossings(ctx, values.subspan(mechanism.crossing_offset(e), element.num_crossings()));
   }
 }

@@ -94,6 +94,7 @@ struct MechanismWorkspace {
   StickWorkspace stick;
   std::vector<double> vdot;            // nv, after Evaluate
   std::vector<double> sensors;         // element sensor values, after Evaluate
+  std::vector<std::uint64_t> sensors_on;  // per element: the kinematics' stamp its sensors were computed on
   std::vector<double> rates;           // scratch x' when the caller wants none
   std::vector<double> parameter_args;  // [t, inputs...]
   // At the initial state: each element's stored energy (0 where it has
