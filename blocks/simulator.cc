@@ -117,6 +117,8 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   ctx_.signals.assign(diagram_.num_signals(), 0.0);
   ctx_.discrete.assign(diagram_.num_discrete_states(), 0.0);
   row_.resize(results_.num_columns());
+  for (const SignalRef& s : logged_)
+    for (int i = 0; i < s.width; ++i) row_signals_.push_back(s.offset + i);
   frozen_y_.assign(diagram_.num_states(), 0.0);
   frozen_slope_.assign(diagram_.num_states(), 0.0);
   frozen_before_.assign(diagram_.num_states(), 0.0);
@@ -329,9 +331,8 @@ bool Simulator::CheckCrossings(double t, double* x, bool row, double* t_root, do
 void Simulator::Record(double t, double* x, bool evaluated) {
   if (!evaluated) EvaluateAt(t, x);
   row_[0] = t;
-  int column = 1;
-  for (const SignalRef& s : logged_)
-    for (int i = 0; i < s.width; ++i) row_[column++] = ctx_.signals[s.offset + i];
+  const double* signals = ctx_.signals.data();
+  for (std::size_t c = 0; c < row_signals_.size(); ++c) row_[c + 1] = signals[row_signals_[c]];
   results_.AddRow(row_.data());
   if (observer_) observer_->OnRow(t, x, ctx_);
 }

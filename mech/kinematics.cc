@@ -87,7 +87,7 @@ void UpdateSlidingKinematics(const Model& model, double t, std::span<const doubl
       continue;
     }
     const Pose& sp = kin->pose[body.segment];
-    kin->body_pose[b].p = sp.R * body.offset + sp.p;
+    kin->body_pose[b].p = body.turned + sp.p;  // sp.R is sliding.rotation[body.segment]
     kin->body_velocity[b] = sp.R * kin->velocity[body.segment].tail<3>();
   }
 }

@@ -23,7 +23,10 @@ std::shared_ptr<const SlidingStructure> FindSlidingStructure(const Model& model,
     s->slides.push_back({seg.parent, seg.q_index, seg.v_index, seg.signal, seg.drive, seg.function.get(),
                          seg.placement.p, seg.placement.R * axis, axis});
   }
-  for (const Body& body : model.bodies()) s->riders.push_back({body.segment, body.in_segment.p});
+  for (const Body& body : model.bodies()) {
+    const Vec3& offset = body.in_segment.p;
+    s->riders.push_back({body.segment, offset, body.segment == kGround ? offset : s->rotation[body.segment] * offset});
+  }
   s->coordinate_mass.assign(model.nv(), 0.0);
   for (const Body& body : model.bodies()) {
     if (body.segment != kGround) s->carried_mass[body.segment] += body.mass;

@@ -38,6 +38,7 @@ struct SlidingStructure {
   struct Rider {
     int segment;  // kGround: welded to the ground
     Vec3 offset;  // the body frame's origin in the segment's frame
+    Vec3 turned;  // the same turned into global axes (constant: segments only translate)
   };
   std::vector<Slide> slides;  // per segment
   std::vector<Rider> riders;  // per body
