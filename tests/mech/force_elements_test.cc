@@ -17,6 +17,7 @@
 #include "mech/bushing.h"
 #include "mech/dynamics.h"
 #include "mech/errors.h"
+#include "mech/frictional_force.h"
 #include "mech/joint_force.h"
 #include "mech/mechanism.h"
 #include "tests/mech/mech_test_util.h"
@@ -410,6 +411,43 @@ TEST(BipolarForceTest, PointsAtTheBodyOriginMeasureAsTheGeneralFormula) {
       EXPECT_EQ(g.u, u);
       EXPECT_EQ(g.v, (PointVelocity(kin, b2, p2) - PointVelocity(kin, b1, p1)).dot(u));
     }
+}
+
+// A Frictional element's crossing functions read the rate its Evaluate
+// measured on the same kinematics, and measure it themselves on any other:
+// the same numbers either way, never a stale rate.
+TEST(FrictionalForceTest, CrossingsReuseTheRateOnlyOfTheSameKinematics) {
+  ModelBuilder m;
+  m.SetGravity(Vec3::Zero());
+  m.AddBody(testing::Box("Box", 10.0, {0.1, 0.1, 0.1}));
+  m.AddJoint(testing::ChainJoint("j", "Base0", "Box", {Et(T::kTv, Vec3::UnitX(), 0.5, 1.5)}));
+  auto model = m.Build();
+  FrictionalParameters p;
+  p.friction = 10.0;
+  p.stiffness = 1e5;
+  p.damping = 100.0;
+  std::vector<std::unique_ptr<ForceElement>> elements;
+  elements.push_back(std::make_unique<FrictionalForce>("f", "", 0, Vec3(0.0, 0.0, 0.0), 1, Vec3(0.0, 0.0, 0.0), p));
+  Mechanism mech(model, std::move(elements), {});
+  MechanismWorkspace ws(mech);
+  std::vector<double> x(mech.num_states()), modes(mech.num_modes());
+  InitialState(mech, {}, x, modes, &ws);
+  ASSERT_EQ(modes[0], 1.0);  // sliding apart: its first crossing is the rate
+  const std::vector<int> all{0};
+  auto crossings = [&] {
+    std::vector<double> g(4);
+    EvaluateCrossings(mech, x, modes, &ws, g);
+    return g;
+  };
+  EvaluatePositions(mech, 0.0, x, &ws);
+  EvaluateSensedElements(mech, 0.0, x, {}, modes, &ws, all);
+  const std::vector<double> reused = crossings();
+  EvaluateForCrossings(mech, 0.0, x, {}, &ws);  // new kinematics: measured again
+  EXPECT_EQ(crossings(), reused);
+  EXPECT_EQ(reused[0], 1.5);
+  x[mech.model().nq()] = -0.25;  // another rate, the element not evaluated there
+  EvaluateForCrossings(mech, 0.0, x, {}, &ws);
+  EXPECT_EQ(crossings()[0], -0.25);
 }
 
 TEST(BipolarForceTest, ObliqueLineProjectsOntoTheJoint) {
