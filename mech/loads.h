@@ -26,6 +26,7 @@ class Loads {
     for (Vec6& f : segment_) f.setZero();
     for (double& t : tau_) t = 0.0;
     power_ = 0.0;
+    discard_ = false;  // also after an evaluation for sensors that threw
   }
   // Sums the loads' power from now on (segment velocities from the
   // kinematics the Add* calls get, generalized ones from v); an empty v
@@ -62,9 +63,9 @@ class Loads {
     if (!v_.empty()) power_ += value * v_[v_index];
   }
 
-  // While set, the Add* calls take nothing: an evaluation for sensors
-  // alone (an output row) needs the elements' values, not their loads.
-  // Not with TrackPower (the work sensors need the loads' power).
+  // While set (until Clear), the Add* calls take nothing: an evaluation
+  // for sensors alone (an output row) needs the elements' values, not
+  // their loads. Not with TrackPower (the work sensors need the loads' power).
   void SetDiscard(bool discard) { discard_ = discard; }
 
   std::span<const Vec6> segment_loads() const { return segment_; }

@@ -285,9 +285,12 @@ void EvaluateSensedElements(const Mechanism& mechanism, double t, std::span<cons
     return;
   }
   // sensors alone: their loads are not wanted (a full evaluation clears the loads first)
-  ws->loads.SetDiscard(true);
+  struct Discarding {
+    Loads& loads;
+    explicit Discarding(Loads& l) : loads(l) { loads.SetDiscard(true); }
+    ~Discarding() { loads.SetDiscard(false); }  // also when an element throws
+  } discarding(ws->loads);
   for (const int e : elements) EvaluateElement(mechanism, e, t, x, modes, ws, ws->rates);
-  ws->loads.SetDiscard(false);
 }
 
 void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const double> x,
