@@ -450,6 +450,37 @@ TEST(FrictionalForceTest, CrossingsReuseTheRateOnlyOfTheSameKinematics) {
   EXPECT_EQ(crossings()[0], -0.25);
 }
 
+// A generalized force of 1 on coordinate 0 that throws while *fail is set.
+class Flaky final : public ForceElement {
+ public:
+  explicit Flaky(const bool* fail) : ForceElement("flaky", "test"), fail_(fail) {}
+  void Evaluate(const ElementContext&, Loads* loads, std::span<double>, std::span<double>) const override {
+    loads->AddGeneralizedForce(0, 1.0);
+    if (*fail_) throw SimulationError("flaky");
+  }
+
+ private:
+  const bool* fail_;
+};
+
+// A sensors-only evaluation takes no loads; one that throws must not leave
+// the loads discarding, or the next full evaluation would lose its forces.
+TEST(LoadsTest, ASensorsOnlyEvaluationThatThrowsLeavesTheLoadsWhole) {
+  bool fail = true;
+  std::vector<std::unique_ptr<ForceElement>> elements;
+  elements.push_back(std::make_unique<Flaky>(&fail));
+  Mechanism mech(Slider(0.0), std::move(elements), {});
+  MechanismWorkspace ws(mech);
+  std::vector<double> x(mech.num_states()), xdot(mech.num_states());
+  InitialState(mech, {}, x, {}, &ws);
+  const std::vector<int> all{0};
+  EvaluatePositions(mech, 0.0, x, &ws);
+  EXPECT_THROW(EvaluateSensedElements(mech, 0.0, x, {}, {}, &ws, all), SimulationError);
+  fail = false;
+  EvaluateMechanism(mech, 0.0, x, {}, {}, &ws, xdot);
+  EXPECT_DOUBLE_EQ(xdot[mech.model().nq()], 1.0 / 10.0);  // 1 N on the 10 kg box
+}
+
 TEST(BipolarForceTest, ObliqueLineProjectsOntoTheJoint) {
   // Ground point A = (0.3, 0, 0), box point B = its centre at z = 0.4:
   // x = 0.5, u = (-0.6, 0, 0.8); F = -100 (0.5 - 1) = 50 pushes the box along
