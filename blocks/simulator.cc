@@ -86,6 +86,13 @@ namespace {
 // Right-hand-side failures (exceptions) tolerated in one run before it stops.
 constexpr int kMaxCallbackFailures = 30;
 
+// The most nonzeros in one row of the pattern.
+int FullestRow(const SparsityPattern& pattern) {
+  std::vector<int> count(pattern.n, 0);
+  for (const int row : pattern.rows) ++count[row];
+  return count.empty() ? 0 : *std::max_element(count.begin(), count.end());
+}
+
 std::vector<std::string> ColumnNames(const std::vector<SignalRef>& logged) {
   std::vector<std::string> names;
   for (const auto& s : logged) {
@@ -140,10 +147,17 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   const int n = std::max(1, diagram_.num_states());
   const LinearSolverKind kind = options_.linear_solver;
   if (kind == LinearSolverKind::kSparse || (kind == LinearSolverKind::kAuto && n >= kSparseMinStates)) {
-    auto jacobian = std::make_unique<ColouredJacobian>(DiagramSparsity(diagram_));
-    if (kind == LinearSolverKind::kSparse || 4 * jacobian->num_colours() <= n) {
-      jacobian_ = std::move(jacobian);
-      increments_.assign(n, 0.0);
+    SparsityPattern pattern = DiagramSparsity(diagram_);
+    // Columns that share a row take different colours, so the fullest row
+    // bounds the colours from below: a pattern that cannot qualify is not
+    // coloured (a serial chain of 1000 bodies spent 2.8 s colouring its
+    // dense pattern, of 2000 bodies 26 s)
+    if (kind == LinearSolverKind::kSparse || 4 * FullestRow(pattern) <= n) {
+      auto jacobian = std::make_unique<ColouredJacobian>(std::move(pattern));
+      if (kind == LinearSolverKind::kSparse || 4 * jacobian->num_colours() <= n) {
+        jacobian_ = std::move(jacobian);
+        increments_.assign(n, 0.0);
+      }
     }
   }
   if (!jacobian_) rate_pairs_ = DiagramRatePairs(diagram_);
