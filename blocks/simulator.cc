@@ -44,7 +44,8 @@ std::string SolverOptions::Problem() const {
 struct Simulator::Solver {
   Solver(sunindextype n, const ColouredJacobian* jacobian, const std::vector<std::pair<int, int>>& rate_pairs,
          bool krylov_solver)
-      : y(n, ctx), weights(n, ctx), cvode(ctx) {
+      : n(n), y(n, ctx), weights(n, ctx), watch(n, ctx), check(n, ctx), search(n, ctx), cvode(ctx) {
+    for (int k = 0; k <= kMaxOrder; ++k) taylor.push_back(std::make_unique<sundials::Vector>(n, ctx));
     if (krylov_solver) {
       krylov = std::make_unique<sundials::KrylovSolver>(y, kKrylovDimension, ctx);
     } else if (jacobian) {
@@ -71,9 +72,16 @@ struct Simulator::Solver {
   // CVODE takes a solve that has not converged by then as a failure and
   // retries with a smaller step
   static constexpr int kKrylovDimension = 5;
+  static constexpr int kMaxOrder = 5;  // BDF's
+  const sunindextype n;  // states
   sundials::Context ctx;
   sundials::Vector y;
   sundials::Vector weights;  // sparse: CVODE's error weights, for the increments
+  // Interpolated states: on a step the reports watch, at a check inside a
+  // step, at a probe or trial of the crossing search; and the Taylor
+  // coefficients of a step with several rows (Simulator::InterpolateInStep)
+  sundials::Vector watch, check, search;
+  std::vector<std::unique_ptr<sundials::Vector>> taylor;
   std::unique_ptr<sundials::DenseSolver> dense;
   std::unique_ptr<sundials::SparseSolver> sparse;
   std::unique_ptr<SecondOrderSolver> second_order;
@@ -180,12 +188,7 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   if (analytic_ && jacobian_) analytic_values_.assign(jacobian_->pattern().nonzeros(), 0.0);
 }
 
-Simulator::~Simulator() {
-  if (watch_vector_) N_VDestroy(watch_vector_);
-  if (check_vector_) N_VDestroy(check_vector_);
-  if (search_vector_) N_VDestroy(search_vector_);
-  for (N_Vector v : taylor_vectors_) N_VDestroy(v);
-}
+Simulator::~Simulator() = default;
 
 void Simulator::SetReports(std::vector<ReportRequest> reports) {
   for (const ReportRequest& r : reports)
@@ -235,8 +238,8 @@ void Simulator::WatchStep(double ta, double tb) {
     const ReportRequest& r = reports_[i];
     const int offset = r.signal.offset + r.index;
     const auto value = [&](double t) {
-      Check(CVodeGetDky(mem, t, 0, watch_vector_), "CVodeGetDky");
-      EvaluateAt(t, watch_y_.data());
+      Check(CVodeGetDky(mem, t, 0, solver_->watch.get()), "CVodeGetDky");
+      EvaluateAt(t, solver_->watch.data());
       return ctx_.signals[offset];
     };
     if (!IsExtremum(r.kind)) {
@@ -259,7 +262,8 @@ void Simulator::WatchTo(double t) {
 }
 
 void Simulator::InterpolateInStep(double t, double* out) {
-  const std::size_t n = check_y_.size();
+  const auto n = static_cast<std::size_t>(solver_->n);
+  const auto& taylor = solver_->taylor;
   if (taylor_order_ < 0) {
     // the step's polynomial about its end tn: y(t) = sum_k y^(k)(tn) (t - tn)^k / k!
     void* mem = solver_->cvode.get();
@@ -267,17 +271,17 @@ void Simulator::InterpolateInStep(double t, double* out) {
     Check(CVodeGetCurrentTime(mem, &taylor_tn_), "CVodeGetCurrentTime");
     double factorial = 1.0;
     for (int k = 0; k <= taylor_order_; ++k) {
-      Check(CVodeGetDky(mem, taylor_tn_, k, taylor_vectors_[k]), "CVodeGetDky");
-      if (k > 1) factorial *= k;
-      double* a = taylor_.data() + k * n;
-      if (k > 1) for (std::size_t i = 0; i < n; ++i) a[i] /= factorial;
+      Check(CVodeGetDky(mem, taylor_tn_, k, taylor[k]->get()), "CVodeGetDky");
+      factorial *= std::max(k, 1);
+      double* a = taylor[k]->data();
+      for (std::size_t i = 0; k > 1 && i < n; ++i) a[i] /= factorial;
     }
   }
   const double dt = t - taylor_tn_;
-  const double* a = taylor_.data() + taylor_order_ * n;
+  const double* a = taylor[taylor_order_]->data();
   std::copy(a, a + n, out);
   for (int k = taylor_order_ - 1; k >= 0; --k) {
-    a = taylor_.data() + k * n;
+    a = taylor[k]->data();
     for (std::size_t i = 0; i < n; ++i) out[i] = out[i] * dt + a[i];
   }
 }
@@ -306,13 +310,14 @@ void Simulator::StartCrossings(double t, double* x) {
 bool Simulator::CheckCrossings(double t, double* x, bool row, double* t_root, double* x_root) {
   void* mem = solver_->cvode.get();
   // the probe and the search interpolate into their own buffer: x stays
-  double* trial = search_y_.data();
+  N_Vector search = solver_->search.get();
+  double* trial = solver_->search.data();
   if (probe_pending_) {
     // CVODE's look just after the start, for functions exactly zero there:
     // a tenth of the first step on (inside it, on its interpolant)
     probe_pending_ = false;
     const double t_probe = crossings_->lower_time() + 0.1 * (t - crossings_->lower_time());
-    Check(CVodeGetDky(mem, t_probe, 0, search_vector_), "CVodeGetDky");
+    Check(CVodeGetDky(mem, t_probe, 0, search), "CVodeGetDky");
     EvaluateCrossingsAt(t_probe, trial, false);
     crossings_->Probe(crossing_values_);
   }
@@ -327,16 +332,16 @@ bool Simulator::CheckCrossings(double t, double* x, bool row, double* t_root, do
   // CVODE's tolerance on the crossing time: a hundred units of round-off
   const double ttol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(tn) + std::abs(h));
   *t_root = crossings_->Locate(t, crossing_values_, ttol, [&](double tm, std::span<double> g) {
-    Check(CVodeGetDky(mem, tm, 0, search_vector_), "CVodeGetDky");
+    Check(CVodeGetDky(mem, tm, 0, search), "CVodeGetDky");
     EvaluateCrossingsAt(tm, trial, false);
     std::copy(crossing_values_.begin(), crossing_values_.end(), g.begin());
   });
   std::copy(crossings_->directions_found().begin(), crossings_->directions_found().end(), roots_found_.begin());
-  const std::size_t n = search_y_.size();
+  const auto n = static_cast<std::size_t>(solver_->n);
   if (*t_root == t) {
     std::copy(x, x + n, x_root);
   } else {
-    Check(CVodeGetDky(mem, *t_root, 0, search_vector_), "CVodeGetDky");
+    Check(CVodeGetDky(mem, *t_root, 0, search), "CVodeGetDky");
     std::copy(trial, trial + n, x_root);
   }
   return true;
@@ -702,20 +707,6 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   for (auto& tracker : trackers_) tracker.Reset();
   for (auto& accumulator : accumulators_) accumulator.Reset();
   watched_to_ = t0;
-  watch_y_.assign(n, 0.0);
-  if (watch_vector_) N_VDestroy(watch_vector_);
-  watch_vector_ = sundials::WrapArray(n, watch_y_.data(), solver_->ctx);
-  check_y_.assign(n, 0.0);
-  if (check_vector_) N_VDestroy(check_vector_);
-  check_vector_ = sundials::WrapArray(n, check_y_.data(), solver_->ctx);
-  search_y_.assign(n, 0.0);
-  if (search_vector_) N_VDestroy(search_vector_);
-  search_vector_ = sundials::WrapArray(n, search_y_.data(), solver_->ctx);
-  taylor_.assign(n * (kMaxOrder + 1), 0.0);
-  for (N_Vector v : taylor_vectors_) N_VDestroy(v);
-  taylor_vectors_.clear();
-  for (int k = 0; k <= kMaxOrder; ++k)
-    taylor_vectors_.push_back(sundials::WrapArray(n, taylor_.data() + k * n, solver_->ctx));
   probe_pending_ = false;
   const long expected_rows = std::lround((t_end - t0) / options_.output_interval) + 2;
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
@@ -872,13 +863,13 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
             break;
           }
         }
-        double* x = check_y_.data();
+        double* x = solver_->check.data();
         if (t_check == t_ret) {
-          std::copy(interpolated.begin(), interpolated.end(), check_y_.begin());
+          std::copy(interpolated.begin(), interpolated.end(), x);
         } else if (taylor_order_ >= 0 || output_time(next_output + 1) <= t_ret) {
           InterpolateInStep(t_check, x);  // several rows in this step: its polynomial, once
         } else {
-          Check(CVodeGetDky(mem, t_check, 0, check_vector_), "CVodeGetDky");
+          Check(CVodeGetDky(mem, t_check, 0, solver_->check.get()), "CVodeGetDky");
         }
         double t_root = 0.0;
         if (crossings_->size() > 0 && CheckCrossings(t_check, x, row, &t_root, at_root.data())) {
@@ -903,7 +894,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
         if (changed) {
           // the control changed the model here: the solver must not go on
           // from a point beyond it, computed with the old values
-          std::copy(check_y_.begin(), check_y_.end(), y);
+          std::copy(x, x + n, y);
           ctx_.x = y;
           Reinitialize(t_check);
           x = y;

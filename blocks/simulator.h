@@ -315,26 +315,18 @@ class Simulator {
   std::vector<ReportRequest> reports_;
   std::vector<ExtremumTracker> trackers_;       // one per report (its extremum kinds)
   std::vector<SignalAccumulator> accumulators_;  // one per report (the other kinds)
-  std::vector<double> watch_y_;          // the state on a watched step
-  N_Vector watch_vector_ = nullptr;      // wraps watch_y_ for CVodeGetDky
   double watched_to_ = 0.0;  // reports have watched the solution up to here
   // The crossings are checked by the simulator at every step end and output
   // time, as CVODE's root finding would in CV_NORMAL mode (see Run).
   std::unique_ptr<CrossingSearch> crossings_;
   std::vector<double> crossing_values_;  // at the last check
   bool probe_pending_ = false;           // a function was exactly zero at the start
-  std::vector<double> check_y_;          // the state at a check inside a step
-  N_Vector check_vector_ = nullptr;      // wraps check_y_ for CVodeGetDky
   // A step with several rows: its polynomial as Taylor coefficients
-  // y^(k)(tn)/k! (k = 0..order), from CVodeGetDky once per step, instead of
-  // a CVodeGetDky per row (Debian's unoptimised build: 7 % of P1).
-  static constexpr int kMaxOrder = 5;  // BDF
-  std::vector<double> taylor_;
-  std::vector<N_Vector> taylor_vectors_;  // wrap taylor_'s rows
-  int taylor_order_ = -1;                 // -1: not found for this step
+  // y^(k)(tn)/k! (k = 0..order, Solver::taylor), from CVodeGetDky once per
+  // step, instead of a CVodeGetDky per row (Debian's unoptimised build: 7 %
+  // of P1).
+  int taylor_order_ = -1;  // -1: not found for this step
   double taylor_tn_ = 0.0;
-  std::vector<double> search_y_;         // the state at a probe or a trial of the crossing search
-  N_Vector search_vector_ = nullptr;     // wraps search_y_
   std::unique_ptr<ColouredJacobian> jacobian_;  // sparse runs only
   std::unique_ptr<AnalyticJacobian> analytic_;  // when the run uses one
   std::vector<double> analytic_values_;         // sparse: its values on the pattern

@@ -29,6 +29,7 @@ Context::~Context() { SUNContext_Free(&ctx_); }
 
 Vector::Vector(sunindextype n, const Context& ctx) : v_(N_VNew_Serial(n, ctx.get())) {
   if (!v_) throw std::runtime_error("N_VNew_Serial failed");
+  data_ = N_VGetArrayPointer(v_);
   UseCompiledVectorOps(v_);  // and so CVODE's clones of it
 }
 Vector::~Vector() { N_VDestroy(v_); }

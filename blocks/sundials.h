@@ -40,10 +40,11 @@ class Vector {
   Vector(const Vector&) = delete;
   Vector& operator=(const Vector&) = delete;
   N_Vector get() const { return v_; }
-  double* data() const { return N_VGetArrayPointer(v_); }
+  double* data() const { return data_; }  // kept: a serial vector's array never moves
 
  private:
   N_Vector v_ = nullptr;
+  double* data_ = nullptr;
 };
 
 // A serial vector over `data` (not owned; N_VDestroy frees the vector alone),
