@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "analysis/element_drive_block.h"
@@ -16,6 +17,13 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 constexpr double kPeriodicTolerance = 1e-6;
+constexpr double kMaxRowsPerCase = 1e7;
+
+std::string Number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
 
 struct FoundElement {
   const mech::Mechanism* mechanism = nullptr;
@@ -39,6 +47,17 @@ FoundElement FindElement(const diagrams::LoadedDiagram& loaded, const std::strin
 // Rows [first, first + samples] of a column.
 std::vector<double> Period(const std::vector<double>& column, std::size_t first, int samples) {
   return std::vector<double>(column.begin() + first, column.begin() + first + samples + 1);
+}
+
+// A case whose numbers overflowed: no figures, no loop, and why.
+ForceAnalysisCase Failed(ForceAnalysisCase c, const std::string& what) {
+  ForceAnalysisCase out;
+  out.amplitude = c.amplitude;
+  out.frequency = c.frequency;
+  out.x0 = c.x0;
+  out.failure = what + " is not a finite number (an amplitude of " + Number(c.amplitude) +
+                " is more than the element's geometry or force law can represent; give a smaller one)";
+  return out;
 }
 
 ForceAnalysisCase RunCase(const diagrams::LoadedDiagram& loaded, const FoundElement& found,
@@ -66,7 +85,9 @@ ForceAnalysisCase RunCase(const diagrams::LoadedDiagram& loaded, const FoundElem
   std::vector<blocks::SignalRef> logged;
   for (const char* port : {"drive.x", "drive.v", "drive.reaction"}) logged.push_back(diagram->ResolveSignal(port));
   blocks::Simulator sim(*diagram, solver, logged);
+  sim.SetInterruptFlag(request.interrupt);
   const blocks::RunOutcome outcome = sim.Run();
+  if (outcome.interrupted) throw Interrupted(outcome.interrupted);
   if (!outcome.ok) {
     out.failure = outcome.failure;
     return out;
@@ -79,6 +100,11 @@ ForceAnalysisCase RunCase(const diagrams::LoadedDiagram& loaded, const FoundElem
     return out;
   }
   const std::size_t last = rows - 1 - samples, before = last - samples;
+  for (std::size_t k = before; k < rows; ++k)
+    for (int c = 1; c <= 3; ++c)
+      if (!std::isfinite(r.at(static_cast<int>(k), c)))
+        return Failed(std::move(out), std::string(c == 3 ? "the reaction" : c == 1 ? "x" : "v") + " at t = " +
+                                          Number(r.at(static_cast<int>(k), 0)) + " s");
   const std::vector<double> reaction = r.Column(3);
   out.x = Period(r.Column(1), last, samples);
   out.v = Period(r.Column(2), last, samples);
@@ -90,7 +116,6 @@ ForceAnalysisCase RunCase(const diagrams::LoadedDiagram& loaded, const FoundElem
     difference = std::max(difference, std::abs(out.reaction[k] - previous[k]));
   }
   out.periodic_error = largest > 0.0 ? difference / largest : difference;
-  out.periodic = difference <= kPeriodicTolerance * largest + 1e-300;
   const std::vector<double> one_period(out.reaction.begin(), out.reaction.end() - 1);
   const auto [rs, rc] = FirstHarmonic(one_period, phase);
   out.force_amplitude = std::hypot(rs, rc);
@@ -99,7 +124,34 @@ ForceAnalysisCase RunCase(const diagrams::LoadedDiagram& loaded, const FoundElem
   double work = 0.0;
   for (int k = 0; k < samples; ++k) work += out.reaction[k] * out.v[k];
   out.loop_energy = work / (frequency * samples);
+  // finite rows can still give figures that overflow (R v near 1e300)
+  for (const auto& [name, value] : {std::pair<const char*, double>{"the force amplitude", out.force_amplitude},
+                                    {"K", out.stiffness}, {"the phase", out.phase},
+                                    {"the loop energy", out.loop_energy}, {"the periodicity error", out.periodic_error}})
+    if (!std::isfinite(value)) return Failed(std::move(out), name);
+  out.periodic = difference <= kPeriodicTolerance * largest + 1e-300;
   return out;
+}
+
+void RunCases(const ForceAnalysisRequest& request, const std::vector<std::vector<double>>& combinations,
+              ForceAnalysis* analysis) {
+  for (const auto& values : combinations) {
+    diagrams::LoadOptions options = request.options;
+    for (std::size_t i = 0; i < values.size(); ++i)
+      for (const std::string& name : request.vary[i].first) options.overrides.emplace_back(name, values[i]);
+    const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(request.file, options);
+    const FoundElement found = FindElement(loaded, request.element);
+    analysis->diagram = loaded.description.name;
+    analysis->element_what = "element '" + request.element + "'" +
+                             (request.component.empty() ? "" : " component " + request.component);
+    for (double a : request.amplitudes)
+      for (double f : request.frequencies) {
+        StopIfInterrupted(request.interrupt);
+        ForceAnalysisCase c = RunCase(loaded, found, request, a, f);
+        c.varied = values;
+        analysis->cases.push_back(std::move(c));
+      }
+  }
 }
 
 }  // namespace
@@ -122,8 +174,19 @@ ForceAnalysis RunForceAnalysis(const ForceAnalysisRequest& request) {
     if (!(a > 0.0) || !std::isfinite(a)) throw InputError("force analysis: an amplitude must be > 0");
   for (double f : request.frequencies)
     if (!(f > 0.0) || !std::isfinite(f)) throw InputError("force analysis: a frequency must be > 0 Hz");
+  // the drive's velocity a w and acceleration a w^2 must be numbers
+  for (double a : request.amplitudes)
+    for (double f : request.frequencies)
+      if (const double w = kTwoPi * f; !std::isfinite(a * w * w) || !std::isfinite(a * w))
+        throw InputError("force analysis: amplitude " + Number(a) + " at " + Number(f) +
+                         " Hz: the drive's acceleration a (2 pi f)^2 overflows; give a smaller amplitude or frequency");
   if (request.cycles < 2) throw InputError("force analysis: --cycles must be at least 2 (two periods to compare)");
   if (request.samples < 16) throw InputError("force analysis: at least 16 samples per period");
+  // every case keeps its rows in memory
+  if (double(request.cycles) * request.samples > kMaxRowsPerCase)
+    throw InputError("force analysis: --cycles " + std::to_string(request.cycles) + " times --samples " +
+                     std::to_string(request.samples) + " rows per case is more than " + Number(kMaxRowsPerCase) +
+                     "; fewer cycles or samples per period");
 
   // every combination of the varied values, last one fastest
   std::vector<std::vector<double>> combinations = {{}};
@@ -138,21 +201,11 @@ ForceAnalysis RunForceAnalysis(const ForceAnalysisRequest& request) {
     combinations = std::move(next);
   }
   ForceAnalysis analysis;
-  for (const auto& values : combinations) {
-    diagrams::LoadOptions options = request.options;
-    for (std::size_t i = 0; i < values.size(); ++i)
-      for (const std::string& name : request.vary[i].first) options.overrides.emplace_back(name, values[i]);
-    const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(request.file, options);
-    const FoundElement found = FindElement(loaded, request.element);
-    analysis.diagram = loaded.description.name;
-    analysis.element_what = "element '" + request.element + "'" +
-                            (request.component.empty() ? "" : " component " + request.component);
-    for (double a : request.amplitudes)
-      for (double f : request.frequencies) {
-        ForceAnalysisCase c = RunCase(loaded, found, request, a, f);
-        c.varied = values;
-        analysis.cases.push_back(std::move(c));
-      }
+  analysis.planned = combinations.size() * request.amplitudes.size() * request.frequencies.size();
+  try {
+    RunCases(request, combinations, &analysis);
+  } catch (const Interrupted& e) {  // the cases finished so far stand
+    analysis.interrupted = e.signal();
   }
   return analysis;
 }

@@ -19,11 +19,15 @@
 //   - the loop energy, the work done on the element over the period,
 //     oint R dx = integral of R v dt (what it dissipates per cycle);
 //   - the loop itself: x', v and R at every row of the last period.
+// A case whose rows or figures are not finite numbers (an amplitude the
+// element's geometry or force law cannot represent) fails, saying so; it is
+// never marked periodic.
 
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "analysis/interrupted.h"
 #include "diagrams/loader.h"
 
 namespace mechflow::analysis {
@@ -37,7 +41,8 @@ struct ForceAnalysisRequest {
   // varied identifiers: each entry sets every one of its names to each value
   std::vector<std::pair<std::vector<std::string>, std::vector<double>>> vary;
   int cycles = 10;    // >= 2
-  int samples = 1000; // rows per period, >= 16
+  int samples = 1000; // rows per period, >= 16; cycles x samples <= 10^7 (kept in memory)
+  CancelFlag interrupt = nullptr;  // set: the case under way ends, no more start
 };
 
 struct ForceAnalysisCase {
@@ -58,11 +63,14 @@ struct ForceAnalysis {
   std::string diagram;       // the diagram's name
   std::string element_what;  // "element 'NAME'" (and component)
   std::vector<ForceAnalysisCase> cases;  // varied values, then amplitude, then frequency (fastest)
+  std::size_t planned = 0;   // cases asked for; more than cases.size() when interrupted
+  int interrupted = 0;       // the signal that stopped it (request.interrupt), else 0
 };
 
 // Throws InputError for bad requests (no such element, an element that
-// cannot be driven, a frequency or amplitude that is not positive, an
-// unknown varied identifier).
+// cannot be driven, a frequency or amplitude that is not positive or whose
+// motion overflows, an unknown varied identifier). When request.interrupt is
+// set the analysis returns the cases finished before, with `interrupted`.
 ForceAnalysis RunForceAnalysis(const ForceAnalysisRequest& request);
 
 // The first harmonic of `values`, N samples over exactly one period, the

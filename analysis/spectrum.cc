@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "mech/errors.h"
@@ -12,6 +13,12 @@ namespace mechflow::analysis {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+std::string Number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
 
 struct PlanDeleter {
   void operator()(fftw_plan_s* p) const { fftw_destroy_plan(p); }
@@ -28,8 +35,9 @@ Window ParseWindow(const std::string& name, const std::string& where) {
 Spectrum WelchPsd(const std::vector<double>& samples, double dt, const WelchOptions& options) {
   const int n = static_cast<int>(samples.size());
   if (!(dt > 0.0) || !std::isfinite(dt)) throw InputError("spectrum: the sampling interval must be > 0");
-  if (!(options.overlap >= 0.0 && options.overlap < 1.0))
-    throw InputError("spectrum: the overlap must be at least 0 and below 1");
+  if (!(options.overlap >= 0.0 && options.overlap <= kMaxOverlap))
+    throw InputError("spectrum: overlap " + Number(options.overlap) + " is not from 0 to " + Number(kMaxOverlap) +
+                     " (each sample is transformed about 1 / (1 - overlap) times); 0.5 is usual");
   int segment = options.segment;
   if (segment == 0) {
     segment = 16;
@@ -41,6 +49,13 @@ Spectrum WelchPsd(const std::vector<double>& samples, double dt, const WelchOpti
                      std::to_string(segment) + " (log more rows, or shorten the segment)");
   for (double s : samples)
     if (!std::isfinite(s)) throw InputError("spectrum: the signal holds a value that is not a number");
+  const int step = std::max(1, static_cast<int>(std::lround(segment * (1.0 - options.overlap))));
+  const int segments = (n - segment) / step + 1;
+  if (double(segments) * segment > double(kMaxCoverage) * n)
+    throw InputError("spectrum: " + std::to_string(segments) + " segments of " + std::to_string(segment) +
+                     " samples (overlap " + Number(options.overlap) + ") would transform the " + std::to_string(n) +
+                     " samples more than " + std::to_string(kMaxCoverage) +
+                     " times over; lower the overlap (0.5 is usual) or lengthen the segment");
 
   double mean = 0.0;
   for (double s : samples) mean += s;
@@ -60,8 +75,8 @@ Spectrum WelchPsd(const std::vector<double>& samples, double dt, const WelchOpti
   s.segment = segment;
   s.resolution = 1.0 / (segment * dt);
   s.density.assign(bins, 0.0);
-  const int step = std::max(1, static_cast<int>(std::lround(segment * (1.0 - options.overlap))));
   for (int start = 0; start + segment <= n; start += step) {
+    StopIfInterrupted(options.interrupt);
     for (int k = 0; k < segment; ++k) in[k] = (samples[start + k] - mean) * window[k];
     fftw_execute(plan.get());
     for (int k = 0; k < bins; ++k) s.density[k] += out[k][0] * out[k][0] + out[k][1] * out[k][1];
@@ -77,6 +92,7 @@ Spectrum WelchPsd(const std::vector<double>& samples, double dt, const WelchOpti
 }
 
 std::vector<SpectralPeak> FindPeaks(const Spectrum& spectrum, int count, double floor) {
+  if (count < 0) throw InputError("spectrum: the number of peaks must be 0 or more, not " + std::to_string(count));
   const auto& p = spectrum.density;
   const double largest = p.empty() ? 0.0 : *std::max_element(p.begin(), p.end());
   std::vector<SpectralPeak> peaks;

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
+#include "blocks/input_file.h"
 #include "blocks/suggest.h"
 #include "cli/force_analysis_command.h"
 #include "cli/psd_command.h"
+#include "mech/errors.h"
 
 namespace mechflow::cli {
 namespace {
@@ -48,6 +50,8 @@ void AddSet(const std::string& kv, const std::string& where, Arguments* a) {
   if (name.empty() || text.empty()) throw UsageError(where + ": expected NAME=VALUE, got '" + kv + "'");
   double number = 0.0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
+  if (error == std::errc() && end == text.data() + text.size() && !std::isfinite(number))
+    throw UsageError(where + ": '" + text + "' is not a finite number");
   if (error == std::errc() && end == text.data() + text.size()) a->overrides.push_back({name, number});
   else a->set_expressions.push_back({name, text});
 }
@@ -57,10 +61,21 @@ void AddSet(const std::string& kv, const std::string& where, Arguments* a) {
 double ParseNumber(const std::string& text, const std::string& option) {
   double value = 0.0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error == std::errc::result_out_of_range)
+    throw UsageError(option + ": '" + text + "' is out of the range of a double");
   if (text.empty() || error != std::errc() || end != text.data() + text.size())
     throw UsageError(option + ": '" + text + "' is not a number");
   if (!std::isfinite(value)) throw UsageError(option + ": '" + text + "' is not a finite number");
   return value;
+}
+
+int ParseCount(const std::string& text, const std::string& option, int min, int max) {
+  long long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size() || value < min || value > max)
+    throw UsageError(option + ": '" + text + "' is not a whole number from " + std::to_string(min) + " to " +
+                     std::to_string(max));
+  return static_cast<int>(value);
 }
 
 std::vector<double> ParseValues(const std::string& spec, const std::string& option) {
@@ -81,9 +96,7 @@ std::vector<double> ParseValues(const std::string& spec, const std::string& opti
   const bool log = parts.size() == 4 && parts[3] == "log";
   if (parts.size() != 3 && !log) throw UsageError(option + ": a range is A:B:N or A:B:N:log, got '" + spec + "'");
   const double a = ParseNumber(parts[0], option), b = ParseNumber(parts[1], option);
-  const double n = ParseNumber(parts[2], option);
-  if (!(n >= 2 && n <= 1e6 && n == std::floor(n)))
-    throw UsageError(option + ": N must be a whole number from 2, got '" + parts[2] + "'");
+  const double n = ParseCount(parts[2], option + " (N of A:B:N)", 2, 1000000);
   if (log && !(a > 0 && b > 0)) throw UsageError(option + ": a log range needs A, B > 0");
   for (int i = 0; i < n; ++i) {
     // to 15 digits, so that 0.05:0.2:4 gives 0.15, not 0.15000000000000002
@@ -110,7 +123,7 @@ std::string HelpText(const std::string& command) {
            "                    applied in order, after the variants; dependent\n"
            "                    identifiers follow); VALUE may be an expression of\n"
            "                    identifiers (2*c0), evaluated after the numbers\n"
-           "  --set-file FILE   NAME=VALUE lines (# comments), as --set\n"
+           "  --set-file FILE   NAME=VALUE lines (# comments), as --set (a regular file)\n"
            "  --t-end T         end time [s], overrides <solver t_end>\n"
            "  --rtol R, --atol A  the solver's tolerances, override <solver>\n"
            "  --interval DT     the output grid [s], overrides <output interval>\n"
@@ -125,7 +138,8 @@ std::string HelpText(const std::string& command) {
            "                    a mechanism the element and what it switched to\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
-           "Every option takes its value as --opt VALUE or --opt=VALUE.\n"
+           "Every option takes its value as --opt VALUE or --opt=VALUE; a number is the\n"
+           "whole value in decimal (1e-3, -2.5, .5; not 0x10, inf or 1abc).\n"
            "\n"
            "Exit codes: 0 finished, 1 simulation failed (results up to the failure are\n"
            "written), 2 bad input, 130 / 143 ended by SIGINT (Ctrl-C) / SIGTERM (the rows\n"
@@ -266,8 +280,12 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
     } else if (arg == "--set-file") {
       // NAME=VALUE lines (OpenModelica's override file); '#' starts a comment
       const std::string path = value(arg);
-      std::ifstream in(path);
-      if (!in) throw UsageError("--set-file: cannot read '" + path + "'");
+      std::istringstream in;
+      try {  // a regular file of bounded size: not a FIFO that blocks, nor /dev/zero
+        in.str(blocks::ReadInputFile(path, "file"));
+      } catch (const InputError& e) {
+        throw UsageError(std::string("--set-file: ") + e.what());
+      }
       int number = 0;
       for (std::string line; std::getline(in, line);) {
         ++number;
@@ -309,11 +327,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
     } else if (arg == "--vary" && (a.command == "sweep" || a.command == "force-analysis")) {
       a.vary.push_back(ParseVary(value(arg)));
     } else if (arg == "--jobs" && a.command == "sweep") {
-      const std::string text = value(arg);
-      const double jobs = ParseNumber(text, arg);
-      if (!(jobs >= 1 && jobs <= 4096 && jobs == std::floor(jobs)))
-        throw UsageError("--jobs: '" + text + "' is not a whole number from 1 to 4096");
-      a.jobs = static_cast<int>(jobs);
+      a.jobs = ParseCount(value(arg), arg, 1, 4096);
     } else if (arg.rfind("--", 0) == 0) {
       std::vector<std::string> options = {"--set", "--set-file", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
       if (runs) options.insert(options.end(), {"--rtol", "--atol", "--interval", "--results", "--quiet"});

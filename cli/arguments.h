@@ -42,8 +42,12 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A finite number, or UsageError naming `option`.
+// A finite number, the whole text in decimal (1e-3, -2.5, .5; not 0x10, inf,
+// nan, 1abc or ""), or UsageError naming `option` and the text.
 double ParseNumber(const std::string& text, const std::string& option);
+// A whole number from `min` to `max`, digits only (not 1e3, 2.0 or 0x10), or
+// UsageError naming `option`, the text and the range.
+int ParseCount(const std::string& text, const std::string& option, int min, int max);
 // Values as a list "V1,V2,..." or a range "A:B:N" (evenly spaced) or
 // "A:B:N:log" (evenly on a log scale); UsageError naming `option`.
 std::vector<double> ParseValues(const std::string& spec, const std::string& option);

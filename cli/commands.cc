@@ -125,6 +125,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   if (args.verbose) PrintEventLog(*loaded.diagram, sim.events(), out);
   PrintEventWarnings(*loaded.diagram, sim.events(), err);
   if (outcome.interrupted) return 128 + outcome.interrupted;  // 130 SIGINT, 143 SIGTERM, as shells report them
+  if (const int signal = *InterruptFlag()) return 128 + signal;  // after the run: a <spectrum> was stopped
   return outcome.ok && all_written ? 0 : 1;
 }
 

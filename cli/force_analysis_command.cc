@@ -7,6 +7,7 @@
 
 #include "analysis/force_analysis.h"
 #include "blocks/csv.h"
+#include "cli/interrupt.h"
 #include "cli/output_folder.h"
 #include "cli/plot.h"
 #include "cli/xy_plot.h"
@@ -22,10 +23,12 @@ std::string Number(double v) {
   return text;
 }
 
-int ParseCount(const std::string& text, const std::string& option) {
-  const double v = ParseNumber(text, option);
-  if (!(v >= 1 && v <= 1e7 && v == std::floor(v))) throw UsageError(option + ": '" + text + "' is not a whole number");
-  return static_cast<int>(v);
+// Amplitudes and frequencies: every value > 0 (`what` says which).
+std::vector<double> PositiveValues(const std::string& text, const std::string& option, const std::string& what) {
+  std::vector<double> values = ParseValues(text, option);
+  for (double v : values)
+    if (!(v > 0)) throw UsageError(option + ": '" + text + "' holds " + Number(v) + "; " + what + " must be > 0");
+  return values;
 }
 
 std::string CaseLabel(const analysis::ForceAnalysisRequest& request, const analysis::ForceAnalysisCase& c) {
@@ -67,18 +70,20 @@ std::string ForceAnalysisHelp() {
          "  --vary NAME=V1,...  repeat for every value of the identifier (repeatable; the\n"
          "                      cartesian product); NAME1,NAME2=... sets several alike\n"
          "                      (e.g. a static and a dynamic friction coefficient)\n"
-         "  --cycles N          periods run per case (default 10, at least 2); the last is\n"
+         "  --cycles N          periods run per case (default 10, 2 to 100000); the last is\n"
          "                      analysed and must repeat the one before to 1e-6 of its\n"
          "                      largest force (else the case is marked not periodic)\n"
-         "  --samples N         rows per period (default 1000, at least 16)\n"
+         "  --samples N         rows per period (default 1000, 16 to 1000000; at most 10^7\n"
+         "                      rows per case in all)\n"
          "  --variant, --set, --unsafe-lua   as for mechflow run\n"
          "  --out DIR           output folder (created if missing; default: current folder)\n"
          "\n"
          "Example: mechflow force-analysis diagrams/examples/elast_friction2.xml --element friction\n"
          "           --amplitude 0.001,0.002,0.003 --frequency 1 --vary ffr,ffr0=0,0.1,0.2,0.3,0.5\n"
          "\n"
-         "Exit codes: 0 every case periodic, 1 a case failed or did not become periodic\n"
-         "(all results written), 2 bad input.\n";
+         "Exit codes: 0 every case periodic, 1 a case failed (its numbers overflowed, say)\n"
+         "or did not become periodic (all results written), 2 bad input, 130 / 143 ended\n"
+         "by SIGINT / SIGTERM (the cases finished by then written, no plots).\n";
 }
 
 int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
@@ -91,15 +96,15 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
   for (const auto& [option, value] : args.command_options) {
     if (option == "--element") request.element = value;
     else if (option == "--component") request.component = value;
-    else if (option == "--amplitude") request.amplitudes = ParseValues(value, option);
-    else if (option == "--frequency") request.frequencies = ParseValues(value, option);
+    else if (option == "--amplitude") request.amplitudes = PositiveValues(value, option, "an amplitude");
+    else if (option == "--frequency") request.frequencies = PositiveValues(value, option, "a frequency");
     else if (option == "--frequencies") {
       if (std::count(value.begin(), value.end(), ':') != 2)
         throw UsageError("--frequencies expects F1:F2:N, got '" + value + "'");
-      request.frequencies = ParseValues(value + ":log", option);
+      request.frequencies = PositiveValues(value + ":log", option, "a frequency");
     }
-    else if (option == "--cycles") request.cycles = ParseCount(value, option);
-    else if (option == "--samples") request.samples = ParseCount(value, option);
+    else if (option == "--cycles") request.cycles = ParseCount(value, option, 2, 100000);
+    else if (option == "--samples") request.samples = ParseCount(value, option, 16, 1000000);
   }
   if (request.element.empty()) throw UsageError("needs --element NAME (the force element to drive)");
   if (args.t_end) throw UsageError("--t-end does not apply: each case runs --cycles periods of its frequency");
@@ -110,8 +115,13 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
     request.vary.emplace_back(split, values);
   }
   const OutputFolder folder(args.out_dir);
+  const InterruptHandlers handlers;  // Ctrl-C, SIGTERM: the case under way ends, the finished ones are written
+  request.interrupt = InterruptFlag();
   const analysis::ForceAnalysis fa = analysis::RunForceAnalysis(request);
   const std::string base = fa.diagram + ".force_analysis";
+  if (fa.interrupted)
+    err << "mechflow force-analysis: " << analysis::SignalName(fa.interrupted) << " after " << fa.cases.size()
+        << " of " << fa.planned << " cases; writing those, no plots\n";
 
   // the table: stdout and CSV
   std::ostringstream csv;
@@ -177,6 +187,7 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
   }
   folder.Write(base + ".loops.csv", loops.str());
   out << "wrote " << folder.PathOf(base + ".loops.csv") << "\n";
+  if (fa.interrupted) return 128 + fa.interrupted;  // 130 SIGINT, 143 SIGTERM
   const std::string loops_plot = base + ".loops.png";
   std::string warning = DrawPlot(XYPlotScript({{"reaction against displacement (hysteresis)", "x' = x - x0", "R = -F",
                                                 against_x},

@@ -1,12 +1,16 @@
 #include "cli/psd_command.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
+#include "blocks/csv.h"
 #include "blocks/input_file.h"
 #include "blocks/suggest.h"
+#include "cli/interrupt.h"
 #include "cli/psd_output.h"
 #include "mech/errors.h"
 
@@ -34,6 +38,20 @@ std::vector<std::string> Fields(const std::string& line) {
   return out;
 }
 
+// A field as the number it holds, the whole field (spaces around it
+// aside): "1abc" and "0x10" are not numbers, nor are inf and nan here.
+std::optional<double> FieldNumber(const std::string& field) {
+  const auto first = field.find_first_not_of(" \t"), last = field.find_last_not_of(" \t");
+  if (first == std::string::npos) return std::nullopt;
+  const char* begin = field.data() + first;
+  const char* end = field.data() + last + 1;
+  if (*begin == '+') ++begin;  // from_chars takes no leading plus
+  double value = 0.0;
+  const auto [stop, error] = std::from_chars(begin, end, value);
+  if (error != std::errc() || stop != end || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
 }  // namespace
 
 const std::vector<std::string> kPsdOptions = {"--signal", "--segment", "--overlap", "--window",
@@ -49,17 +67,18 @@ std::string PsdHelp() {
          "samples (default: the largest power of two up to a quarter of the rows)\n"
          "overlapping by F (default 0.5), each windowed (default Hann) and transformed by\n"
          "FFTW, their squared magnitudes averaged; one-sided, in signal^2/Hz, so that its\n"
-         "integral over frequency is the signal's variance. Rows must be evenly spaced in\n"
-         "time (they are interpolated onto an even grid when not).\n"
+         "integral over frequency is the signal's variance. Rows must be in rising time\n"
+         "order and evenly spaced (they are interpolated onto an even grid when not).\n"
          "Writes STEM.psd.csv (frequency, a density per signal) and the plot STEM.psd.png\n"
          "(log scale) into DIR, and prints the K largest peaks of each signal.\n"
          "\n"
          "  --signal NAME   a column of the results (repeatable)\n"
          "  --segment N     samples per segment (at least 16)\n"
-         "  --overlap F     overlap of segments, 0 <= F < 1\n"
+         "  --overlap F     overlap of segments, 0 <= F <= 0.99; the segments may cover the\n"
+         "                  signal at most 100 times over\n"
          "  --window W      hann or rectangular\n"
          "  --from T        leave out the rows before time T [s] (a start-up transient)\n"
-         "  --peaks K       peaks listed per signal (default 5)\n"
+         "  --peaks K       peaks listed per signal (default 5, 0 to 1000)\n"
          "  --max-frequency F  the plot's frequency axis ends at F [Hz] (the CSV goes on)\n"
          "  --out DIR       output folder (created if missing; default: current folder)\n"
          "\n"
@@ -67,20 +86,35 @@ std::string PsdHelp() {
          "         mechflow psd results/frequencies.csv --signal m.z3 --out results\n"
          "\n"
          "Exit codes: 0 written, 2 bad input (a signal not in the file, too few rows for a\n"
-         "segment, bad options).\n";
+         "segment, rows out of time order, bad options), 130 / 143 ended by SIGINT /\n"
+         "SIGTERM (nothing written).\n";
 }
 
-int PsdCommand(const Arguments& args, std::ostream& out, std::ostream&) {
+int PsdCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
+  const InterruptHandlers handlers;  // Ctrl-C, SIGTERM: the transforms stop, nothing is written
   PsdRequest request;
   std::vector<std::string> wanted;
   for (const auto& [option, value] : args.command_options) {
-    if (option == "--signal") wanted.push_back(value);
-    else if (option == "--segment") request.options.segment = static_cast<int>(ParseNumber(value, option));
-    else if (option == "--overlap") request.options.overlap = ParseNumber(value, option);
-    else if (option == "--window") request.options.window = analysis::ParseWindow(value, "--window");
-    else if (option == "--from") request.from = ParseNumber(value, option);
-    else if (option == "--peaks") request.peaks = static_cast<int>(ParseNumber(value, option));
-    else if (option == "--max-frequency") request.max_frequency = ParseNumber(value, option);
+    if (option == "--signal") {
+      wanted.push_back(value);
+    } else if (option == "--segment") {
+      request.options.segment = ParseCount(value, option, 16, 1 << 24);
+    } else if (option == "--overlap") {
+      request.options.overlap = ParseNumber(value, option);
+      if (!(request.options.overlap >= 0 && request.options.overlap <= analysis::kMaxOverlap))
+        throw UsageError("--overlap: '" + value + "' is not from 0 to 0.99 (each sample is transformed about " +
+                         "1 / (1 - overlap) times); 0.5 is usual");
+    } else if (option == "--window") {
+      request.options.window = analysis::ParseWindow(value, "--window");
+    } else if (option == "--from") {
+      request.from = ParseNumber(value, option);
+    } else if (option == "--peaks") {
+      request.peaks = ParseCount(value, option, 0, 1000);
+    } else if (option == "--max-frequency") {
+      request.max_frequency = ParseNumber(value, option);
+      if (!(request.max_frequency > 0))
+        throw UsageError("--max-frequency: '" + value + "' is not a frequency > 0 Hz (leave it out for the whole range)");
+    }
   }
   if (wanted.empty()) throw UsageError("needs --signal NAME (a column of " + args.file + ")");
   if (!args.variants.empty() || !args.overrides.empty() || !args.set_expressions.empty() || args.t_end ||
@@ -104,22 +138,33 @@ int PsdCommand(const Arguments& args, std::ostream& out, std::ostream&) {
   for (int row = 2; std::getline(text, line); ++row) {
     if (line.empty()) continue;
     const std::vector<std::string> f = Fields(line);
+    const std::string where = args.file + ":" + std::to_string(row);
     const auto number = [&](int c) {
-      if (c >= static_cast<int>(f.size()))
-        throw InputError(args.file + ":" + std::to_string(row) + ": fewer fields than the header");
-      try {
-        return std::stod(f[c]);
-      } catch (const std::exception&) {
-        throw InputError(args.file + ":" + std::to_string(row) + ": '" + f[c] + "' is not a number");
-      }
+      if (c >= static_cast<int>(f.size())) throw InputError(where + ": fewer fields than the header");
+      const std::optional<double> v = FieldNumber(f[c]);
+      if (!v) throw InputError(where + ": '" + f[c] + "' is not a finite number");
+      return *v;
     };
-    request.time.push_back(number(0));
+    const double t = number(0);
+    // the resampling onto an even grid needs rising times; rows out of order
+    // (two files joined, a sort gone wrong) would be averaged into nonsense
+    if (!request.time.empty() && !(t > request.time.back()))
+      throw InputError(where + ": time " + f[0] + " is not after the row before (" +
+                       blocks::CsvNumber(request.time.back()) + "); the rows must be in rising time order, each time "
+                       "once (sort the file, or drop the repeated rows)");
+    request.time.push_back(t);
     for (std::size_t i = 0; i < columns.size(); ++i) request.signals[i].values.push_back(number(columns[i]));
   }
   request.stem = std::filesystem::path(args.file).stem().string();
   request.title = request.stem;
-  const std::string warning = WritePsd(request, folder, out);
-  if (!warning.empty()) out << "warning: no plot: " << warning << "\n";
+  request.options.interrupt = InterruptFlag();
+  try {
+    const std::string warning = WritePsd(request, folder, out);
+    if (!warning.empty()) out << "warning: no plot: " << warning << "\n";
+  } catch (const analysis::Interrupted& e) {
+    err << "mechflow psd: " << e.what() << "; nothing written\n";
+    return 128 + e.signal();
+  }
   return 0;
 }
 

@@ -33,8 +33,12 @@ std::vector<std::vector<double>> UniformRows(const PsdRequest& r, double* dt) {
   *dt = (t1 - t0) / (n - 1);
   if (!(*dt > 0.0)) throw InputError("spectrum: the rows' times do not advance");
   bool uniform = true;
-  for (std::size_t k = first + 1; k < r.time.size(); ++k)
+  for (std::size_t k = first + 1; k < r.time.size(); ++k) {
+    if (!(r.time[k] > r.time[k - 1]))  // interpolating rows out of order would make up a signal
+      throw InputError("spectrum: the row at t = " + Number(r.time[k]) + " s is not after the one before (t = " +
+                       Number(r.time[k - 1]) + " s); the rows must be in rising time order");
     uniform = uniform && std::abs(r.time[k] - r.time[k - 1] - *dt) <= 1e-6 * *dt;
+  }
   std::vector<std::vector<double>> out;
   for (const PsdSignal& s : r.signals) {
     std::vector<double> v;

@@ -19,7 +19,7 @@ struct PsdSignal {
 };
 
 struct PsdRequest {
-  std::vector<double> time;        // the rows' times (uniform; else resampled)
+  std::vector<double> time;        // the rows' times, rising (uniform; else resampled)
   std::vector<PsdSignal> signals;
   analysis::WelchOptions options;
   double from = -1e300;            // rows before this time are left out [s]
@@ -28,7 +28,9 @@ struct PsdRequest {
   std::string stem, title;         // file names STEM.psd.*; the plot's title
 };
 
-// Throws InputError (bad options, too few rows) and WriteError. Returns the
+// Throws InputError (bad options, too few rows, times out of order) and
+// WriteError; analysis::Interrupted when request.options.interrupt is set
+// while the spectra are computed (before anything is written). Returns the
 // plot warning ("" when the plot was drawn).
 std::string WritePsd(const PsdRequest& request, const OutputFolder& folder, std::ostream& out);
 

@@ -7,6 +7,7 @@
 
 #include "blocks/csv.h"
 #include "blocks/suggest.h"
+#include "cli/interrupt.h"
 #include "cli/plot.h"
 #include "cli/psd_output.h"
 #include "cli/report.h"
@@ -99,10 +100,15 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
     request.max_frequency = s.max_frequency;
     request.stem = stem + "." + s.column;
     request.title = loaded.description.name + ": " + s.column;
+    request.options.interrupt = InterruptFlag();  // Ctrl-C: no spectrum (mechflow psd computes it from the results)
     try {
       const std::string problem = WritePsd(request, folder, out);
       if (!problem.empty()) err << "warning: no plot: " << problem << "\n";
       written.push_back(request.stem + ".psd.csv");
+    } catch (const analysis::Interrupted& e) {
+      err << s.origin << ": <spectrum>: not computed, " << e.what() << "; mechflow psd " << folder.PathOf(csv)
+          << " --signal " << s.column << " computes it\n";
+      failed.push_back(request.stem + ".psd.csv");
     } catch (const InputError& e) {
       err << s.origin << ": <spectrum>: " << e.what() << "\n";
       failed.push_back(request.stem + ".psd.csv");

@@ -5,6 +5,7 @@
 #include <map>
 #include <tuple>
 
+#include "analysis/spectrum_limits.h"
 #include "blocks/analytic_jacobian.h"
 #include "blocks/block_factory.h"
 #include "blocks/diagram_builder.h"
@@ -283,8 +284,11 @@ void CollectSpectra(const DiagramDescription& d, const Evaluator& eval, LoadedDi
     request.max_frequency = number("max_frequency", 0.0);
     if (!(segment == 0 || (segment >= 16 && segment <= 1 << 24 && segment == std::floor(segment))))
       throw InputError(r.loc.str() + ": <spectrum>: segment must be a whole number of samples, at least 16");
-    if (!(request.overlap >= 0 && request.overlap < 1))
-      throw InputError(r.loc.str() + ": <spectrum>: overlap must be at least 0 and below 1");
+    if (!(request.overlap >= 0 && request.overlap <= analysis::kMaxOverlap))
+      throw InputError(r.loc.str() + ": <spectrum>: overlap must be from 0 to 0.99 (each sample is transformed "
+                       "about 1 / (1 - overlap) times); 0.5 is usual");
+    if (FindAttribute(r.attributes, "max_frequency") && !(request.max_frequency > 0))
+      throw InputError(r.loc.str() + ": <spectrum>: max_frequency must be > 0 Hz (leave it out for the whole range)");
     if (!(peaks >= 0 && peaks <= 1000 && peaks == std::floor(peaks)))
       throw InputError(r.loc.str() + ": <spectrum>: peaks must be a whole number from 0 to 1000");
     request.segment = static_cast<int>(segment);

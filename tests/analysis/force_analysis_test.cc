@@ -3,6 +3,7 @@
 // dynamic stiffness and phase, the loop of dry friction -- and the EF2-4
 // table of ../shared/ELEMENTS.md 3.8 through the seed's own diagram.
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -152,6 +153,41 @@ TEST(ForceAnalysisTest, RefusesWhatItCannotDrive) {
   r.element = "e";
   r.frequencies = {0};
   EXPECT_THAT(testing::InputErrorOf([&] { RunForceAnalysis(r); }), HasSubstr("frequency must be > 0"));
+}
+
+// An amplitude whose numbers overflow gives no figures: the case fails
+// saying why, and is never periodic (a NaN compares as no difference).
+TEST(ForceAnalysisTest, NumbersThatOverflowFailTheCase) {
+  const std::string path =
+      WriteDiagram("overflow", "<force name='e' type='linear' body1='Base0' body2='B' point1='-1 0 0' c='c' d='d'/>");
+  // R ~ 4e302 and v ~ 6e300 are numbers, their product (the loop energy) is not
+  const ForceAnalysis fa = RunForceAnalysis(Request(path, {1e-3, 1e300}, {1}));
+  ASSERT_EQ(fa.cases.size(), 2u);
+  EXPECT_TRUE(fa.cases[0].failure.empty()) << fa.cases[0].failure;
+  EXPECT_TRUE(fa.cases[0].periodic);
+  const ForceAnalysisCase& c = fa.cases[1];
+  EXPECT_THAT(c.failure, HasSubstr("not a finite number"));
+  EXPECT_FALSE(c.periodic);
+  for (double v : {c.stiffness, c.phase, c.force_amplitude, c.loop_energy}) EXPECT_EQ(v, 0.0);
+  EXPECT_TRUE(c.reaction.empty());
+  // a drive whose own acceleration a (2 pi f)^2 overflows is known before any run
+  EXPECT_THAT(testing::InputErrorOf([&] { RunForceAnalysis(Request(path, {1e306}, {1000})); }),
+              HasSubstr("acceleration a (2 pi f)^2 overflows"));
+}
+
+TEST(ForceAnalysisTest, AnInterruptEndsItWithTheCasesFinished) {
+  ForceAnalysisRequest r = Request(
+      WriteDiagram("interrupt", "<joint_force name='e' dof='j' type='linear' c='c' d='d'/>"), {1e-3, 2e-3}, {1, 2});
+  volatile std::sig_atomic_t flag = SIGINT;  // came before the first case
+  r.interrupt = &flag;
+  const ForceAnalysis fa = RunForceAnalysis(r);
+  EXPECT_EQ(fa.interrupted, SIGINT);
+  EXPECT_TRUE(fa.cases.empty());
+  EXPECT_EQ(fa.planned, 4u);
+  flag = 0;
+  const ForceAnalysis whole = RunForceAnalysis(r);
+  EXPECT_EQ(whole.interrupted, 0);
+  EXPECT_EQ(whole.cases.size(), 4u);
 }
 
 }  // namespace

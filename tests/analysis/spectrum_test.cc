@@ -2,6 +2,7 @@
 // must satisfy: Parseval (its integral is the signal's variance), the level
 // of white noise, peaks where the sines are.
 #include <cmath>
+#include <csignal>
 #include <random>
 #include <vector>
 
@@ -74,6 +75,44 @@ TEST(SpectrumTest, RefusesWhatItCannotEstimate) {
   EXPECT_THAT(testing::InputErrorOf([] { WelchPsd(std::vector<double>(1000, 1.0), 0.01, {256, 1.0, Window::kHann}); }),
               ::testing::HasSubstr("overlap"));
   EXPECT_THAT(testing::InputErrorOf([] { ParseWindow("hamming", "test"); }), ::testing::HasSubstr("hann or rectangular"));
+}
+
+// The transforms may cover the signal at most kMaxCoverage times over: an
+// overlap near 1 would otherwise transform nearly every sample offset (on a
+// million rows, 737,856 transforms of 2^18 points).
+TEST(SpectrumTest, TheWorkIsBoundedByTheSignalsLength) {
+  const std::vector<double> x = Sines(20000, 1e-3, {{1.0, 13.7}});
+  // 0.9999999 steps one sample at a time: 17,953 segments of 2048
+  EXPECT_THAT(testing::InputErrorOf([&] { WelchPsd(x, 1e-3, {2048, 0.9999999, Window::kHann}); }),
+              ::testing::HasSubstr("overlap 0.9999999 is not from 0 to 0.99"));
+  // at 0.99 a segment of 149 still steps one sample (1.49 rounds to 1): 149 times over
+  EXPECT_THAT(testing::InputErrorOf([&] { WelchPsd(x, 1e-3, {149, 0.99, Window::kHann}); }),
+              ::testing::HasSubstr("more than 100 times over; lower the overlap"));
+  // within the bound: (20000 - 1024) / 10 + 1 segments of 1024, 97 times over
+  const Spectrum s = WelchPsd(x, 1e-3, {1024, 0.99, Window::kHann});
+  EXPECT_EQ(s.segments, 1898);
+  EXPECT_LE(double(s.segments) * s.segment, kMaxCoverage * 20000.0);
+}
+
+TEST(SpectrumTest, AnInterruptStopsTheTransforms) {
+  const std::vector<double> x = Sines(4096, 1e-3, {{1.0, 13.7}});
+  volatile std::sig_atomic_t flag = SIGTERM;  // as the command's handler sets it
+  WelchOptions options{256, 0.5, Window::kHann, &flag};
+  try {
+    WelchPsd(x, 1e-3, options);
+    ADD_FAILURE() << "not interrupted";
+  } catch (const Interrupted& e) {
+    EXPECT_EQ(e.signal(), SIGTERM);
+    EXPECT_STREQ(e.what(), "interrupted by SIGTERM");
+  }
+  flag = 0;  // no signal: the whole estimate
+  EXPECT_EQ(WelchPsd(x, 1e-3, options).segments, 31);
+}
+
+TEST(SpectrumTest, ANegativePeakCountIsBadInputNotACrash) {
+  const Spectrum s = WelchPsd(Sines(4096, 1e-3, {{1.0, 13.7}}), 1e-3, {256, 0.5, Window::kHann});
+  EXPECT_THAT(testing::InputErrorOf([&] { FindPeaks(s, -1); }), ::testing::HasSubstr("peaks must be 0 or more"));
+  EXPECT_TRUE(FindPeaks(s, 0).empty());
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // Command-line conventions users bring from other tools (issue 15, item 5):
 // --opt=value, solver and output settings on the command line, ranges for
 // --vary, --quiet, and a usage error that shows the command's own usage.
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -88,6 +90,52 @@ TEST(CommandLineTest, SetTakesExpressionsAndFiles) {
   EXPECT_THAT(bad.err, HasSubstr("betta"));
   std::ofstream(dir / "bad.txt") << "beta 0.2\n";
   EXPECT_THROW(ParseArguments({"run", "d.xml", "--set-file", (dir / "bad.txt").string()}), UsageError);
+}
+
+// A number on the command line is the whole text in decimal; a count is
+// digits only. What std::stod would read as something else is refused,
+// naming the option and the text.
+TEST(CommandLineTest, NumbersAreTheWholeTextOrRefused) {
+  for (const std::string text : {"1e-3", "-2.5", ".5", "7"}) EXPECT_NO_THROW(ParseNumber(text, "--t-end")) << text;
+  for (const std::string text : {"1abc", "0x10", "inf", "-inf", "nan", "", " 1", "1 ", "1e400", "1,5"}) {
+    try {
+      ParseNumber(text, "--t-end");
+      ADD_FAILURE() << "accepted '" << text << "'";
+    } catch (const UsageError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("--t-end: '" + text + "'"));
+    }
+  }
+  EXPECT_EQ(ParseCount("12", "--jobs", 1, 4096), 12);
+  for (const std::string text : {"1e1", "2.0", "0x10", "-1", "0", "4097", "", "3 "})
+    EXPECT_THROW(ParseCount(text, "--jobs", 1, 4096), UsageError) << text;
+  // every numeric option goes through them
+  for (const std::vector<std::string> args :
+       {std::vector<std::string>{"run", "d.xml", "--t-end", "1abc"}, {"run", "d.xml", "--rtol", "0x10"},
+        {"run", "d.xml", "--interval=nan"}, {"sweep", "d.xml", "--vary", "k=1,2abc"},
+        {"sweep", "d.xml", "--vary", "k=1:2:1e1"}, {"sweep", "d.xml", "--vary", "k=1", "--jobs", "1e1"},
+        {"run", "d.xml", "--set", "k=inf"}, {"run", "d.xml", "--set=k=nan"}})
+    EXPECT_THROW(ParseArguments(args), UsageError) << args[2] << " " << args.back();
+}
+
+// --set-file reads a regular file of bounded size: /dev/zero (endless) and a
+// FIFO nobody writes to (blocks forever) are refused at once.
+TEST(CommandLineTest, SetFileIsARegularFile) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "set_file_kinds";
+  fs::create_directories(dir);
+  const fs::path fifo = dir / "fifo";
+  fs::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string path : {std::string("/dev/zero"), fifo.string(), dir.string()}) {
+    try {
+      ParseArguments({"run", "d.xml", "--set-file", path});
+      ADD_FAILURE() << "accepted " << path;
+    } catch (const UsageError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("--set-file: file '" + path + "' is not a regular file")) << path;
+    }
+  }
+  const auto run = testing::RunMechflow("check d.xml --set-file /dev/zero");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("a device"));
 }
 
 TEST(CommandLineTest, VerboseLogsEveryEventWithItsElement) {

@@ -88,5 +88,64 @@ TEST(ForceAnalysisCommandTest, BadInputExits2) {
   EXPECT_EQ(outcome.exit_code, 2);
 }
 
+// No wrong figure with exit 0: a case whose numbers overflow fails (exit 1,
+// the reason on stderr), and nothing printed or written is inf or nan.
+TEST(ForceAnalysisCommandTest, AnAmplitudeWhoseNumbersOverflowFailsTheCase) {
+  const auto out = std::filesystem::path(::testing::TempDir()) / "fa_overflow";
+  const auto outcome = RunMechflow("force-analysis " + kExample + " --element friction --amplitude 0.001,1e300" +
+                                   " --frequency 1 --samples 200 --cycles 3 --out " + out.string());
+  EXPECT_EQ(outcome.exit_code, 1) << outcome.err;
+  EXPECT_THAT(outcome.err, HasSubstr("failed: "));
+  EXPECT_THAT(outcome.err, HasSubstr("not a finite number"));
+  const std::string csv = ReadFile(out / "elast_friction2.force_analysis.csv");
+  for (const std::string& text : {outcome.out, csv, ReadFile(out / "elast_friction2.force_analysis.loops.csv")})
+    for (const char* word : {"nan", "inf"}) EXPECT_EQ(text.find(word), std::string::npos) << word << " in " << text;
+  const auto table = ReadCsv(out / "elast_friction2.force_analysis.csv");
+  ASSERT_EQ(table.size(), 3u);
+  EXPECT_EQ(table[1][7], "yes");
+  EXPECT_EQ(table[2][7], "no");  // never periodic with no figures
+}
+
+TEST(ForceAnalysisCommandTest, NumericOptionsAreStrictAndInRange) {
+  const std::string base = "force-analysis " + kExample + " --element friction --out " + ::testing::TempDir() +
+                           "/fa_options ";
+  const std::pair<std::string, std::string> cases[] = {
+      {"--amplitude 1abc --frequency 1", "--amplitude: '1abc' is not a number"},
+      {"--amplitude 0x10 --frequency 1", "--amplitude: '0x10' is not a number"},
+      {"--amplitude -0.001 --frequency 1", "--amplitude: '-0.001' holds -0.001; an amplitude must be > 0"},
+      {"--amplitude 0.001 --frequency 1,-2", "--frequency: '1,-2' holds -2; a frequency must be > 0"},
+      {"--amplitude 0.001 --frequency inf", "--frequency: 'inf' is not a finite number"},
+      {"--amplitude 0.001 --frequency 1 --cycles 1e1", "--cycles: '1e1' is not a whole number from 2"},
+      {"--amplitude 0.001 --frequency 1 --cycles 1", "--cycles: '1' is not a whole number from 2"},
+      {"--amplitude 0.001 --frequency 1 --samples 8", "--samples: '8' is not a whole number from 16"},
+      {"--amplitude 0.001 --frequency 1 --vary ffr=0.1,0.2x", "--vary ffr: '0.2x' is not a number"},
+      {"--amplitude 0.001 --frequency 1 --cycles 100000 --samples 1000", "rows per case is more than 10000000"},
+  };
+  for (const auto& [options, message] : cases) {
+    const auto outcome = RunMechflow(base + options);
+    EXPECT_EQ(outcome.exit_code, 2) << options;
+    EXPECT_THAT(outcome.err, HasSubstr(message)) << options;
+  }
+}
+
+// Ctrl-C ends the case under way; the cases finished are written and the
+// exit code is 130, as for a run.
+TEST(ForceAnalysisCommandTest, SigintWritesTheCasesFinished) {
+  const auto out = std::filesystem::path(::testing::TempDir()) / "fa_interrupt";
+  std::filesystem::remove_all(out);
+  // about a second per case; the signal comes after 0.8 s
+  const auto outcome = RunMechflow("force-analysis " + kExample + " --element friction --amplitude 0.001" +
+                                   " --frequency 1,2,3,4,5,6,7,8 --cycles 400 --out " + out.string(),
+                                   "timeout --preserve-status -s INT 0.8 ");
+  EXPECT_EQ(outcome.exit_code, 130) << outcome.err;
+  EXPECT_THAT(outcome.err, HasSubstr("SIGINT after "));
+  EXPECT_THAT(outcome.err, HasSubstr(" of 8 cases; writing those, no plots"));
+  const auto table = ReadCsv(out / "elast_friction2.force_analysis.csv");
+  ASSERT_GE(table.size(), 1u);
+  EXPECT_LT(table.size(), 9u);
+  for (std::size_t i = 1; i < table.size(); ++i) EXPECT_EQ(table[i][7], "yes");
+  EXPECT_FALSE(std::filesystem::exists(out / "elast_friction2.force_analysis.loops.png"));
+}
+
 }  // namespace
 }  // namespace mechflow

@@ -1,6 +1,7 @@
 // `mechflow psd` and the <spectrum> output (issue 14, item 2): the
 // Frequencies seed's body 3 peaks at its three natural frequencies; bad input
 // exits 2 naming what was expected.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -64,6 +65,78 @@ TEST(PsdCommandTest, BadInputExits2) {
   outcome = RunMechflow("run " + (dir / "d.xml").string() + " --out " + dir.string());
   EXPECT_EQ(outcome.exit_code, 2);
   EXPECT_THAT(outcome.err, HasSubstr("d.xml:5: <spectrum>: 's.x' is not a logged column"));
+}
+
+// 20 rows of a sine, 0.1 s apart; `edit` changes the text of row `row`
+// (1: the first after the header) before it is written.
+fs::path Results(const fs::path& dir, int row = 0, const std::string& text = "") {
+  fs::create_directories(dir);
+  std::ostringstream csv;
+  csv << "time,x\n";
+  for (int k = 1; k <= 20; ++k) {
+    if (k == row) csv << text << "\n";
+    else csv << 0.1 * (k - 1) << "," << std::sin(k) << "\n";
+  }
+  std::ofstream(dir / "r.csv") << csv.str();
+  return dir / "r.csv";
+}
+
+TEST(PsdCommandTest, RowsOutOfTimeOrderOrNotNumbersAreRefusedAtTheirLine) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "psd_rows";
+  const std::string options = " --signal x --segment 16 --out " + dir.string();
+  auto outcome = RunMechflow("psd " + Results(dir).string() + options);
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.err;
+  // row 6 (line 7) goes back in time; then repeats the time of row 5
+  outcome = RunMechflow("psd " + Results(dir, 6, "0.2,0.5").string() + options);
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.err, HasSubstr("r.csv:7: time 0.2 is not after the row before (0.4)"));
+  outcome = RunMechflow("psd " + Results(dir, 6, "0.4,0.5").string() + options);
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.err, HasSubstr("r.csv:7: time 0.4 is not after the row before"));
+  // a field is a number as a whole: not 1abc (which std::stod read as 1), not hex
+  for (const std::string junk : {"0.5,1abc", "0.5,0x10", "0.5,nan", "0.5x,1"}) {
+    outcome = RunMechflow("psd " + Results(dir, 6, junk).string() + options);
+    EXPECT_EQ(outcome.exit_code, 2) << junk;
+    EXPECT_THAT(outcome.err, HasSubstr("r.csv:7: '")) << junk;
+    EXPECT_THAT(outcome.err, HasSubstr("' is not a finite number")) << junk;
+  }
+}
+
+TEST(PsdCommandTest, OptionsOutOfRangeAreUsageErrorsNamingTheOption) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "psd_options";
+  const std::string base = "psd " + Results(dir).string() + " --signal x --out " + dir.string() + " ";
+  const std::pair<std::string, std::string> cases[] = {
+      {"--overlap 0.9999999", "--overlap: '0.9999999' is not from 0 to 0.99"},
+      {"--overlap -0.1", "--overlap: '-0.1' is not from 0 to 0.99"},
+      {"--peaks -1", "--peaks: '-1' is not a whole number from 0 to 1000"},
+      {"--peaks 2.5", "--peaks: '2.5' is not a whole number"},
+      {"--segment 0x10", "--segment: '0x10' is not a whole number from 16"},
+      {"--segment 1e3", "--segment: '1e3' is not a whole number"},
+      {"--max-frequency -1", "--max-frequency: '-1' is not a frequency > 0 Hz"},
+      {"--max-frequency 1abc", "--max-frequency: '1abc' is not a number"},
+      {"--from inf", "--from: 'inf' is not a finite number"},
+  };
+  for (const auto& [option, message] : cases) {
+    const auto outcome = RunMechflow(base + option);
+    EXPECT_EQ(outcome.exit_code, 2) << option;
+    EXPECT_THAT(outcome.err, HasSubstr("mechflow psd: " + message)) << option;
+  }
+}
+
+TEST(PsdCommandTest, ASpectrumsOverlapIsBoundedAtItsLine) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "psd_overlap";
+  fs::create_directories(dir);
+  for (const std::string attribute : {"overlap='0.9999999'", "max_frequency='-1'"}) {
+    std::ofstream(dir / "d.xml") << "<diagram name='d'>\n<blocks><block type='sine' name='s' amplitude='1' "
+                                    "frequency='5'/></blocks>\n<solver t_end='1'/>\n<output interval='0.001'>"
+                                    "<log signal='s.y'/>\n<spectrum signal='s.y' " << attribute
+                                 << "/></output>\n</diagram>\n";
+    const auto outcome = RunMechflow("run " + (dir / "d.xml").string() + " --out " + dir.string());
+    EXPECT_EQ(outcome.exit_code, 2) << attribute;
+    EXPECT_THAT(outcome.err, HasSubstr("d.xml:5: <spectrum>: ")) << attribute;
+    EXPECT_THAT(outcome.err, HasSubstr(attribute.substr(0, attribute.find('=')) + " must be")) << attribute;
+    EXPECT_FALSE(fs::exists(dir / "d.csv")) << attribute;  // refused before the run
+  }
 }
 
 }  // namespace
