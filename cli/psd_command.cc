@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "blocks/excerpt.h"
 #include "blocks/input_file.h"
 #include "blocks/suggest.h"
 #include "cli/psd_output.h"
@@ -88,7 +89,7 @@ int PsdCommand(const Arguments& args, std::ostream& out, std::ostream&) {
     throw UsageError("reads a results file: --set, --set-file, --variant, --t-end and --unsafe-lua do not apply "
                      "(give them to the run that wrote it)");
   const OutputFolder folder(args.out_dir);
-  std::stringstream text(blocks::ReadInputFile(args.file, "results file"));
+  std::stringstream text{std::string(blocks::WithoutByteOrderMark(blocks::ReadInputFile(args.file, "results file")))};
   std::string line;
   if (!std::getline(text, line)) throw InputError(args.file + ": empty, no header");
   const std::vector<std::string> header = Fields(line);
@@ -110,7 +111,7 @@ int PsdCommand(const Arguments& args, std::ostream& out, std::ostream&) {
       try {
         return std::stod(f[c]);
       } catch (const std::exception&) {
-        throw InputError(args.file + ":" + std::to_string(row) + ": '" + f[c] + "' is not a number");
+        throw InputError(args.file + ":" + std::to_string(row) + ": '" + blocks::Excerpt(f[c]) + "' is not a number");
       }
     };
     request.time.push_back(number(0));
