@@ -373,7 +373,9 @@ void RegisterAllBlocks(blocks::BlockRegistry* registry, scripting::LuaState* lua
   scripting::RegisterIdentifierBlock(registry, identifiers);
 }
 
-LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& options) {
+namespace {
+
+LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
   LoadedDiagram out;
   out.lua = std::make_unique<scripting::LuaState>(scripting::LuaState::Options{.unsafe = options.unsafe_lua});
   out.identifiers = std::make_unique<scripting::IdentifierTable>();
@@ -493,6 +495,18 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
                                                     "<output plot=\"NAME.png\">");
   out.description = std::move(d);
   return out;
+}
+
+}  // namespace
+
+LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& options) {
+  try {
+    return Load(std::move(d), options);
+  } catch (const SimulationError& e) {
+    // nothing runs yet: a value the diagram cannot give when it is loaded (a
+    // time function not finite at the start) is bad input; the message names file:line
+    throw InputError(e.what());
+  }
 }
 
 LoadedDiagram LoadDiagram(const std::string& path, const LoadOptions& options) {
