@@ -35,6 +35,12 @@ const std::string& BlockParams::Text(const std::string& name) const {
   return it->second;
 }
 
+const std::string& BlockParams::FileText(const std::string& name) const {
+  const auto it = file_texts_.find(name);
+  if (it == file_texts_.end()) throw std::logic_error("file parameter '" + name + "' was not read");
+  return it->second;
+}
+
 void BlockParams::SetNumbers(const std::string& name, std::vector<double> values) {
   numbers_[name] = std::move(values);
 }
@@ -42,6 +48,10 @@ void BlockParams::SetTable(const std::string& name, std::vector<std::vector<doub
   tables_[name] = std::move(rows);
 }
 void BlockParams::SetText(const std::string& name, std::string text) { texts_[name] = std::move(text); }
+void BlockParams::SetFile(const std::string& name, std::string path, std::string contents) {
+  texts_[name] = std::move(path);
+  file_texts_[name] = std::move(contents);
+}
 
 const ParamSpec* BlockType::FindParam(const std::string& param) const {
   for (const auto& p : params)

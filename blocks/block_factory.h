@@ -23,7 +23,7 @@ enum class ParamKind {
   kNumbers,  // a list: "1 2 3" or "1, 2, 3" (each item a number or an expression without spaces)
   kTable,    // rows separated by ';': "0 0; 1 2; 3 2"
   kText,     // taken as written (signs "+-", an expression, port names)
-  kPath,     // a file name, resolved against the diagram's folder; must exist
+  kPath,     // a file name, resolved against the diagram's folder, read by the loader (blocks/input_file.h)
 };
 
 struct ParamSpec {
@@ -41,16 +41,19 @@ class BlockParams {
   double Number(const std::string& name) const;
   const std::vector<double>& Numbers(const std::string& name) const;
   const std::vector<std::vector<double>>& Table(const std::string& name) const;
-  const std::string& Text(const std::string& name) const;  // kText and kPath
+  const std::string& Text(const std::string& name) const;  // kText, and kPath: the file's path
+  const std::string& FileText(const std::string& name) const;  // kPath: the file's bytes
 
   void SetNumbers(const std::string& name, std::vector<double> values);
   void SetTable(const std::string& name, std::vector<std::vector<double>> rows);
   void SetText(const std::string& name, std::string text);
+  void SetFile(const std::string& name, std::string path, std::string contents);
 
  private:
   std::map<std::string, std::vector<double>> numbers_;
   std::map<std::string, std::vector<std::vector<double>>> tables_;
   std::map<std::string, std::string> texts_;
+  std::map<std::string, std::string> file_texts_;
 };
 
 struct BlockType {

@@ -7,16 +7,54 @@
 // as /dev/zero or a folder would block or never end. The file is opened
 // without blocking and checked on the open descriptor (no race between the
 // check and the read).
+//
+// Nor may it name whatever the user can read (~/.ssh/id_rsa, /etc/shadow as
+// root): a file a diagram names must lie in the diagram's folder tree, or in
+// a tree the user allows on the command line (--allow-read DIR). Files the
+// user names on the command line (the diagram, a results file) are not
+// confined.
 
 #include <cstddef>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 namespace mechflow::blocks {
 
 inline constexpr std::size_t kMaxInputFileBytes = std::size_t(64) << 20;
 
-// The bytes of `path`. Throws InputError "WHAT 'path': why" when it cannot be
-// opened, is not a regular file, or is larger than the limit.
+// The bytes of `path`, a file the user chose. Throws InputError "WHAT 'path':
+// why" when it cannot be opened, is not a regular file, or is larger than the
+// limit.
 std::string ReadInputFile(const std::string& path, const std::string& what);
+
+// The folder trees a diagram may read files from: its own folder's and those
+// given by --allow-read. Each is taken by its real path (symbolic links
+// resolved) when the policy is made.
+class ReadPolicy {
+ public:
+  // Throws InputError when a folder does not exist.
+  ReadPolicy(const std::string& diagram_file, const std::vector<std::string>& allowed_folders);
+
+  // Whether the real path `path` lies in one of the trees.
+  bool Allows(const std::filesystem::path& path) const;
+  std::string DiagramFolder() const { return roots_.front().string(); }
+
+ private:
+  std::vector<std::filesystem::path> roots_;  // real paths; the diagram's folder first
+};
+
+struct NamedFile {
+  std::string path;  // the name resolved against the naming file's folder
+  std::string text;
+};
+
+// The file a diagram names `name` at `where` ("d.xml:12: block 'b' parameter
+// 'file'"), relative to `folder` (the naming file's). InputError naming
+// `where` when it does not exist, is no regular file or too large, or lies
+// outside the policy's trees once symbolic links are resolved. The check is
+// made on the opened file, so a link swapped in between cannot lead out.
+NamedFile ReadNamedFile(const std::string& name, const std::string& folder, const ReadPolicy& policy,
+                        const std::string& where);
 
 }  // namespace mechflow::blocks

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "blocks/input_file.h"
+#include "blocks/excerpt.h"
 #include "blocks/suggest.h"
 #include "cli/force_analysis_command.h"
 #include "cli/psd_command.h"
@@ -41,17 +42,18 @@ std::pair<std::string, std::vector<double>> ParseVary(const std::string& text) {
 void AddSet(const std::string& kv, const std::string& where, Arguments* a) {
   const auto eq = kv.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
-    throw UsageError(where + ": expected NAME=VALUE, got '" + kv + "'");
+    throw UsageError(where + ": expected NAME=VALUE, got '" + blocks::Excerpt(kv) + "'");
   const auto trim = [](std::string s) {
     const auto first = s.find_first_not_of(" \t"), last = s.find_last_not_of(" \t");
     return first == std::string::npos ? std::string() : s.substr(first, last - first + 1);
   };
   const std::string name = trim(kv.substr(0, eq)), text = trim(kv.substr(eq + 1));
-  if (name.empty() || text.empty()) throw UsageError(where + ": expected NAME=VALUE, got '" + kv + "'");
+  if (name.empty() || text.empty())
+    throw UsageError(where + ": expected NAME=VALUE, got '" + blocks::Excerpt(kv) + "'");
   double number = 0.0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
   if (error == std::errc() && end == text.data() + text.size() && !std::isfinite(number))
-    throw UsageError(where + ": '" + text + "' is not a finite number");
+    throw UsageError(where + ": '" + blocks::Excerpt(text) + "' is not a finite number");
   if (error == std::errc() && end == text.data() + text.size()) a->overrides.push_back({name, number});
   else a->set_expressions.push_back({name, text});
 }
@@ -138,6 +140,8 @@ std::string HelpText(const std::string& command) {
            "                    a mechanism the element and what it switched to\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
+           "  --allow-read DIR  the diagram may read files (tables, Lua, mechanisms) in DIR's\n"
+           "                    folder tree too, not only in its own folder's (repeatable)\n"
            "Every option takes its value as --opt VALUE or --opt=VALUE; a number is the\n"
            "whole value in decimal (1e-3, -2.5, .5; not 0x10, inf or 1abc).\n"
            "\n"
@@ -145,14 +149,14 @@ std::string HelpText(const std::string& command) {
            "written), 2 bad input, 130 / 143 ended by SIGINT (Ctrl-C) / SIGTERM (the rows\n"
            "up to there are written).\n";
   if (command == "check")
-    return "usage: mechflow check FILE [--variant NAME]... [--set NAME=VALUE]...\n"
+    return "usage: mechflow check FILE [--variant NAME]... [--set NAME=VALUE]... [--allow-read DIR]...\n"
            "\n"
            "Reads and builds the diagram without running it, then prints the identifiers,\n"
            "the variants, the evaluation order of output ports, the continuous-state layout, the\n"
            "zero-crossing functions and the sampled blocks. Exit 0 when the diagram is\n"
            "valid, 2 otherwise.\n";
   if (command == "graph")
-    return "usage: mechflow graph FILE [--set NAME=VALUE]...\n"
+    return "usage: mechflow graph FILE [--set NAME=VALUE]... [--allow-read DIR]...\n"
            "\n"
            "Prints the diagram as a Graphviz DOT graph on standard output, e.g.\n"
            "  mechflow graph d.xml | dot -Tsvg > d.svg\n"
@@ -179,6 +183,7 @@ std::string HelpText(const std::string& command) {
            "  --out DIR         output folder for NAME.modes.csv (created if missing; default:\n"
            "                    current folder)\n"
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
+           "  --allow-read DIR  as for mechflow run\n"
            "\n"
            "Exit codes: 0 done, 1 no equilibrium found (or the rates are not finite),\n"
            "2 bad input.\n";
@@ -207,7 +212,7 @@ std::string HelpText(const std::string& command) {
            "                    evenly on a log scale\n"
            "  --jobs N          runs at a time (default: the number of cores)\n"
            "  --variant, --set, --t-end, --rtol, --atol, --interval, --results, --quiet,\n"
-           "  --unsafe-lua      as for mechflow run, for every run\n"
+           "  --unsafe-lua, --allow-read  as for mechflow run, for every run\n"
            "  --verbose         write each run's event log beside its results\n"
            "                    (NAME.runK.ID=VALUE....events.txt)\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
@@ -288,7 +293,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       }
       int number = 0;
       for (std::string line; std::getline(in, line);) {
-        ++number;
+        if (++number == 1) line = std::string(blocks::WithoutByteOrderMark(line));  // as spreadsheets save it
         line = line.substr(0, line.find('#'));
         const auto first = line.find_first_not_of(" \t\r"), last = line.find_last_not_of(" \t\r");
         if (first == std::string::npos) continue;
@@ -322,6 +327,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.equilibrium = true;
     } else if (arg == "--unsafe-lua") {
       a.unsafe_lua = true;
+    } else if (arg == "--allow-read" && a.command != "psd") {
+      a.allow_read.push_back(value(arg));
     } else if (const auto& own = CommandOptions(a.command); std::find(own.begin(), own.end(), arg) != own.end()) {
       a.command_options.emplace_back(arg, value(arg));
     } else if (arg == "--vary" && (a.command == "sweep" || a.command == "force-analysis")) {
@@ -331,6 +338,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
     } else if (arg.rfind("--", 0) == 0) {
       std::vector<std::string> options = {"--set", "--set-file", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
       if (runs) options.insert(options.end(), {"--rtol", "--atol", "--interval", "--results", "--quiet"});
+      if (a.command != "psd") options.push_back("--allow-read");
       if (a.command == "modes") options.push_back("--equilibrium");
       if (a.command == "run") options.insert(options.end(), {"--animate", "--gltf", "--no-animate"});
       if (a.command == "sweep") options.insert(options.end(), {"--vary", "--jobs"});

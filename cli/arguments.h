@@ -25,6 +25,7 @@ struct Arguments {
   bool no_animate = false;                                // run --no-animate: neither, whatever <output> says
   std::string out_dir = ".";                              // --out DIR
   bool unsafe_lua = false;                                // --unsafe-lua
+  std::vector<std::string> allow_read;                    // --allow-read DIR: the diagram may read files there too
   bool equilibrium = false;                               // modes --equilibrium
   std::vector<std::pair<std::string, std::vector<double>>> vary;  // sweep --vary NAME=V1,V2,...
   std::optional<int> jobs;                                // sweep --jobs N (>= 1)

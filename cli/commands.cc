@@ -39,6 +39,7 @@ diagrams::LoadOptions ToLoadOptions(const Arguments& args) {
   o.interval = args.interval;
   o.results = args.results;
   o.unsafe_lua = args.unsafe_lua;
+  o.allow_read = args.allow_read;
   return o;
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "blocks/csv.h"
+#include "blocks/excerpt.h"
 #include "blocks/input_file.h"
 #include "blocks/suggest.h"
 #include "cli/interrupt.h"
@@ -122,7 +123,7 @@ int PsdCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     throw UsageError("reads a results file: --set, --set-file, --variant, --t-end and --unsafe-lua do not apply "
                      "(give them to the run that wrote it)");
   const OutputFolder folder(args.out_dir);
-  std::stringstream text(blocks::ReadInputFile(args.file, "results file"));
+  std::stringstream text{std::string(blocks::WithoutByteOrderMark(blocks::ReadInputFile(args.file, "results file")))};
   std::string line;
   if (!std::getline(text, line)) throw InputError(args.file + ": empty, no header");
   const std::vector<std::string> header = Fields(line);
@@ -142,14 +143,14 @@ int PsdCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     const auto number = [&](int c) {
       if (c >= static_cast<int>(f.size())) throw InputError(where + ": fewer fields than the header");
       const std::optional<double> v = FieldNumber(f[c]);
-      if (!v) throw InputError(where + ": '" + f[c] + "' is not a finite number");
+      if (!v) throw InputError(where + ": '" + blocks::Excerpt(f[c]) + "' is not a finite number");
       return *v;
     };
     const double t = number(0);
     // the resampling onto an even grid needs rising times; rows out of order
     // (two files joined, a sort gone wrong) would be averaged into nonsense
     if (!request.time.empty() && !(t > request.time.back()))
-      throw InputError(where + ": time " + f[0] + " is not after the row before (" +
+      throw InputError(where + ": time " + blocks::Excerpt(f[0]) + " is not after the row before (" +
                        blocks::CsvNumber(request.time.back()) + "); the rows must be in rising time order, each time "
                        "once (sort the file, or drop the repeated rows)");
     request.time.push_back(t);

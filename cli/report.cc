@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -12,6 +13,7 @@
 
 #include "blocks/analytic_jacobian.h"
 #include "blocks/csv.h"
+#include "blocks/excerpt.h"
 #include "blocks/input_file.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/suggest.h"
@@ -27,25 +29,25 @@ std::string Format(const char* format, double value) {
   return buffer;
 }
 
-// A DOT string: quotes escaped (labels keep their own escapes such as \\n).
-std::string DotQuote(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
-
-// Text inside a record label: the characters that structure a record escaped.
-std::string RecordText(const std::string& s) {
+// Text as DOT shows it. Graphviz reads a quoted string keeping every
+// backslash but \" (a quote); a label then turns \\ into a backslash and
+// drops the backslash of other escapes. So a name's backslashes are doubled
+// (none may escape the closing quote, as in a diagram named "x\"), quotes
+// escaped, and control characters and bytes that are not UTF-8 written \xNN.
+std::string DotText(const std::string& s, const char* also_escaped = "") {
   std::string out;
-  for (const char c : s) {
-    if (std::string("{}|<>\\ ").find(c) != std::string::npos) out += '\\';
+  for (const char c : blocks::Excerpt(s, std::string::npos)) {
+    if (c == '\\' || c == '"' || (c != '\0' && std::strchr(also_escaped, c))) out += '\\';
     out += c;
   }
   return out;
 }
+
+// A quoted DOT string of text that is already DOT (labels with their escapes).
+std::string DotQuote(const std::string& dot) { return "\"" + dot + "\""; }
+
+// Text inside a record label: also the characters that structure a record escaped.
+std::string RecordText(const std::string& s) { return DotText(s, "{}|<> "); }
 
 }  // namespace
 
@@ -184,8 +186,10 @@ int PrintUnknownGlobals(const diagrams::LoadedDiagram& loaded, std::ostream& out
     if (b.type != "lua") continue;
     const auto src = std::find_if(b.params.begin(), b.params.end(), [](const auto& a) { return a.name == "src"; });
     if (src != b.params.end()) {
-      const std::string path = (std::filesystem::path(b.loc.file).parent_path() / src->value).string();
-      chunks.push_back({blocks::ReadInputFile(path, "Lua file"), path, 1});
+      const std::string folder = std::filesystem::path(b.loc.file).parent_path().string();
+      blocks::NamedFile file =
+          blocks::ReadNamedFile(src->value, folder, *loaded.reads, src->loc.str() + ": block '" + b.name + "'");
+      chunks.push_back({std::move(file.text), std::move(file.path), 1});
     } else {
       chunks.push_back({b.text, b.text_loc.file, b.text_loc.line});
     }
@@ -288,7 +292,7 @@ void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
 
 void PrintDot(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
   const blocks::Diagram& d = *loaded.diagram;
-  out << "digraph " << DotQuote(loaded.description.name) << " {\n"
+  out << "digraph " << DotQuote(DotText(loaded.description.name)) << " {\n"
       << "  rankdir=LR;\n  node [shape=record, fontname=\"sans\", fontsize=10];\n"
       << "  edge [fontname=\"sans\", fontsize=9];\n";
   for (int bi = 0; bi < d.num_blocks(); ++bi) {

@@ -202,6 +202,7 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.common.interval = args.interval;
   plan.common.results = args.results;
   plan.common.unsafe_lua = args.unsafe_lua;
+  plan.common.allow_read = args.allow_read;
 
   // the diagram must load as given; its identifiers judge the --vary names
   const diagrams::LoadedDiagram base = diagrams::LoadDiagram(args.file, plan.common);

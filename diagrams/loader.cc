@@ -27,7 +27,7 @@ const Attribute* FindAttribute(const std::vector<Attribute>& attributes, const s
 }
 
 blocks::BlockParams EvaluateParams(const BlockDesc& b, const blocks::BlockType& type, const Evaluator& eval,
-                                   const std::string& folder) {
+                                   const std::string& folder, const blocks::ReadPolicy& reads) {
   const std::string who = b.loc.str() + ": block '" + b.name + "' (" + b.type + ")";
   std::vector<std::string> names = {"type", "name"};
   for (const auto& p : type.params) names.push_back(p.name);
@@ -58,11 +58,9 @@ blocks::BlockParams EvaluateParams(const BlockDesc& b, const blocks::BlockType& 
         params.SetText(spec.name, text);
         break;
       case blocks::ParamKind::kPath: {
-        const std::filesystem::path p = std::filesystem::path(folder) / text;
-        // (whether it is a regular file is checked where it is read: blocks/input_file.h)
-        if (!std::filesystem::exists(p))
-          throw InputError(what + ": file '" + text + "' not found (looked for " + p.lexically_normal().string() + ")");
-        params.SetText(spec.name, p.lexically_normal().string());
+        // read here, where the diagram's folder and --allow-read are known
+        blocks::NamedFile file = blocks::ReadNamedFile(text, folder, reads, what);
+        params.SetFile(spec.name, std::move(file.path), std::move(file.text));
         break;
       }
     }
@@ -379,7 +377,9 @@ void RegisterAllBlocks(blocks::BlockRegistry* registry, scripting::LuaState* lua
   scripting::RegisterIdentifierBlock(registry, identifiers);
 }
 
-LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& options) {
+namespace {
+
+LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
   LoadedDiagram out;
   out.lua = std::make_unique<scripting::LuaState>(scripting::LuaState::Options{.unsafe = options.unsafe_lua});
   out.identifiers = std::make_unique<scripting::IdentifierTable>();
@@ -419,6 +419,7 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   blocks::BlockRegistry registry;
   RegisterAllBlocks(&registry, out.lua.get(), out.identifiers.get());
   const std::string folder = std::filesystem::path(d.file).parent_path().string();
+  out.reads.emplace(d.file, options.allow_read);
   blocks::DiagramBuilder builder;
   for (const auto& m : d.mechanisms) builder.AddBlock(BuildMechanismBlock(m, eval), m.loc.str());
   for (const auto& b : d.blocks) {
@@ -427,7 +428,7 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
       throw InputError(b.loc.str() + ": block '" + b.name + "' has unknown type '" + b.type + "'" +
                        blocks::DidYouMean(b.type, registry.Names()) + "; known types: " +
                        blocks::JoinNames(registry.Names()));
-    blocks::BlockParams params = EvaluateParams(b, *type, eval, folder);
+    blocks::BlockParams params = EvaluateParams(b, *type, eval, folder, *out.reads);
     if (b.text.find_first_not_of(" \t\r\n") != std::string::npos) {
       if (!type->takes_text)
         throw InputError(b.text_loc.str() + ": block '" + b.name + "' (" + b.type + ") takes no text content");
@@ -500,8 +501,20 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
   return out;
 }
 
+}  // namespace
+
+LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& options) {
+  try {
+    return Load(std::move(d), options);
+  } catch (const SimulationError& e) {
+    // nothing runs yet: a value the diagram cannot give when it is loaded (a
+    // time function not finite at the start) is bad input; the message names file:line
+    throw InputError(e.what());
+  }
+}
+
 LoadedDiagram LoadDiagram(const std::string& path, const LoadOptions& options) {
-  return LoadDiagramDescription(ReadDiagramFile(path), options);
+  return LoadDiagramDescription(ReadDiagramFile(path, options.allow_read), options);
 }
 
 }  // namespace mechflow::diagrams

@@ -16,6 +16,7 @@
 
 #include "blocks/block_factory.h"
 #include "blocks/diagram.h"
+#include "blocks/input_file.h"
 #include "blocks/simulator.h"
 #include "diagrams/description.h"
 #include "scripting/control_script.h"
@@ -33,6 +34,9 @@ struct LoadOptions {
   std::optional<double> rtol, atol, interval;             // --rtol, --atol, --interval
   std::optional<std::string> results;                     // --results NAME (the CSV file)
   bool unsafe_lua = false;
+  // --allow-read DIR: folders whose trees the files the diagram names may lie
+  // in, besides its own folder's (blocks/input_file.h)
+  std::vector<std::string> allow_read;
 };
 
 // Logged columns shown in one plot panel.
@@ -82,6 +86,7 @@ struct LoadedDiagram {
   std::string plot_file;  // relative to the output folder; empty: no plot
   std::string animation_file;  // <output animation=...>: relative to the output folder; empty: none
   std::string gltf_file;       // <output gltf=...>: the same as glTF binary (.glb)
+  std::optional<blocks::ReadPolicy> reads;  // where files the diagram names may be read from
 };
 
 LoadedDiagram LoadDiagram(const std::string& path, const LoadOptions& options = {});

@@ -6,6 +6,7 @@
 
 #include <tinyxml2.h>
 
+#include "blocks/excerpt.h"
 #include "blocks/input_file.h"
 #include "blocks/suggest.h"
 #include "diagrams/xml_text_check.h"
@@ -15,6 +16,8 @@ namespace mechflow::diagrams {
 namespace {
 
 using blocks::ReadInputFile;
+using blocks::ReadNamedFile;
+using blocks::ReadPolicy;
 
 using tinyxml2::XMLAttribute;
 using tinyxml2::XMLElement;
@@ -95,7 +98,7 @@ const ElementSchema& SchemaOf(const std::string& element) {
 
 class Reader {
  public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
+  Reader(std::string file, const ReadPolicy& reads) : file_(std::move(file)), reads_(reads) {}
 
   SourceLoc Loc(const XMLElement* e) const { return {file_, e->GetLineNum()}; }
 
@@ -112,7 +115,7 @@ class Reader {
       const std::string name = a->Name();
       CheckNameText(e, name, a->Value());
       if (s.open_attributes || std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
-      Fail(e, "<" + std::string(e->Name()) + "> has no attribute '" + name + "'" +
+      Fail(e, "<" + std::string(e->Name()) + "> has no attribute '" + blocks::Excerpt(name) + "'" +
                   blocks::DidYouMean(name, allowed) +
                   (allowed.empty() ? "; it takes no attributes" : "; valid attributes: " + blocks::JoinNames(allowed)));
     }
@@ -122,7 +125,8 @@ class Reader {
     for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
       const std::string name = c->Name();
       if (std::find(s.children.begin(), s.children.end(), name) != s.children.end()) continue;
-      Fail(c, "unknown element <" + name + "> inside <" + e->Name() + ">" + blocks::DidYouMean(name, s.children) +
+      Fail(c, "unknown element <" + blocks::Excerpt(name) + "> inside <" + e->Name() + ">" +
+                  blocks::DidYouMean(name, s.children) +
                   (s.children.empty() ? "; <" + std::string(e->Name()) + "> has no child elements"
                                       : "; expected one of: " + blocks::JoinNames(s.children)));
     }
@@ -203,7 +207,7 @@ class Reader {
     const XMLElement* root = doc.RootElement();
     if (!root) throw InputError(file_ + ":1: the file holds no XML element; expected <diagram>");
     if (std::string(root->Name()) != "diagram")
-      Fail(root, "the top element is <" + std::string(root->Name()) + ">; expected <diagram>");
+      Fail(root, "the top element is <" + blocks::Excerpt(root->Name()) + ">; expected <diagram>");
     CheckShape(root);
     DiagramDescription d;
     d.file = file_;
@@ -262,18 +266,19 @@ class Reader {
 
  private:
   std::string file_;
+  const ReadPolicy& reads_;  // where the files it names may be
 };
 
 tinyxml2::XMLError ParseText(tinyxml2::XMLDocument* doc, const std::string& text, const std::string& file) {
   CheckXmlText(text, file);
   if (doc->Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
     throw InputError(file + ":" + std::to_string(doc->ErrorLineNum()) + ": malformed XML: " +
-                     (doc->ErrorStr() ? doc->ErrorStr() : doc->ErrorName()));
+                     blocks::Excerpt(doc->ErrorStr() ? doc->ErrorStr() : doc->ErrorName(), 160));
   }
   if (const XMLElement* root = doc->RootElement(); root && root->NextSiblingElement())
     throw InputError(file + ":" + std::to_string(root->NextSiblingElement()->GetLineNum()) +
-                     ": a second top-level element <" + root->NextSiblingElement()->Name() + ">; a file holds one <" +
-                     root->Name() + "> element");
+                     ": a second top-level element <" + blocks::Excerpt(root->NextSiblingElement()->Name()) +
+                     ">; a file holds one <" + blocks::Excerpt(root->Name()) + "> element");
   return tinyxml2::XML_SUCCESS;
 }
 
@@ -283,14 +288,15 @@ ElementDesc Reader::ReadMechanism(const XMLElement* e) const {
   if (!src) return ReadTree(e);
   CheckShape(e);
   if (e->FirstChildElement()) Fail(e, "<mechanism src=...> takes its content from the file; it has no children here");
-  const std::string path =
-      (std::filesystem::path(file_).parent_path() / src).lexically_normal().string();
+  const blocks::NamedFile file =
+      ReadNamedFile(src, std::filesystem::path(file_).parent_path().string(), reads_, Loc(e).str() + ": mechanism");
+  const std::string& path = file.path;
   tinyxml2::XMLDocument doc;
-  ParseText(&doc, ReadInputFile(path, Loc(e).str() + ": mechanism file"), path);
+  ParseText(&doc, file.text, path);
   const XMLElement* root = doc.RootElement();
   if (!root || std::string(root->Name()) != "mechanism")
     throw InputError(path + ":1: a mechanism file holds one <mechanism> element");
-  ElementDesc m = Reader(path).ReadTree(root);
+  ElementDesc m = Reader(path, reads_).ReadTree(root);
   for (const auto& a : Attributes(e, {"src"})) {
     bool replaced = false;
     for (auto& existing : m.attributes)
@@ -309,9 +315,10 @@ ScriptDesc Reader::ReadScript(const XMLElement* e) const {
       text && text->ToText() && std::string(text->Value()).find_first_not_of(" \t\r\n") != std::string::npos;
   if (src && has_text) Fail(e, "<script> has both src= and code; give one of them");
   if (src) {
-    const std::string path = (std::filesystem::path(file_).parent_path() / src).lexically_normal().string();
-    script.code = ReadInputFile(path, Loc(e).str() + ": script file");
-    script.chunk_name = "@" + path;
+    blocks::NamedFile file =
+        ReadNamedFile(src, std::filesystem::path(file_).parent_path().string(), reads_, Loc(e).str() + ": script");
+    script.code = std::move(file.text);
+    script.chunk_name = "@" + file.path;
   } else if (has_text) {
     // Lua counts lines from the chunk's start: pad it so they are the file's.
     // tinyxml2 gives the line of the text's first non-blank character, but of
@@ -330,14 +337,16 @@ ScriptDesc Reader::ReadScript(const XMLElement* e) const {
 
 }  // namespace
 
-DiagramDescription ReadDiagramText(const std::string& text, const std::string& file) {
+DiagramDescription ReadDiagramText(const std::string& text, const std::string& file,
+                                   const std::vector<std::string>& allow_read) {
+  const ReadPolicy reads(file, allow_read);
   tinyxml2::XMLDocument doc;
   ParseText(&doc, text, file);
-  return Reader(file).Read(doc);
+  return Reader(file, reads).Read(doc);
 }
 
-DiagramDescription ReadDiagramFile(const std::string& path) {
-  return ReadDiagramText(ReadInputFile(path, "diagram file"), path);
+DiagramDescription ReadDiagramFile(const std::string& path, const std::vector<std::string>& allow_read) {
+  return ReadDiagramText(ReadInputFile(path, "diagram file"), path, allow_read);
 }
 
 }  // namespace mechflow::diagrams

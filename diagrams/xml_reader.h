@@ -9,14 +9,19 @@
 // Errors are InputError "file:line: what was found, what was expected".
 
 #include <string>
+#include <vector>
 
 #include "diagrams/description.h"
 
 namespace mechflow::diagrams {
 
-DiagramDescription ReadDiagramFile(const std::string& path);
+// `allow_read`: folders whose trees the files the diagram names (<mechanism
+// src>, <script src>) may lie in besides the diagram's own folder tree
+// (--allow-read; blocks/input_file.h).
+DiagramDescription ReadDiagramFile(const std::string& path, const std::vector<std::string>& allow_read = {});
 
 // Same, from text in memory; `file` is the name used in messages.
-DiagramDescription ReadDiagramText(const std::string& text, const std::string& file);
+DiagramDescription ReadDiagramText(const std::string& text, const std::string& file,
+                                   const std::vector<std::string>& allow_read = {});
 
 }  // namespace mechflow::diagrams

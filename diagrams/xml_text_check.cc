@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "blocks/excerpt.h"
 #include "mech/errors.h"
 
 namespace mechflow::diagrams {
@@ -126,11 +127,12 @@ class TextChecker {
         if (v < 0) ok = false;
         code = code * (hex ? 16 : 10) + static_cast<std::uint32_t>(std::max(v, 0));
       }
-      if (!ok) Fail(i, "the character reference '&" + name + ";' is not a number");
-      if (!AllowedCharacter(code)) Fail(i, "the character reference '&" + name + ";' names a character XML does not allow");
+      if (!ok) Fail(i, "the character reference '&" + blocks::Excerpt(name) + ";' is not a number");
+      if (!AllowedCharacter(code))
+        Fail(i, "the character reference '&" + blocks::Excerpt(name) + ";' names a character XML does not allow");
       return semicolon + 1;
     }
-    Fail(i, "the undefined entity '&" + name + ";'" + expected);
+    Fail(i, "the undefined entity '&" + blocks::Excerpt(name) + ";'" + expected);
   }
 
   const std::string& text_;

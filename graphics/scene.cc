@@ -101,7 +101,16 @@ class ShapeReader {
     for (int j = 0; j <= samples_v; ++j)
       for (int i = 0; i <= samples_u; ++i) {
         const double args[2] = {u0 + (u1 - u0) * i / samples_u, samples_v ? v0 + (v1 - v0) * j / samples_v : 0.0};
-        out->points.emplace_back(xyz[0]->Evaluate(args), xyz[1]->Evaluate(args), xyz[2]->Evaluate(args));
+        Vec3 p;
+        for (int k = 0; k < 3; ++k) {
+          try {
+            p[k] = xyz[k]->Evaluate(args);
+          } catch (const SimulationError& e) {
+            // evaluated when the diagram is loaded: a value it cannot give is bad input, not a failed run
+            throw InputError(e.what());
+          }
+        }
+        out->points.push_back(p);
       }
   }
 

@@ -8,6 +8,7 @@
 
 #include <lua.hpp>
 
+#include "blocks/excerpt.h"
 #include "blocks/suggest.h"
 #include "mech/errors.h"
 #include "scripting/identifier_bindings.h"
@@ -111,7 +112,7 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
   if (status != LUA_OK) {
     const std::string message = lua_.ErrorText(status);
     lua_settop(L, top);
-    throw InputError("expression '" + expression + "' does not compile: " + message);
+    throw InputError("expression '" + blocks::Excerpt(expression) + "' does not compile: " + message);
   }
   lua_settop(L, top);
 
@@ -140,7 +141,7 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
     for (const auto& name : LuaState::BuiltinNames()) candidates.push_back(name);
     // a one-letter name is close to too many others for a suggestion to help
     const std::string& name = unknown.front();
-    throw InputError("expression '" + expression + "' uses the unknown name '" + name + "'" +
+    throw InputError("expression '" + blocks::Excerpt(expression) + "' uses the unknown name '" + name + "'" +
                      (name.size() > 1 ? blocks::DidYouMean(name, candidates) : "") +
                      (arguments_.empty() ? "; it has no arguments" : "; its arguments are " + Join(arguments_)));
   }
@@ -153,11 +154,11 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
   if (status != LUA_OK) {
     const std::string message = lua_.ErrorText(status);
     lua_settop(L, top);
-    throw InputError("expression '" + expression + "' does not compile as one expression: " + message);
+    throw InputError("expression '" + blocks::Excerpt(expression) + "' does not compile as one expression: " + message);
   }
   if (!lua_checkstack(L, static_cast<int>(upvalues.size()) + 2)) {
     lua_settop(L, top);
-    throw InputError("expression '" + expression + "' uses too many names");
+    throw InputError("expression '" + blocks::Excerpt(expression) + "' uses too many names");
   }
   bounded_ = scan.defines_function || scan.rewritten.find_first_of("\"'[:") != std::string::npos;
   for (const auto& name : upvalues) {
@@ -171,7 +172,8 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
   std::string error;
   if (!lua_.Call(static_cast<int>(upvalues.size()), 1, &error) || !lua_isfunction(L, -1)) {
     lua_settop(L, top);
-    throw InputError("expression '" + expression + "': " + (error.empty() ? "did not compile to a function" : error));
+    throw InputError("expression '" + blocks::Excerpt(expression) +
+                     "': " + (error.empty() ? "did not compile to a function" : error));
   }
   if (!identifiers_used_.empty()) BindIdentifiers(L, -1);
   function_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
@@ -210,11 +212,13 @@ double CompiledExpression::Evaluate(const double* args) const {
   const double value = lua_tonumber(L, -1);
   lua_settop(L, top);
   if (type != LUA_TNUMBER)
-    throw SimulationError(label_ + ": expression '" + expression_ + "' gives a " + lua_typename(L, type) +
+    throw SimulationError(label_ + ": expression '" + blocks::Excerpt(expression_) + "' gives a " +
+                          lua_typename(L, type) +
                           ", not a number" + (n > 0 ? ", " + DescribeArguments(args) : "") +
                           (type == LUA_TBOOLEAN ? " (write 'cond and 1 or 0' for a number)" : ""));
   if (!std::isfinite(value))
-    throw SimulationError(label_ + ": expression '" + expression_ + "' gives " + std::to_string(value) +
+    throw SimulationError(label_ + ": expression '" + blocks::Excerpt(expression_) + "' gives " +
+                          std::to_string(value) +
                           (n > 0 ? " " + DescribeArguments(args) : ""));
   return value;
 }

@@ -9,6 +9,7 @@
 
 #include <lua.hpp>
 
+#include "blocks/excerpt.h"
 #include "blocks/suggest.h"
 #include "mech/errors.h"
 #include "scripting/lua_state.h"
@@ -181,7 +182,7 @@ double IdentifierTable::Eval(LuaState& lua, const std::string& text, int visible
   if (status != LUA_OK) {
     const std::string message = WithoutPosition(lua.ErrorText(status));
     lua_settop(L, top);
-    throw InputError(what + ": '" + text + "' is not a valid expression: " + message);
+    throw InputError(what + ": '" + blocks::Excerpt(text) + "' is not a valid expression: " + message);
   }
 
   // environment: the visible identifiers (case-insensitive), then the globals
@@ -228,7 +229,7 @@ double IdentifierTable::Eval(LuaState& lua, const std::string& text, int visible
                "once, when the diagram is loaded)";
       throw InputError(what + ": unknown name '" + unknown + "'" + hint);
     }
-    throw InputError(what + ": error evaluating '" + text + "': " + message);
+    throw InputError(what + ": error evaluating '" + blocks::Excerpt(text) + "': " + message);
   }
 
   // exactly one finite number
@@ -237,11 +238,14 @@ double IdentifierTable::Eval(LuaState& lua, const std::string& text, int visible
   const double value = type == LUA_TNUMBER ? lua_tonumber(L, top + 1) : 0.0;
   lua_settop(L, top);
   if (results != 1)
-    throw InputError(what + ": '" + text + "' gives " + std::to_string(results) + " values; expected one number");
+    throw InputError(what + ": '" + blocks::Excerpt(text) + "' gives " + std::to_string(results) +
+                     " values; expected one number");
   if (type != LUA_TNUMBER)
-    throw InputError(what + ": '" + text + "' does not give a number (it gives a " + lua_typename(L, type) + ")" +
+    throw InputError(what + ": '" + blocks::Excerpt(text) + "' does not give a number (it gives a " +
+                     lua_typename(L, type) + ")" +
                      (type == LUA_TBOOLEAN ? "; write 'cond and 1 or 0' for a number" : ""));
-  if (!std::isfinite(value)) throw InputError(what + ": '" + text + "' gives " + std::to_string(value));
+  if (!std::isfinite(value))
+    throw InputError(what + ": '" + blocks::Excerpt(text) + "' gives " + std::to_string(value));
   return value;
 }
 

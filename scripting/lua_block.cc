@@ -11,7 +11,6 @@
 
 #include <lua.hpp>
 
-#include "blocks/input_file.h"
 #include "mech/errors.h"
 #include "scripting/identifier_bindings.h"
 #include "scripting/identifiers.h"
@@ -134,8 +133,6 @@ int TotalWidth(const std::vector<Port>& ports) {
   for (const auto& p : ports) n += p.width;
   return n;
 }
-
-std::string ReadCodeFile(const std::string& path) { return blocks::ReadInputFile(path, "Lua file"); }
 
 // Where the code comes from, for the chunk name and line shift.
 struct Code {
@@ -483,7 +480,7 @@ void RegisterLuaBlock(blocks::BlockRegistry* registry, LuaState* lua, const Iden
     Code code;
     if (p.Has("src")) {
       if (has_text) throw InputError("the code is given twice: src=\"...\" and as the element's text; keep one");
-      code.text = ReadCodeFile(p.Text("src"));
+      code.text = p.FileText("src");  // read by the loader, inside the diagram's folder tree
       code.chunk_name = "@" + p.Text("src");
     } else if (has_text) {
       code.text = p.Text("#text");

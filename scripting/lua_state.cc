@@ -11,10 +11,14 @@
 
 #include <lua.hpp>
 
+#include "blocks/excerpt.h"
 #include "scripting/lua_guards.h"
 
 namespace mechflow::scripting {
 namespace {
+
+// A Lua error message with its traceback fits in this many characters.
+constexpr std::size_t kMaxErrorLength = 2000;
 
 // Every function below is called by Lua and may raise a Lua error (a
 // long jump): none may own a C++ object with a destructor.
@@ -244,7 +248,8 @@ bool LuaState::LimitPassed(lua_State* L) {
 std::string LuaState::ErrorText(int status) const {
   std::string text;
   if (const char* message = lua_tostring(L_, -1)) {
-    text = message;
+    // the code may be someone else's: its message may be huge or hold control characters
+    text = blocks::MessageExcerpt(message, kMaxErrorLength);
   } else {
     text = std::string("(error object is a ") + luaL_typename(L_, -1) + " value)";
   }

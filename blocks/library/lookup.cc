@@ -91,9 +91,9 @@ void Lookup2DBlock::DoZeroCrossing(int index, int, const BlockContext& ctx) cons
 
 bool Lookup2DBlock::DoUpdateModes(const BlockContext& ctx) const { return modes_.Settle(Inputs(ctx), ctx.discrete()); }
 
-void ReadTable2DCsv(const std::string& path, std::vector<double>* x, std::vector<double>* y,
+void ReadTable2DCsv(const std::string& text, const std::string& path, std::vector<double>* x, std::vector<double>* y,
                     std::vector<std::vector<double>>* values) {
-  const std::vector<NumberRow> rows = ReadNumberRows(path, "numbers (x_i, then one value per column)");
+  const std::vector<NumberRow> rows = ReadNumberRows(text, path, "numbers (x_i, then one value per column)");
   if (rows.empty() || !rows[0].header)
     throw InputError(path + ": a 2-D table starts with a line of the column breakpoints after a corner label "
                             "(\"x\\y, y1, y2, ...\"), then one line per row: x_i, f(x_i, y1), ...");

@@ -62,8 +62,8 @@ class Lookup2DBlock final : public Block {
 // The rows of a 2-D table file: a first line with the column breakpoints y_j
 // (its first field, a corner label, is ignored), then one line per row: x_i,
 // f(x_i, y_1), ... Commas, semicolons, tabs or spaces separate; '#' starts a
-// comment. InputError naming path:line.
-void ReadTable2DCsv(const std::string& path, std::vector<double>* x, std::vector<double>* y,
+// comment. `text` is the file's, read by the loader. InputError naming path:line.
+void ReadTable2DCsv(const std::string& text, const std::string& path, std::vector<double>* x, std::vector<double>* y,
                     std::vector<std::vector<double>>* values);
 
 }  // namespace mechflow::blocks

@@ -96,7 +96,7 @@ std::string Operators(const BlockParams& p, const std::string& name, const std::
 void CurvePoints(const BlockParams& p, const std::string& x, std::vector<double>* xs, std::vector<double>* ys) {
   if (p.Has("points") == p.Has("file")) throw InputError("give either 'points' or 'file', not both or neither");
   if (p.Has("file"))
-    ReadTableCsv(p.Text("file"), xs, ys, x);
+    ReadTableCsv(p.FileText("file"), p.Text("file"), xs, ys, x);
   else
     TablePointsFromRows(p.Table("points"), xs, ys, x);
 }
@@ -152,7 +152,7 @@ void RegisterSources(BlockRegistry* r) {
         if (p.Has("points") == p.Has("file")) throw InputError("give either 'points' or 'file', not both or neither");
         std::vector<double> times, values;
         if (p.Has("file")) {
-          ReadTableCsv(p.Text("file"), &times, &values);
+          ReadTableCsv(p.FileText("file"), p.Text("file"), &times, &values);
         } else {
           TablePointsFromRows(p.Table("points"), &times, &values);
         }
@@ -186,7 +186,7 @@ void RegisterTables(BlockRegistry* r) {
           throw InputError("give either 'x', 'y' and 'values', or 'file', not both or neither");
         std::string where = "lookup_2d '" + n + "'";
         if (p.Has("file")) {
-          ReadTable2DCsv(p.Text("file"), &x, &y, &values);
+          ReadTable2DCsv(p.FileText("file"), p.Text("file"), &x, &y, &values);
           where = p.Text("file");
         } else {
           if (!p.Has("x") || !p.Has("y") || !p.Has("values"))

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "blocks/csv.h"
-#include "blocks/input_file.h"
+#include "blocks/excerpt.h"
 #include "mech/errors.h"
 
 namespace mechflow::blocks {
@@ -63,8 +63,9 @@ void TablePointsFromRows(const std::vector<std::vector<double>>& rows, std::vect
   CheckCount(*times, "points");
 }
 
-std::vector<NumberRow> ReadNumberRows(const std::string& path, const std::string& expected) {
-  std::istringstream in(ReadInputFile(path, "table file"));
+std::vector<NumberRow> ReadNumberRows(const std::string& file_text, const std::string& path,
+                                      const std::string& expected) {
+  std::istringstream in{std::string(WithoutByteOrderMark(file_text))};
   std::vector<NumberRow> rows;
   std::string line;
   int line_number = 0;
@@ -99,18 +100,18 @@ std::vector<NumberRow> ReadNumberRows(const std::string& path, const std::string
       row.header = true;  // a corner label, then numbers
       rows.push_back(std::move(row));
     } else if (!first) {
-      throw InputError(path + ":" + std::to_string(line_number) + ": expected " + expected + ", found '" + text +
-                       "'");
+      throw InputError(path + ":" + std::to_string(line_number) + ": expected " + expected + ", found '" +
+                       Excerpt(text) + "'");
     }  // else a header of text: skipped
   }
   return rows;
 }
 
-void ReadTableCsv(const std::string& path, std::vector<double>* times, std::vector<double>* values,
-                  const std::string& x) {
+void ReadTableCsv(const std::string& text, const std::string& path, std::vector<double>* times,
+                  std::vector<double>* values, const std::string& x) {
   int previous_line = 0;
   const std::string expected = "two numbers (" + x + ", y)";
-  for (const NumberRow& row : ReadNumberRows(path, expected)) {
+  for (const NumberRow& row : ReadNumberRows(text, path, expected)) {
     const std::string where = path + ":" + std::to_string(row.line);
     if (row.header) continue;  // a header such as "time, 0.5": not a point
     if (row.values.size() != 2)

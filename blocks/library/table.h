@@ -50,16 +50,19 @@ struct NumberRow {
   bool header = false;
 };
 
-// The lines of numbers of a table file: fields separated by commas,
-// semicolons, tabs or spaces, '#' comments, blank lines skipped, and at most
-// one header line before the data, either all text (skipped) or a corner
-// label and numbers (kept, `header`). InputError "path:line: expected
-// EXPECTED, found '...'" for text after that.
-std::vector<NumberRow> ReadNumberRows(const std::string& path, const std::string& expected);
+// The lines of numbers of a table file's `text` (read by the loader, which
+// confines it to the diagram's folder: blocks/input_file.h): fields separated
+// by commas, semicolons, tabs or spaces, '#' comments, blank lines skipped, a
+// byte-order mark ignored, and at most one header line before the data,
+// either all text (skipped) or a corner label and numbers (kept, `header`).
+// InputError "path:line: expected EXPECTED, found '...'" (an excerpt) for
+// text after that.
+std::vector<NumberRow> ReadNumberRows(const std::string& text, const std::string& path, const std::string& expected);
 
-// Reads the points of a CSV file as described above. Throws InputError naming
-// path:line for a bad row, or the path when the file is unusable as a whole.
-void ReadTableCsv(const std::string& path, std::vector<double>* times, std::vector<double>* values,
-                  const std::string& x = "t");
+// Reads the points of a CSV file's `text` as described above. Throws
+// InputError naming path:line for a bad row, or the path when the file is
+// unusable as a whole.
+void ReadTableCsv(const std::string& text, const std::string& path, std::vector<double>* times,
+                  std::vector<double>* values, const std::string& x = "t");
 
 }  // namespace mechflow::blocks

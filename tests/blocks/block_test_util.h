@@ -18,6 +18,7 @@
 #include "blocks/block_factory.h"
 #include "blocks/diagram_builder.h"
 #include "blocks/evaluation.h"
+#include "blocks/input_file.h"
 #include "blocks/simulator.h"
 #include "mech/errors.h"
 
@@ -105,8 +106,8 @@ inline std::unique_ptr<Block> MakeBlock(const std::string& type, const std::stri
         break;
       }
       case ParamKind::kText:
-      case ParamKind::kPath:
-        params.SetText(spec.name, text);
+      case ParamKind::kPath:  // the test's own file: not confined as a diagram's are
+        params.SetFile(spec.name, text, ReadInputFile(text, "table file"));
         break;
     }
   }

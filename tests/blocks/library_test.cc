@@ -189,7 +189,9 @@ TEST(LibraryTest, TableFromCsvFile) {
   }
   const std::string xml = Diagram("<block type='table' name='tab' file='" + path + "'/>", "",
                                   "<log signal='tab.y' label='y'/>");
-  const auto run = RunXml(xml);
+  diagrams::LoadOptions options;  // the file is outside test.xml's folder
+  options.allow_read = {::testing::TempDir()};
+  const auto run = RunXml(xml, options);
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
   const auto t = run.Column("time"), y = run.Column("y");
   for (size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(y[i], 1 + 2 * t[i], 1e-12);
@@ -198,7 +200,8 @@ TEST(LibraryTest, TableFromCsvFile) {
     std::ofstream f(path);
     f << "0 1\n2 5\n1 3\n";
   }
-  EXPECT_THAT(InputErrorOf([&] { LoadXml(xml); }), HasSubstr("mechflow_table.csv:3: times must increase strictly"));
+  EXPECT_THAT(InputErrorOf([&] { LoadXml(xml, options); }),
+              HasSubstr("mechflow_table.csv:3: times must increase strictly"));
   std::remove(path.c_str());
 }
 

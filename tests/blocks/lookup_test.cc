@@ -223,15 +223,17 @@ TEST(Lookup2DBlockTest, ReadsAFileWithItsCornerLabel) {
                          "v\\T, 20, 80\n0, 0.5, 0.4\n1, 0.3, 0.2\n";
   std::vector<double> x, y;
   std::vector<std::vector<double>> values;
-  ReadTable2DCsv(path, &x, &y, &values);
+  ReadTable2DCsv(ReadInputFile(path, "table file"), path, &x, &y, &values);
   EXPECT_EQ(x, (std::vector<double>{0, 1}));
   EXPECT_EQ(y, (std::vector<double>{20, 80}));
   EXPECT_EQ(values, (std::vector<std::vector<double>>{{0.5, 0.4}, {0.3, 0.2}}));
   std::ofstream(path) << "v\\T, 20, 80\n0, 0.5, 0.4\n1, 0.3\n";
-  EXPECT_THAT(mechflow::testing::InputErrorOf([&] { ReadTable2DCsv(path, &x, &y, &values); }),
+  EXPECT_THAT(mechflow::testing::InputErrorOf(
+                  [&] { ReadTable2DCsv(ReadInputFile(path, "table file"), path, &x, &y, &values); }),
               HasSubstr(path + ":3: expected 3 numbers (x_i and one value per column), found 2"));
   std::ofstream(path) << "0, 0.5, 0.4\n1, 0.3, 0.1\n";
-  EXPECT_THAT(mechflow::testing::InputErrorOf([&] { ReadTable2DCsv(path, &x, &y, &values); }),
+  EXPECT_THAT(mechflow::testing::InputErrorOf(
+                  [&] { ReadTable2DCsv(ReadInputFile(path, "table file"), path, &x, &y, &values); }),
               HasSubstr("starts with a line of the column breakpoints"));
 }
 

@@ -200,17 +200,17 @@ TEST_F(HostileDiagramTest, FilesThatNeverEndAreRefusedAtOnce) {
   std::ofstream(table_user) << "<diagram><blocks>\n<block type=\"table\" name=\"t\" file=\"/dev/zero\"/></blocks></diagram>\n";
   for (const Case& c : {Case{"check /dev/zero", "diagram file '/dev/zero' is not a regular file (a device)"},
                         Case{"run /dev/zero --out " + Out(), "diagram file '/dev/zero' is not a regular file"},
-                        Case{"check " + block_user.string(), "b.xml:2: block 'l' (lua): Lua file '" + fifo.string() +
-                                                                 "' is not a regular file (a pipe)"},
-                        Case{"check " + table_user.string(), "t.xml:2: block 't' (table): table file '/dev/zero' is not "
-                                                             "a regular file (a device)"},
+                        Case{"check " + block_user.string(), "b.xml:2: block 'l' parameter 'src': file 'fifo.lua' "
+                                                             "is not a regular file (a pipe)"},
+                        Case{"check " + table_user.string() + " --allow-read /dev",
+                             "t.xml:2: block 't' parameter 'file': file '/dev/zero' is not a regular file (a device)"},
                         Case{"check " + dir_.string(), "is not a regular file (a folder)"},
                         Case{"check " + fifo.string(), "is not a regular file (a pipe)"},
                         Case{"check " + big.string(), "has 67108875 bytes; input files may have at most 64 MiB"},
-                        Case{"check " + script_user.string(), "s.xml:1: script file '" + fifo.string() +
-                                                                  "' is not a regular file (a pipe)"},
-                        Case{"check " + mechanism_user.string(), "m.xml:2: mechanism file '/dev/zero' is not a "
-                                                                 "regular file (a device)"}}) {
+                        Case{"check " + script_user.string(), "s.xml:1: script: file 'fifo.lua' is not a regular "
+                                                              "file (a pipe)"},
+                        Case{"check " + mechanism_user.string() + " --allow-read /dev",
+                             "m.xml:2: mechanism: file '/dev/zero' is not a regular file (a device)"}}) {
     const auto start = std::chrono::steady_clock::now();
     const auto run = RunMechflow(c.args);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -218,6 +218,233 @@ TEST_F(HostileDiagramTest, FilesThatNeverEndAreRefusedAtOnce) {
     EXPECT_THAT(run.err, HasSubstr(c.expected)) << c.args;
     EXPECT_LT(seconds, 2.0) << c.args;
   }
+}
+
+// A diagram folder d/ beside a folder secret/ it must not read, with a file of
+// every kind a diagram names in both.
+class DiagramReadsTest : public HostileDiagramTest {
+ protected:
+  DiagramReadsTest() {
+    fs::create_directories(dir_ / "d" / "sub");
+    fs::create_directories(dir_ / "secret");
+    for (const fs::path& folder : {dir_ / "d", dir_ / "secret"}) {
+      std::ofstream(folder / "t.csv") << "0 1\n1 2\n";
+      std::ofstream(folder / "t2.csv") << "x\\y, 0, 1\n0, 1, 2\n1, 3, 4\n";
+      std::ofstream(folder / "l.lua") << "function outputs(t) return t end\n";
+      std::ofstream(folder / "s.lua") << "-- a control script\n";
+      std::ofstream(folder / "m.xml") << "<mechanism name=\"m\"><body name=\"B\" mass=\"1\" inertia=\"1 1 1\"/>"
+                                          "<joint name=\"j\" type=\"translational\" body1=\"Base0\" body2=\"B\" "
+                                          "axis=\"0 0 1\"/></mechanism>\n";
+    }
+  }
+  // A diagram in d/ whose line 2 names `file` the way `kind` does; returns its path.
+  std::string Naming(const std::string& kind, const std::string& file) {
+    std::string element;
+    if (kind == "table" || kind == "motion_table")
+      element = "<blocks><block type=\"" + kind + "\" name=\"b\" file=\"" + file + "\"/></blocks>";
+    else if (kind == "lookup" || kind == "lookup_2d")  // inputs connected
+      element = "<blocks><block type=\"clock\" name=\"c\"/><block type=\"" + kind + "\" name=\"b\" file=\"" +
+                file + "\"/></blocks><connections>" +
+                (kind == "lookup" ? "<connect from=\"c.y\" to=\"b.u\"/>"
+                                  : "<connect from=\"c.y\" to=\"b.u1\"/><connect from=\"c.y\" to=\"b.u2\"/>") +
+                "</connections>";
+    else if (kind == "lua")
+      element = "<blocks><block type=\"lua\" name=\"b\" src=\"" + file + "\" outputs=\"y\"/></blocks>";
+    else if (kind == "script")
+      element = "<script src=\"" + file + "\"/>";
+    else
+      element = "<mechanism name=\"m\" src=\"" + file + "\"/>";
+    const fs::path path = dir_ / "d" / ("uses_" + kind + ".xml");
+    std::ofstream(path) << "<diagram>\n" << element << "\n<solver t_end=\"1\"/></diagram>\n";
+    return path.string();
+  }
+};
+
+TEST_F(DiagramReadsTest, FilesADiagramNamesStayInItsFolderTree) {
+  fs::create_symlink(dir_ / "secret" / "t.csv", dir_ / "d" / "link.csv");
+  fs::create_directory_symlink(dir_ / "secret", dir_ / "d" / "sub" / "folder_link");
+  const std::string secret = (dir_ / "secret").string();
+  for (const std::string kind : {"table", "lookup", "lookup_2d", "motion_table", "lua", "script", "mechanism"}) {
+    const std::string file = kind == "lookup_2d" ? "t2.csv" : kind == "lua" ? "l.lua" : kind == "script" ? "s.lua"
+                             : kind == "mechanism"                          ? "m.xml"
+                                                                            : "t.csv";
+    // inside: plain, and through a folder that is a link inside the tree
+    const auto inside = RunMechflow("check " + Naming(kind, file));
+    EXPECT_EQ(inside.exit_code, 0) << kind << ": " << inside.err;
+    // every kind by a relative path; the other ways out (cheap tests) for tables
+    std::vector<std::string> ways_out = {"../secret/" + file};
+    if (kind == "table")
+      ways_out.insert(ways_out.end(), {secret + "/t.csv", "sub/folder_link/t.csv", "sub/../../secret/t.csv"});
+    for (const std::string& outside : ways_out) {
+      const auto run = RunMechflow("check " + Naming(kind, outside));
+      EXPECT_EQ(run.exit_code, 2) << kind << " " << outside;
+      EXPECT_THAT(run.err, HasSubstr("uses_" + kind + ".xml:2: ")) << kind << " " << outside;
+      EXPECT_THAT(run.err, HasSubstr("lies outside the diagram's folder")) << kind << " " << outside;
+      EXPECT_THAT(run.err, HasSubstr("--allow-read DIR")) << kind << " " << outside;
+      // the user may allow the folder
+      const auto allowed = RunMechflow("check " + Naming(kind, outside) + " --allow-read " + secret);
+      EXPECT_EQ(allowed.exit_code, 0) << kind << " " << outside << ": " << allowed.err;
+    }
+  }
+  // a link inside the tree that points out is the file it points to
+  const auto link = RunMechflow("check " + Naming("table", "link.csv"));
+  EXPECT_EQ(link.exit_code, 2);
+  EXPECT_THAT(link.err, HasSubstr("uses_table.xml:2: block 'b' parameter 'file': file 'link.csv' lies outside"));
+  // a file that is not there is still "not found"
+  EXPECT_THAT(RunMechflow("check " + Naming("table", "missing.csv")).err, HasSubstr("file 'missing.csv' not found"));
+}
+
+TEST_F(DiagramReadsTest, EveryCommandThatLoadsADiagramTakesAllowRead) {
+  const std::string diagram = Naming("table", "../secret/t.csv") + " --allow-read " + (dir_ / "secret").string();
+  EXPECT_EQ(RunMechflow("run " + diagram + " --out " + Out()).exit_code, 0);
+  for (const std::string command : {"graph", "modes", "sweep --vary x=1,2", "force-analysis --element e"}) {
+    const auto run = RunMechflow(command + " " + diagram + " --out " + Out());
+    EXPECT_THAT(run.err, ::testing::Not(HasSubstr("--allow-read"))) << command;
+    EXPECT_THAT(run.err, ::testing::Not(HasSubstr("lies outside"))) << command;
+  }
+  // psd reads a results file the user names, not a diagram
+  EXPECT_THAT(RunMechflow("psd r.csv --signal x --allow-read " + dir_.string()).err,
+              HasSubstr("unknown option '--allow-read'"));
+  const auto missing = RunMechflow("check " + Naming("table", "t.csv") + " --allow-read " + (dir_ / "none").string());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_THAT(missing.err, HasSubstr("--allow-read '" + (dir_ / "none").string() + "': no such folder"));
+}
+
+// What a message quotes of a line it could not read: a short excerpt, every
+// control character and byte that is not UTF-8 written \xNN, whatever the
+// line's length.
+TEST_F(DiagramReadsTest, MessagesQuoteAShortEscapedExcerpt) {
+  const std::string hostile = "\x1b]0;owned\x07\x1b[2J\xff" + std::string(4 << 20, 'x');
+  std::ofstream(dir_ / "d" / "bad.csv", std::ios::binary) << "0 1\n1 2\n" << hostile << "\n";
+  const auto table = RunMechflow("check " + Naming("table", "bad.csv"));
+  EXPECT_EQ(table.exit_code, 2);
+  EXPECT_THAT(table.err,
+              HasSubstr("bad.csv:3: expected two numbers (t, y), found '\\x1B]0;owned\\x07\\x1B[2J\\xFFxxx"));
+  // an expression (XML lets no control character through), and a Lua error
+  const fs::path expression = dir_ / "d" / "e.xml";
+  std::ofstream(expression) << "<diagram><identifiers><identifier name=\"k\" value=\"(1 + "
+                            << std::string(256 << 10, 'y') << " +\"/></identifiers></diagram>\n";
+  const auto identifier = RunMechflow("check " + expression.string());
+  EXPECT_EQ(identifier.exit_code, 2);
+  EXPECT_THAT(identifier.err, HasSubstr("'(1 + yyy"));
+  const fs::path lua = dir_ / "d" / "l.xml";
+  std::ofstream(lua) << "<diagram><script>error(string.char(27) .. '[2J' .. string.rep('z', 1000000))</script>"
+                        "</diagram>\n";
+  const auto script = RunMechflow("check " + lua.string());
+  EXPECT_EQ(script.exit_code, 2);
+  EXPECT_THAT(script.err, HasSubstr("\\x1B[2Jzzz"));
+  for (const auto* run : {&table, &identifier, &script}) {
+    EXPECT_LT(run->err.size(), 3000u) << run->err.substr(0, 200);
+    EXPECT_EQ(run->err.find('\x1b'), std::string::npos);
+    EXPECT_EQ(run->err.find('\xff'), std::string::npos);
+    EXPECT_THAT(run->err, HasSubstr("..."));
+  }
+}
+
+// Spreadsheet programs start a CSV file with a UTF-8 byte-order mark: the
+// first point is a point, not a header.
+TEST_F(DiagramReadsTest, AByteOrderMarkIsNotText) {
+  std::ofstream(dir_ / "d" / "t.csv", std::ios::binary) << "\xEF\xBB\xBF" "0, 5\n1, 7\n2, 9\n";
+  const fs::path path = dir_ / "d" / "bom.xml";
+  std::ofstream(path) << "<diagram name=\"bom\"><identifiers><identifier name=\"k\" value=\"1\"/></identifiers>\n"
+                         "<blocks><block type=\"table\" name=\"t\" file=\"t.csv\"/>\n"
+                         "<block type=\"gain\" name=\"g\" k=\"k\"/></blocks>\n"
+                         "<connections><connect from=\"t.y\" to=\"g.u\"/></connections>\n"
+                         "<solver t_end=\"1\"/><output interval=\"0.5\"><log signal=\"g.y\" label=\"y\"/></output>\n"
+                         "</diagram>\n";
+  std::ofstream(dir_ / "d" / "set.txt", std::ios::binary) << "\xEF\xBB\xBF" "k = 2\n";
+  const auto run = RunMechflow("run " + path.string() + " --set-file " + (dir_ / "d" / "set.txt").string() +
+                               " --quiet --out " + Out());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // y = k t(t): 2 * 5 at t = 0, 2 * 6 at 0.5
+  EXPECT_EQ(ReadFile(dir_ / "out" / "bom.csv"), "time,y\n0,10\n0.5,12\n1,14\n");
+}
+
+// Reads the quoted strings of DOT as Graphviz does (\" a quote, a backslash
+// pair kept, nothing else special) and checks that each ends; returns the
+// strings as read.
+std::vector<std::string> DotStrings(const std::string& dot) {
+  std::vector<std::string> strings;
+  for (std::size_t i = 0; i < dot.size(); ++i) {
+    if (dot[i] != '"') continue;
+    std::string s;
+    for (++i;; ++i) {
+      if (i >= dot.size()) {
+        ADD_FAILURE() << "a string that never ends: " << s;
+        return strings;
+      }
+      if (dot[i] == '"') break;
+      if (dot[i] == '\\' && i + 1 < dot.size() && (dot[i + 1] == '"' || dot[i + 1] == '\\')) {
+        s += dot[i + 1] == '"' ? "\"" : "\\\\";
+        ++i;
+      } else {
+        EXPECT_FALSE(dot[i] == '\\' && i + 1 < dot.size() && dot[i + 1] == '\n') << "a line continued in " << s;
+        s += dot[i];
+      }
+    }
+    strings.push_back(s);
+  }
+  return strings;
+}
+
+// In a record label, what Graphviz shows of one field: \X is X for the
+// characters that structure a record, \\ a backslash.
+std::string RecordShown(const std::string& field) {
+  std::string out;
+  for (std::size_t i = 0; i < field.size(); ++i) {
+    if (field[i] == '\\' && i + 1 < field.size()) ++i;
+    else EXPECT_EQ(std::string("{}|<>").find(field[i]), std::string::npos) << "unescaped in " << field;
+    out += field[i];
+  }
+  return out;
+}
+
+TEST_F(HostileDiagramTest, GraphEscapesEveryName) {
+  const fs::path path = dir_ / "x.xml";
+  std::ofstream(path) << "<diagram name=\"x\\\"><output csv=\"r.csv\"/><blocks>\n"
+                         "<block type=\"constant\" name=\"a&quot;b&lt;c&gt;{d}|e f\\\" value=\"1\"/>\n"
+                         "<block type=\"gain\" name=\"g\\\" k=\"2\"/></blocks>\n"
+                         "<connections><connect from=\"a&quot;b&lt;c&gt;{d}|e f\\.y\" to=\"g\\.u\"/></connections>\n"
+                         "</diagram>\n";
+  const auto run = RunMechflow("graph " + path.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::vector<std::string> strings = DotStrings(run.out);
+  ASSERT_EQ(strings.size(), 5u) << run.out;  // the graph's name, two fonts, two labels
+  EXPECT_EQ(strings[0], "x\\\\");
+  // a label's fields: {ports}|name\n(type)|{ports}, the constant's without inputs
+  const std::size_t type = strings[3].find("\\n(constant)|");
+  ASSERT_NE(type, std::string::npos) << strings[3];
+  EXPECT_EQ(RecordShown(strings[3].substr(1, type - 1)), "a\"b<c>{d}|e f\\");
+  EXPECT_THAT(strings[4], HasSubstr("|g\\\\\\n(gain)|"));
+  if (std::system("command -v dot >/dev/null 2>&1") == 0) {
+    std::ofstream(dir_ / "g.dot") << run.out;
+    EXPECT_EQ(std::system(("dot -Tsvg " + (dir_ / "g.dot").string() + " >/dev/null").c_str()), 0);
+  }
+}
+
+// A <shape>'s curve is evaluated when the diagram is loaded: a point it
+// cannot give is bad input at its line, not a failed run.
+TEST_F(HostileDiagramTest, AnInfiniteCurveIsBadInput) {
+  const fs::path path = dir_ / "c.xml";
+  std::ofstream(path) << "<diagram><mechanism name=\"m\">\n"
+                         "<body name=\"B\" mass=\"1\" inertia=\"1 1 1\"/>\n"
+                         "<joint name=\"j\" type=\"translational\" body1=\"Base0\" body2=\"B\" axis=\"0 0 1\"/>\n"
+                         "<shape type=\"curve\" x=\"1/u\" y=\"0\" z=\"0\" u=\"0 1\" samples=\"4\"/>\n"
+                         "</mechanism><solver t_end=\"0.1\"/></diagram>\n";
+  for (const std::string command : {"check ", "run "}) {
+    const auto run = RunMechflow(command + path.string() + " --out " + Out() + (command == "run " ? " --animate" : ""));
+    EXPECT_EQ(run.exit_code, 2) << command << run.err;
+    EXPECT_THAT(run.err, HasSubstr("c.xml:4: ")) << command;
+  }
+  // so is a prescribed motion that is not finite where the mechanism is assembled, at the start
+  std::ofstream(path) << "<diagram><mechanism name=\"m\">\n"
+                         "<body name=\"B\" mass=\"1\" inertia=\"1 1 1\"/>\n"
+                         "<joint name=\"j\" type=\"generalized\" body1=\"Base0\" body2=\"B\">\n"
+                         "<et type=\"rt\" axis=\"1 0 0\" value=\"1/t\"/><et type=\"tv\" axis=\"0 0 1\"/>\n"
+                         "</joint></mechanism><solver t_end=\"0.1\"/></diagram>\n";
+  const auto check = RunMechflow("check " + path.string());
+  EXPECT_EQ(check.exit_code, 2) << check.err;
+  EXPECT_THAT(check.err, HasSubstr("c.xml:4: joint 'j' transformation 1: time function '1/t' is not finite at t = 0"));
 }
 
 }  // namespace
