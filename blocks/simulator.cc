@@ -934,7 +934,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       outcome.ok = false;
       outcome.interrupted = *interrupt_;
       outcome.t_reached = t;
-      outcome.failure = std::string("interrupted by ") + (*interrupt_ == SIGTERM ? "SIGTERM" : "SIGINT");
+      outcome.failure = std::string("interrupted by SIG") + sigabbrev_np(*interrupt_);  // SIGINT, SIGTERM, SIGHUP
     } else if (outcome.ok && stop_requested_) {
       // the row at the instant the control stopped the run, unless it was one
       if (results_.num_rows() == 0 || results_.last_time() != ctx_.time) Record(ctx_.time, ctx_.x);

@@ -166,7 +166,7 @@ struct RunOutcome {
   std::string failure;  // when !ok: solver flag and reason
   bool stopped = false;     // ended early by its control (ok stays true)
   std::string stop_reason;  // when stopped: the control's reason
-  int interrupted = 0;      // the signal that ended it (SIGINT, SIGTERM), else 0; ok is false then
+  int interrupted = 0;      // the signal that ended it (SIGINT, SIGTERM, SIGHUP), else 0; ok is false then
 };
 
 // Frozen motion: the same state bit for bit `dt` seconds apart although the

@@ -146,8 +146,8 @@ std::string HelpText(const std::string& command) {
            "whole value in decimal (1e-3, -2.5, .5; not 0x10, inf or 1abc).\n"
            "\n"
            "Exit codes: 0 finished, 1 simulation failed (results up to the failure are\n"
-           "written), 2 bad input, 130 / 143 ended by SIGINT (Ctrl-C) / SIGTERM (the rows\n"
-           "up to there are written).\n";
+           "written), 2 bad input, 130 / 143 / 129 ended by SIGINT (Ctrl-C) / SIGTERM /\n"
+           "SIGHUP (the rows up to there are written).\n";
   if (command == "check")
     return "usage: mechflow check FILE [--variant NAME]... [--set NAME=VALUE]... [--allow-read DIR]...\n"
            "\n"
@@ -203,9 +203,9 @@ std::string HelpText(const std::string& command) {
            "results file, then each <report> figure's value and time. A run that fails\n"
            "(solver failure, a value the model refuses) is a row with its error; the\n"
            "sweep goes on. NAME.sweep.png draws every run over one another, a panel per\n"
-           "logged group, each curve labelled by its values. Ctrl-C or SIGTERM ends the\n"
+           "logged group, each curve labelled by its values. Ctrl-C, SIGTERM or SIGHUP ends the\n"
            "runs under way (their rows written), starts no more, writes the summary\n"
-           "(`not run` rows) and exits 130 or 143.\n"
+           "(`not run` rows) and exits 130, 143 or 129.\n"
            "\n"
            "  --vary NAME=V1,V2,...  values of an identifier defined by a number (repeatable);\n"
            "                    NAME=A:B:N gives N values evenly from A to B, NAME=A:B:N:log\n"

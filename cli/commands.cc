@@ -7,7 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "cli/modes_report.h"
@@ -82,7 +82,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   sim.SetInterruptFlag(InterruptFlag());
   const std::unique_ptr<ResultsFile> results_file = StreamResults(loaded, &sim, folder);
   const AnimationOutput animation(loaded, args, &sim);  // shapes checked now: bad geometry is bad input
-  const InterruptHandlers handlers;  // Ctrl-C, SIGTERM: cli/interrupt.h
+  const InterruptHandlers handlers;  // Ctrl-C, SIGTERM, SIGHUP: cli/interrupt.h
 
   const auto wall_start = std::chrono::steady_clock::now();
   blocks::RunOutcome outcome;
@@ -119,14 +119,17 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   }
 
   // results are written whether or not the run finished
-  bool all_written = WriteRunOutputs(loaded, sim, folder, results_file.get(), out, err);
+  int plot_stopped_by = 0;  // a signal while gnuplot drew
+  bool all_written = WriteRunOutputs(loaded, sim, folder, results_file.get(), out, err, &plot_stopped_by);
   all_written = animation.Write(folder, out, err) && all_written;
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);
   if (args.verbose) PrintEventLog(*loaded.diagram, sim.events(), out);
   PrintEventWarnings(*loaded.diagram, sim.events(), err);
-  if (outcome.interrupted) return 128 + outcome.interrupted;  // 130 SIGINT, 143 SIGTERM, as shells report them
-  if (const int signal = *InterruptFlag()) return 128 + signal;  // after the run: a <spectrum> was stopped
+  // 130 SIGINT, 143 SIGTERM, 129 SIGHUP, as shells report them; after the
+  // run, a plot or a <spectrum> stopped by a signal ends the command alike
+  const int signal = outcome.interrupted ? outcome.interrupted : plot_stopped_by ? plot_stopped_by : *InterruptFlag();
+  if (signal) return 128 + signal;
   return outcome.ok && all_written ? 0 : 1;
 }
 
@@ -184,17 +187,14 @@ int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   PrintModes(report, out);
 
   // NAME.modes.csv in the output folder, named after the diagram as `run`'s
-  // files are, so that two diagrams can share a folder
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(args.out_dir, ec);
-  if (ec) {
-    err << "cannot create output folder '" << args.out_dir << "': " << ec.message() << "\n";
-    return 2;
-  }
-  const fs::path csv = fs::absolute(fs::path(args.out_dir) / (loaded.description.name + ".modes.csv"));
-  WriteModesCsv(report.modes, report.states, csv.string());
-  out << "wrote " << csv.string() << " (" << count(report.modes.size(), "mode") << ")\n";
+  // files are, so that two diagrams can share a folder; written whole
+  // (cli/output_folder.h): a full disk is an error naming it (exit 1)
+  const OutputFolder folder(args.out_dir);
+  const std::string name = loaded.description.name + ".modes.csv";
+  std::ostringstream csv;
+  WriteModesCsv(report.modes, report.states, csv);
+  folder.Write(name, csv.str());
+  out << "wrote " << folder.PathOf(name) << " (" << count(report.modes.size(), "mode") << ")\n";
   return 0;
 }
 
@@ -239,6 +239,12 @@ int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& 
   } catch (const SimulationError& e) {
     err << "simulation failed: " << e.what() << "\n";
     return 1;
+  } catch (const WriteError& e) {  // a file that could not be written completely (the message names it)
+    err << e.what() << "\n";
+    return 1;
+  } catch (const Interrupted& e) {  // a signal while gnuplot drew: the files before it are written
+    err << e.what() << "\n";
+    return 128 + e.signal();
   } catch (const std::exception& e) {
     err << "mechflow: internal error: " << e.what() << "\n";
     return 1;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <ostream>
 
 #include "mech/errors.h"
 
@@ -114,9 +114,7 @@ void PrintModes(const ModesReport& r, std::ostream& out) {
 }
 
 void WriteModesCsv(const std::vector<blocks::Mode>& modes, const std::vector<std::string>& states,
-                   const std::string& path) {
-  std::ofstream csv(path);
-  if (!csv) throw InputError("cannot write '" + path + "'");
+                   std::ostream& csv) {
   csv.precision(17);
   csv << "mode,frequency_hz,natural_frequency_hz,damping_ratio,lambda_re,lambda_im";
   for (const auto& s : states) csv << "," << s;
@@ -128,7 +126,6 @@ void WriteModesCsv(const std::vector<blocks::Mode>& modes, const std::vector<std
     for (double v : m.shape) csv << "," << v;
     csv << "\n";
   }
-  if (!csv) throw InputError("cannot write '" + path + "'");
 }
 
 }  // namespace mechflow::cli

@@ -30,8 +30,8 @@ void PrintModes(const ModesReport& report, std::ostream& out);
 // Columns: mode (1-based index), frequency_hz (damped, |Im lambda| / 2 pi),
 // natural_frequency_hz (|lambda| / 2 pi), damping_ratio, lambda_re [1/s],
 // lambda_im [rad/s], then one per state with the mode shape (real part).
-// Numbers at full precision. Throws InputError when the file cannot be written.
+// Numbers at full precision.
 void WriteModesCsv(const std::vector<blocks::Mode>& modes, const std::vector<std::string>& states,
-                   const std::string& path);
+                   std::ostream& csv);
 
 }  // namespace mechflow::cli

@@ -6,7 +6,12 @@
 // they are plain file names (checked by the loader) and every file is opened
 // without following a symbolic link: a shared diagram cannot write outside
 // the folder. Every write is checked to the last byte and the close, so a
-// full disk is an error naming the file, never a silently short file.
+// full disk is an error naming the file, never a silently short file: a
+// file written whole (Write) is removed when cut; the results CSV, written
+// row by row (cli/results_file.h), is kept and named as cut.
+//
+// No name may begin with '-', '+', '<' or '|': gnuplot, which reads and
+// draws these files, would take it for an option, a pseudo-file or a command.
 
 #include <string>
 
@@ -27,11 +32,16 @@ class OutputFolder {
   // throws InputError (exit 2) when it cannot, before anything has run.
   explicit OutputFolder(const std::string& folder);
 
+  // "" when `name` may be a file in the folder, else why not (a plain file
+  // name, not beginning with '-', '+', '<' or '|').
+  static std::string NameProblem(const std::string& name);
+
   const std::string& path() const { return path_; }  // absolute
   std::string PathOf(const std::string& name) const { return path_ + "/" + name; }
 
   // Replaces the file `name` by `bytes`. Throws WriteError saying why
-  // (a symbolic link in the way, no space left, ...).
+  // (a symbolic link in the way, no space left, ...); a file cut short is
+  // removed. Every method throws InputError for a name NameProblem refuses.
   void Write(const std::string& name, const std::string& bytes) const;
 
   // Creates (or truncates) `name` for writing and returns its descriptor,
@@ -45,6 +55,10 @@ class OutputFolder {
 
   // True when `name` is a regular, non-empty file in the folder.
   bool HasFile(const std::string& name) const;
+
+  // Removes the regular file `name` (one found cut short); quietly does
+  // nothing for anything else.
+  void RemoveCut(const std::string& name) const;
 
  private:
   std::string path_;

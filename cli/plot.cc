@@ -5,12 +5,19 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "cli/gnuplot_text.h"
+#include "cli/interrupt.h"
 
 extern char** environ;
 
@@ -69,30 +76,121 @@ std::string OverlayScript(const std::vector<diagrams::PlotGroup>& groups, const 
   return s.str();
 }
 
-std::string DrawPlot(const std::string& script, const OutputFolder& folder, const std::string& plot_name) {
-  std::string script_name = plot_name + ".gp";
-  folder.Write(script_name, script);
-  folder.Clear(plot_name);  // so that a plot there afterwards is gnuplot's
-  // no shell, and gnuplot runs in the output folder, so that the script
-  // names only the plain file names of the diagram
-  std::string program = "gnuplot";
-  std::vector<char*> argv = {program.data(), script_name.data(), nullptr};
+namespace {
+
+// Once a signal has stopped one plot, the command starts no more.
+int g_plots_stopped_by = 0;
+
+// "" when gnuplot's plot file has its end: a PNG's IEND chunk, an SVG's
+// closing tag; else what is missing. A full disk cuts the file while gnuplot
+// still exits 0.
+std::string MissingEnd(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : 0;
+  std::string tail(static_cast<std::size_t>(std::min<std::streamoff>(size, 64)), '\0');
+  in.seekg(size - static_cast<std::streamoff>(tail.size()));
+  if (!in.read(tail.data(), static_cast<std::streamsize>(tail.size()))) return "it cannot be read back";
+  if (std::filesystem::path(path).extension() == ".svg") {
+    while (!tail.empty() && std::isspace(static_cast<unsigned char>(tail.back()))) tail.pop_back();
+    return tail.ends_with("</svg>") ? "" : "it has no closing </svg>";
+  }
+  static const std::string kIend("\0\0\0\0IEND\xae\x42\x60\x82", 12);  // an empty IEND chunk and its CRC
+  return tail.ends_with(kIend) ? "" : "it has no PNG end (IEND chunk)";
+}
+
+// Starts gnuplot on `script_name` in `folder`: no shell, standard input
+// /dev/null (so nothing typed or piped to mechflow reaches it), standard
+// output /dev/null, the script named "./NAME" (never taken for an option).
+// It stays in mechflow's process group, so Ctrl-Z and the terminal's job
+// control treat the two as one, but with SIGINT and SIGHUP blocked: the
+// terminal's Ctrl-C or hangup reaches mechflow, which stops gnuplot with
+// SIGTERM (left at its default action) once. Returns 0 or posix_spawn's error.
+int StartGnuplot(const OutputFolder& folder, const std::string& script_name, pid_t* pid) {
+  std::string program = "gnuplot", script = "./" + script_name;
+  std::vector<char*> argv = {program.data(), script.data(), nullptr};
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addchdir_np(&actions, folder.path().c_str());
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int error = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv.data(), environ);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t blocked, defaults;
+  sigemptyset(&blocked);
+  sigaddset(&blocked, SIGINT);
+  sigaddset(&blocked, SIGHUP);
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGTERM);
+  posix_spawnattr_setsigmask(&attributes, &blocked);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  const int error = posix_spawnp(pid, "gnuplot", &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
+  return error;
+}
+
+// Waits for `pid`; a signal to mechflow while it runs (InterruptCount moves
+// past `seen`) stops it: SIGTERM, then SIGKILL after a second. Returns the
+// child's wait status, and in `*stopped_by` the signal that stopped it, or 0.
+int WaitUnlessInterrupted(pid_t pid, int seen, int* stopped_by) {
+  using Clock = std::chrono::steady_clock;
+  const auto poll = std::chrono::milliseconds(5);
+  int status = 0;
+  Clock::time_point kill_at{};
+  *stopped_by = 0;
+  for (;;) {
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid || (r < 0 && errno != EINTR)) return status;
+    if (!*stopped_by && InterruptCount() != seen) {
+      *stopped_by = *InterruptFlag();
+      kill(pid, SIGTERM);
+      kill_at = Clock::now() + std::chrono::seconds(1);
+    } else if (*stopped_by && Clock::now() >= kill_at) {
+      kill(pid, SIGKILL);
+      kill_at = Clock::time_point::max();
+    }
+    std::this_thread::sleep_for(poll);
+  }
+}
+
+}  // namespace
+
+std::string DrawPlot(const std::string& script, const OutputFolder& folder, const std::string& plot_name) {
+  const InterruptHandlers handlers;  // when the command has none (psd): a signal stops gnuplot, not mechflow
+  const std::string plot_path = folder.PathOf(plot_name);
+  if (g_plots_stopped_by)
+    throw Interrupted(g_plots_stopped_by, "no plot '" + plot_path + "': plots were stopped by " +
+                                              SignalName(g_plots_stopped_by));
+  std::string script_name = plot_name + ".gp";
+  folder.Write(script_name, script);
+  folder.Clear(plot_name);  // so that a plot there afterwards is gnuplot's
+  // gnuplot runs in the output folder, so that the script names only the
+  // plain file names of the diagram
+  const int seen = InterruptCount();
+  pid_t pid = 0;
+  const int error = StartGnuplot(folder, script_name, &pid);
   if (error == ENOENT) return "gnuplot not found (install it: apt-get install gnuplot-nox)";
   if (error != 0) return std::string("cannot start gnuplot: ") + std::strerror(error);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  int stopped_by = 0;
+  const int status = WaitUnlessInterrupted(pid, seen, &stopped_by);
+  if (stopped_by) {
+    folder.RemoveCut(plot_name);
+    g_plots_stopped_by = stopped_by;
+    throw Interrupted(stopped_by, "no plot '" + plot_path + "': " + SignalName(stopped_by) +
+                                      " came while gnuplot drew it, which was stopped");
   }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    folder.RemoveCut(plot_name);
     throw WriteError("gnuplot failed on '" + folder.PathOf(script_name) + "' (its messages are above)");
+  }
   if (!folder.HasFile(plot_name))
-    throw WriteError("gnuplot made no '" + folder.PathOf(plot_name) + "' (is the disk full?)");
+    throw WriteError("gnuplot made no '" + plot_path + "' (is the disk full?)");
+  if (const std::string missing = MissingEnd(plot_path); !missing.empty()) {
+    folder.RemoveCut(plot_name);
+    throw WriteError("gnuplot's plot '" + plot_path + "' is cut: " + missing +
+                     " (is the disk full?); the incomplete file is removed");
+  }
   return "";
 }
 

@@ -32,10 +32,14 @@ struct OverlayRun {
 std::string OverlayScript(const std::vector<diagrams::PlotGroup>& groups, const std::vector<std::string>& columns,
                           const std::vector<OverlayRun>& runs, const std::string& title, const std::string& plot_name);
 
-// Writes `plot_name + ".gp"` into the folder and runs gnuplot on it there.
+// Writes `plot_name + ".gp"` into the folder and runs gnuplot on it there
+// (standard input /dev/null, the script passed as "./NAME.gp").
 // Returns "" when the plot was drawn, or why gnuplot could not be run (not
 // installed), a warning. Throws WriteError when gnuplot failed or made no
-// plot file.
+// plot file, or one without its end (a PNG without IEND, an SVG without
+// </svg>: cut by a full disk; removed). A signal to mechflow while gnuplot
+// draws stops gnuplot and throws Interrupted (cli/interrupt.h); from then
+// on no plot is started.
 std::string DrawPlot(const std::string& script, const OutputFolder& folder, const std::string& plot_name);
 
 }  // namespace mechflow::cli

@@ -25,14 +25,19 @@ void ResultsFile::WriteRow(const double* values, int count) {
   if (buffer_.size() >= kBufferBytes) Flush();
 }
 
+void ResultsFile::Fail(const std::string& why, const std::string& where) {
+  why_ = why;
+  error_ = "error writing '" + path_ + "' " + where + ": " + why + "; the file is cut there, its rows before are kept";
+}
+
 void ResultsFile::Flush() {
   std::size_t done = 0;
   while (error_.empty() && done < buffer_.size()) {
     const ssize_t n = ::write(fd_, buffer_.data() + done, buffer_.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0)
-      error_ = "error writing '" + path_ + "' after " + std::to_string(bytes_ + done) +
-               " bytes: " + (n < 0 ? std::strerror(errno) : "nothing more could be written");
+      Fail(n < 0 ? std::strerror(errno) : "nothing more could be written",
+           "after " + std::to_string(bytes_ + done) + " bytes");
     else
       done += static_cast<std::size_t>(n);
   }
@@ -43,7 +48,7 @@ void ResultsFile::Flush() {
 std::string ResultsFile::Close() {
   if (fd_ < 0) return error_;
   Flush();
-  if (::close(fd_) != 0 && error_.empty()) error_ = "error writing '" + path_ + "' (at close): " + std::strerror(errno);
+  if (::close(fd_) != 0 && error_.empty()) Fail(std::strerror(errno), "at close");
   fd_ = -1;
   return error_;
 }

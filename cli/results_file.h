@@ -5,7 +5,9 @@
 // that is written out whenever it fills, so memory stays bounded and a run
 // that is interrupted, or fails, leaves every row it took on disk, each one
 // complete (the buffer only ever holds whole rows). A write error is kept
-// and reported by Close; the run itself goes on.
+// and reported by Close; the run itself goes on, and the file stays as far
+// as it got, to be named as cut (its rows before the cut are still worth
+// having).
 
 #include <string>
 #include <vector>
@@ -27,14 +29,17 @@ class ResultsFile final : public blocks::RowSink {
   // Writes what is buffered and closes; "" or what went wrong.
   std::string Close();
   const std::string& path() const { return path_; }
+  // Why the file is cut ("No space left on device"); "" while it is whole.
+  const std::string& cut_reason() const { return why_; }
 
  private:
   void Flush();
+  void Fail(const std::string& why, const std::string& where);
 
   std::string path_;
   int fd_ = -1;
   std::string buffer_;
-  std::string error_;
+  std::string error_, why_;
   long long bytes_ = 0;
 };
 

@@ -29,8 +29,8 @@ std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded
 }
 
 bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim, const OutputFolder& folder,
-                     ResultsFile* results_file, std::ostream& out, std::ostream& err) {
-  std::vector<std::string> written, failed;
+                     ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by) {
+  std::vector<std::string> written, failed, cut;
   const auto write = [&](const std::string& name, const std::string& bytes, const std::string& note) {
     try {
       folder.Write(name, bytes);
@@ -40,6 +40,11 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
       err << e.what() << "\n";
       failed.push_back(name);
     }
+  };
+  // a signal while gnuplot draws: that plot and every later one not drawn, said on `err`
+  const auto stopped = [&](const Interrupted& e) {
+    err << e.what() << "\n";
+    *stopped_by = e.signal();
   };
   const auto text = [](const auto& write_to) {
     std::ostringstream s;
@@ -52,7 +57,8 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
     out << "wrote " << folder.PathOf(csv) << " (" << sim.results().num_rows() << " rows)\n";
   } else {
     err << problem << "\n";
-    failed.push_back(csv);
+    // kept: the rows before the cut are what the run computed
+    cut.push_back(csv + " (" + results_file->cut_reason() + ": its rows before the cut are kept)");
   }
   // beside the results: tension_mechanism.csv -> tension_mechanism.report.csv
   const std::string stem = std::filesystem::path(csv).replace_extension().string();
@@ -85,6 +91,8 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
     } catch (const WriteError& e) {
       err << e.what() << "\n";
       failed.push_back(loaded.plot_file);
+    } catch (const Interrupted& e) {
+      stopped(e);
     }
   }
   // <spectrum>s: STEM.COLUMN.psd.csv and .png
@@ -115,11 +123,16 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
     } catch (const WriteError& e) {
       err << e.what() << "\n";
       failed.push_back(request.stem + ".psd.csv");
+    } catch (const Interrupted& e) {
+      stopped(e);  // the spectrum's CSV was written before its plot
+      written.push_back(request.stem + ".psd.csv");
     }
   }
-  if (failed.empty()) return true;
-  err << "not written: " << blocks::JoinNames(failed) << " in " << folder.path() << "; written: "
-      << (written.empty() ? "nothing" : blocks::JoinNames(written)) << "\n";
+  if (failed.empty() && cut.empty()) return true;
+  err << "in " << folder.path() << ": written " << (written.empty() ? "nothing" : blocks::JoinNames(written));
+  if (!cut.empty()) err << "; cut " << blocks::JoinNames(cut);
+  if (!failed.empty()) err << "; not written " << blocks::JoinNames(failed);
+  err << "\n";
   return false;
 }
 

@@ -22,9 +22,11 @@ std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded
 // Closes the results file and writes every other file the run has
 // something for, saying each one on `out`.
 // A file that cannot be written is reported on `err`, the others are still
-// written, and the end says what was and was not written; returns false
-// then (exit code 1).
+// written, and the end lists what was written, cut (the results CSV, kept
+// with its rows before the cut) and not written; returns false then (exit
+// code 1). A signal while gnuplot draws stops the plots (the other files are
+// still written) and sets `*stopped_by` to it.
 bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim, const OutputFolder& folder,
-                     ResultsFile* results_file, std::ostream& out, std::ostream& err);
+                     ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by);
 
 }  // namespace mechflow::cli

@@ -124,7 +124,7 @@ RunRow RunOne(const Plan& plan, int index) {
     row.csv += ",not run,,interrupted,";
     for (std::size_t i = 0; i < plan.figure_labels.size(); ++i) row.csv += ",,";
     row.message = "run " + std::to_string(index + 1) + "/" + std::to_string(plan.runs) + " (" +
-                  Assignments(plan, values, ", ") + "): not run (" + (signal == SIGTERM ? "SIGTERM" : "SIGINT") + ")";
+                  Assignments(plan, values, ", ") + "): not run (" + SignalName(signal) + ")";
     return row;
   }
   diagrams::LoadOptions options = plan.common;

@@ -76,6 +76,8 @@ std::string OutputNameProblem(const std::string& name) {
   if (name.find_first_of("/\\") != std::string::npos)
     return "must be a plain file name (no folders: results go into the folder given by --out)";
   if (name.size() > 200) return "is longer than 200 characters";
+  // gnuplot, which reads the CSV and writes the plot, takes these for an option, a pseudo-file or a command
+  if (name.find_first_of("-+<|") == 0) return "may not begin with '-', '+', '<' or '|'";
   for (const char c : name)
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return "holds a control character";
   return "";

@@ -4,10 +4,12 @@
 // file that never ends, and a file that could not be written is a failure
 // that says what was and was not written.
 
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -149,8 +151,7 @@ TEST_F(HostileDiagramTest, ASymbolicLinkInTheOutputFolderIsNotFollowed) {
   run = RunMechflow("run " + Diagram("d", "csv=\"r.csv\" plot=\"r.png\"") + " --out " + Out());
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_THAT(run.err, HasSubstr("r.png': it is a symbolic link, which is not followed"));
-  EXPECT_THAT(run.err, HasSubstr("not written: r.png in "));
-  EXPECT_THAT(run.err, HasSubstr("; written: r.csv"));
+  EXPECT_THAT(run.err, HasSubstr(": written r.csv, r.units.csv; not written r.png\n"));
   EXPECT_EQ(ReadFile(victim), "precious\n");
 }
 
@@ -168,7 +169,9 @@ TEST_F(HostileDiagramTest, AFullDiskWhileStreamingIsReportedAtTheEnd) {
   ResultsFile file(dev, "full", {"time", "x"});
   const double row[2] = {0.5, 1.25};
   for (int i = 0; i < 10000; ++i) file.WriteRow(row, 2);  // the buffer fills and fails: no throw into the run
-  EXPECT_THAT(file.Close(), HasSubstr("error writing '/dev/full' after 0 bytes: No space left on device"));
+  EXPECT_THAT(file.Close(), HasSubstr("error writing '/dev/full' after 0 bytes: No space left on device; the file is "
+                                      "cut there, its rows before are kept"));
+  EXPECT_EQ(file.cut_reason(), "No space left on device");
 }
 
 TEST_F(HostileDiagramTest, AFullDiskIsAWriteErrorNamingTheFile) {
@@ -445,6 +448,171 @@ TEST_F(HostileDiagramTest, AnInfiniteCurveIsBadInput) {
   const auto check = RunMechflow("check " + path.string());
   EXPECT_EQ(check.exit_code, 2) << check.err;
   EXPECT_THAT(check.err, HasSubstr("c.xml:4: joint 'j' transformation 1: time function '1/t' is not finite at t = 0"));
+
+// Everything mechflow starts (gnuplot) from here on: the command line runs
+// `cat INPUT | [PATH=...] mechflow ARGS` in the test's folder, so that what a
+// child reads from its standard input would be INPUT.
+class ChildProcessTest : public HostileDiagramTest {
+ protected:
+  ChildProcessTest() { std::ofstream(dir_ / "input") << "system \"touch " << Marker() << "\"\n"; }
+  std::string Marker() const { return (dir_ / kMarker).string(); }
+  mechflow::testing::CommandOutcome RunPiped(const std::string& args, const std::string& path_first = "") {
+    const std::string command = "cd " + dir_.string() + " && cat input | " +
+                                (path_first.empty() ? "" : "PATH=" + path_first + ":$PATH ") + MECHFLOW_BINARY + " " +
+                                args + " >" + (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadFile(dir_ / "stdout"), ReadFile(dir_ / "stderr")};
+  }
+  // A fake gnuplot first on PATH running `body` (sh); returns the folder to put first.
+  std::string FakeGnuplot(const std::string& body) {
+    fs::create_directories(dir_ / "bin");
+    const fs::path fake = dir_ / "bin" / "gnuplot";
+    std::ofstream(fake) << "#!/bin/sh\n" << body << "\n";
+    fs::permissions(fake, fs::perms::owner_all);
+    return (dir_ / "bin").string();
+  }
+};
+
+// A name beginning with '-' was gnuplot's option and gnuplot read commands
+// from mechflow's input; '<' and '|' open a command in gnuplot, '+' is its
+// pseudo-file. On every route a file name takes to gnuplot: refused, bad
+// input, and nothing piped in runs.
+TEST_F(ChildProcessTest, NoNameReachesGnuplotAsAnOptionOrACommand) {
+  const std::string sweep_diagram = (dir_ / "s.xml").string();
+  std::ofstream(sweep_diagram) << "<diagram name=\"s\">\n<identifiers><identifier name=\"k\" value=\"1\"/></identifiers>\n"
+                                  "<blocks><block type=\"constant\" name=\"c\" value=\"k\"/></blocks>\n<solver t_end=\"1\"/>\n"
+                                  "<output interval=\"0.5\" csv=\"-r.csv\"><log signal=\"c.y\"/></output>\n</diagram>\n";
+  const std::string spectrum_diagram = (dir_ / "p.xml").string();
+  std::ofstream(spectrum_diagram) << "<diagram name=\"-x\">\n<blocks><block type=\"sine\" name=\"s\"/></blocks>\n"
+                                     "<solver t_end=\"1\"/>\n<output interval=\"0.01\">\n<log signal=\"s.y\"/>"
+                                     "<spectrum signal=\"s.y\"/></output>\n</diagram>\n";
+  std::ofstream results(dir_ / "-x.csv");
+  results << "time,x\n";
+  for (int i = 0; i < 64; ++i) results << i * 0.01 << "," << (i % 4) << "\n";
+  results.close();
+  struct Route {
+    std::string args, refusal;
+  };
+  // Diagram() writes d.xml; each route keeps its own copy
+  const auto named = [&](const std::string& file, const std::string& output) {
+    fs::rename(Diagram("d", output), dir_ / file);
+    return "run " + (dir_ / file).string() + " --out out";
+  };
+  for (const Route& r :
+       {Route{named("d1.xml", "plot=\"-x.png\""), "d1.xml:4: plot file '-x.png' may not begin with '-', '+', '<' or"},
+        // gnuplot runs what follows '|' in `set output` and '<' in `plot` (in the output folder)
+        Route{named("d2.xml", "plot=\"|touch made.png\""), "d2.xml:4: plot file '|touch made.png' may not begin"},
+        Route{named("d3.xml", "csv=\"&lt;touch made.csv\" plot=\"x.png\""), "csv file '<touch made.csv' may not"},
+        Route{named("d4.xml", "csv=\"+\" plot=\"x.png\""), "d4.xml:4: csv file '+' may not begin with"},
+        Route{"run " + spectrum_diagram + " --out out", "file '-x.csv' named after the diagram may not begin with"},
+        Route{"sweep " + sweep_diagram + " --vary k=1,2 --out out", "s.xml:5: csv file '-r.csv' may not begin"},
+        Route{"psd -x.csv --signal x --out out", "-x.psd.csv': the name begins with '-', which gnuplot would take"}}) {
+    const auto run = RunPiped(r.args);
+    EXPECT_EQ(run.exit_code, 2) << r.args << "\n" << run.err;
+    EXPECT_THAT(run.err, HasSubstr(r.refusal)) << r.args;
+    EXPECT_FALSE(fs::exists(Marker())) << r.args;
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "made.png")) << r.args;
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "made.csv")) << r.args;
+    fs::remove(Marker());
+  }
+}
+
+// Whatever the names, gnuplot reads nothing from mechflow's standard input
+// and its script's name cannot be an option.
+TEST_F(ChildProcessTest, GnuplotReadsNoInputAndItsScriptIsNotAnOption) {
+  const std::string bin = FakeGnuplot("printf '%s' \"$1\" >" + (dir_ / "argument").string() + "\ncat >" +
+                                      (dir_ / "read").string());
+  const auto run = RunPiped("run " + Diagram("d", "plot=\"d.png\"") + " --out out", bin);
+  EXPECT_EQ(run.exit_code, 1);  // the fake draws nothing
+  EXPECT_THAT(run.err, HasSubstr("gnuplot made no"));
+  EXPECT_EQ(ReadFile(dir_ / "argument"), "./d.png.gp");
+  EXPECT_TRUE(fs::exists(dir_ / "read"));
+  EXPECT_EQ(ReadFile(dir_ / "read"), "");
+}
+
+// gnuplot exits 0 having written a plot a full disk cut short: the plot is
+// named as cut and removed, the command fails, the other files stay.
+TEST_F(ChildProcessTest, AnIncompletePlotIsNamedAsCutAndRemoved) {
+  // the plot's name from the script's `set output` line; a PNG's signature and
+  // header without the rest, an SVG without its closing tag
+  const std::string bin = FakeGnuplot(
+      "out=$(sed -n \"s/^set output '\\(.*\\)'$/\\1/p\" \"$1\")\n"
+      "case \"$out\" in *.svg) printf '<?xml version=\"1.0\"?>\\n<svg>\\n<g>' >\"$out\" ;;\n"
+      "*) printf '\\211PNG\\r\\n\\032\\n\\0\\0\\0\\rIHDR' >\"$out\" ;; esac");
+  for (const std::string plot : {"d.png", "d.svg"}) {
+    const auto run = RunPiped("run " + Diagram("d", "plot=\"" + plot + "\"") + " --out out", bin);
+    EXPECT_EQ(run.exit_code, 1) << plot << run.err;
+    EXPECT_THAT(run.err, HasSubstr("gnuplot's plot '" + (dir_ / "out" / plot).string() + "' is cut: it has no ")) << plot;
+    EXPECT_THAT(run.err, HasSubstr("; not written " + plot)) << plot;
+    EXPECT_THAT(run.out, ::testing::Not(HasSubstr("wrote " + (dir_ / "out" / plot).string()))) << plot;
+    EXPECT_FALSE(fs::exists(dir_ / "out" / plot)) << plot;
+    EXPECT_TRUE(fs::exists(dir_ / "out" / "d.csv")) << plot;
+  }
+  // gnuplot's own, whole plots pass the same check
+  const auto real = RunPiped("run " + Diagram("d", "plot=\"d.png\"") + " --out out");
+  EXPECT_EQ(real.exit_code, 0) << real.err;
+}
+
+// A disk that fills during the run (a file size limit, which fails writes as
+// a full disk does): the results CSV is kept with its rows before the cut and
+// named as cut, gnuplot's plot of it is not claimed, the command fails.
+TEST_F(ChildProcessTest, AFullDiskCutsTheResultsWhichAreNamedAsCut) {
+  const fs::path path = dir_ / "long.xml";
+  std::ofstream(path) << "<diagram name=\"long\">\n<blocks><block type=\"sine\" name=\"s\"/></blocks>\n"
+                         "<solver t_end=\"2\"/>\n<output interval=\"0.0005\" plot=\"long.png\">"
+                         "<log signal=\"s.y\"/></output>\n</diagram>\n";
+  const auto run = RunPiped("run " + path.string() + " --out out", "");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::uintmax_t whole = fs::file_size(dir_ / "out" / "long.csv");  // about 70 KiB
+  // files of at most 16 KiB for mechflow and gnuplot (inherited), and EFBIG
+  // instead of SIGXFSZ
+  struct rlimit old {};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  struct rlimit small = old;
+  small.rlim_cur = 16384;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  const std::string command = "cd " + dir_.string() + " && " + MECHFLOW_BINARY + " run " + path.string() +
+                              " --out out >stdout 2>stderr </dev/null";
+  const int status = std::system(command.c_str());
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, old_handler);
+  const std::string out = ReadFile(dir_ / "stdout"), err = ReadFile(dir_ / "stderr");
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << err;
+  const std::string csv = (dir_ / "out" / "long.csv").string();
+  EXPECT_THAT(err, HasSubstr("error writing '" + csv + "' after "));
+  EXPECT_THAT(err, HasSubstr("File too large; the file is cut there, its rows before are kept"));
+  EXPECT_THAT(err, HasSubstr("; cut long.csv (File too large: its rows before the cut are kept)"));
+  EXPECT_THAT(out, ::testing::Not(HasSubstr("wrote " + csv)));
+  EXPECT_LT(fs::file_size(csv), whole);
+  EXPECT_EQ(fs::file_size(csv), 16384u);  // kept, up to the cut
+  // gnuplot's plot of it: cut by the same limit (gnuplot exits 0), never claimed
+  EXPECT_THAT(err, HasSubstr("long.png' is cut: it has no PNG end (IEND chunk) (is the disk full?); the incomplete "
+                             "file is removed"));
+  EXPECT_THAT(out, ::testing::Not(HasSubstr("long.png")));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "long.png"));
+}
+
+// A file written whole (HTML, glTF, units, report, spectra, scripts) that a
+// full disk cuts is removed, and the error says so.
+TEST_F(HostileDiagramTest, AFileWrittenWholeIsRemovedWhenCut) {
+  struct rlimit old {};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);  // EFBIG instead of the signal
+  struct rlimit small = old;
+  small.rlim_cur = 4096;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  const OutputFolder folder(Out());
+  std::string error;
+  try {
+    folder.Write("d.html", std::string(1 << 16, 'x'));
+  } catch (const WriteError& e) {
+    error = e.what();
+  }
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_THAT(error, HasSubstr("d.html' after 4096 of 65536 bytes: File too large; the incomplete file is removed"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "d.html"));
 }
 
 }  // namespace

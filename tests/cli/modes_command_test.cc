@@ -255,7 +255,7 @@ TEST(ModesCommandTest, BadInputExitsWithTwo) {
   std::ofstream(dir / "file") << "x";
   const Outcome blocked = Mechflow("modes " + Example("damped_oscillator_blocks.xml") + " --out file/sub", dir);
   EXPECT_EQ(blocked.exit_code, 2);
-  EXPECT_THAT(blocked.err, StartsWith("cannot create output folder 'file/sub'"));
+  EXPECT_THAT(blocked.err, StartsWith("cannot create the output folder 'file/sub'"));
 }
 
 // A diagram with switching elements says which mode each was linearised in
