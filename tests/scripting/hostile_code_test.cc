@@ -89,7 +89,7 @@ TEST(HostileCodeTest, CFunctionsTheCountCannotSeeAreBounded) {
   EXPECT_EQ(RunScript(lua, "local t = table.move({1, 2, 3}, 1, 3, 2) assert(t[4] == 3)"), "");
   // exponential backtracking: refused before it starts
   ExpectStopped(lua, "string.find(string.rep('a', 40), '.-.-.-.-.-.-.-.-.-.-b')",
-                "string.find: the pattern '.-.-.-.-.-.-.-.-.-.-b' may backtrack", 0.5);
+                "string.find: the pattern '.-.-.-.-.-.-.-.-.-.-b' may take about", 0.5);
   ExpectStopped(lua, "for w in string.gmatch(string.rep('a', 1e5), 'a*a*b') do end", "string.gmatch: the pattern",
                 0.5);
   ExpectStopped(lua, "local s = string.rep('a', 1e5) s:gsub('a*b', '')", "string.gsub: the pattern", 0.5);
@@ -182,9 +182,9 @@ TEST(HostileCodeTest, TimersTooFineToGetThroughAreRefused) {
 std::string BlockDiagram(const std::string& script, const std::string& block) {
   return R"(<diagram name="d">
   <blocks><block type="constant" name="one" value="1"/>
-    <block type="lua" name="f" inputs="u">)" + block + R"(</block></blocks>
+    <block type="lua" name="f" inputs="u"><![CDATA[)" + block + R"(]]></block></blocks>
   <connections><connect from="one.y" to="f.u"/></connections>
-  <script>)" + script + R"(</script>
+  <script><![CDATA[)" + script + R"(]]></script>
   <solver t_end="1"/>
   <output interval="0.5"><log signal="f.y" label="y"/></output>
 </diagram>)";
@@ -279,7 +279,7 @@ TEST(HostileCodeTest, PlainFindsAreLinear) {
   std::printf("[ measured ] %.3f s: plain finds of 1e5 bytes in 1e7\n", seconds);
   // a pattern without repetitions still compares itself at every position: n m steps
   ExpectStopped(lua, "local s = string.rep('a', 1e7) string.match(s, string.rep('a', 1e5) .. 'b.')",
-                "string.match: the pattern 'aaaa", 0.5);
+                "string.match: the pattern 'aaaa", 2.0);
   // a repetition followed by a long tail: n^2 m steps
   ExpectStopped(lua, "local s = string.rep('a', 1e4) string.find(s, 'a*' .. string.rep('a', 1e4) .. 'b')",
                 "string.find: the pattern 'a*aaa", 0.5);
