@@ -13,6 +13,7 @@
 #include "mech/errors.h"
 #include "scripting/identifier_bindings.h"
 #include "scripting/identifiers.h"
+#include "scripting/lua_guards.h"
 #include "scripting/lua_lexer.h"
 #include "scripting/lua_state.h"
 
@@ -106,6 +107,9 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
   lua_State* L = lua_.get();
   const int top = lua_gettop(L);
 
+  if (const std::string problem = CompileCostProblem(expression); !problem.empty())
+    throw InputError(label_ + ": expression '" + expression.substr(0, 80) + (expression.size() > 80 ? "...'" : "'") +
+                     ": " + problem);
   // syntax, checked on the text as written so Lua's message quotes it
   const std::string alone = "return " + expression;
   int status = luaL_loadbufferx(L, alone.data(), alone.size(), chunk_name.c_str(), "t");
@@ -165,8 +169,10 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
     if (identifiers.Has(name)) {
       lua_pushnumber(L, identifiers.Value(name));
     } else {
+      // any other C function may call what it is given (pcall, load with a
+      // reader), and a table or userdata may have metatables of a script
       lua_getglobal(L, name.c_str());
-      if (lua_type(L, -1) != LUA_TNUMBER && !lua_iscfunction(L, -1)) bounded_ = true;
+      if (lua_type(L, -1) != LUA_TNUMBER && !LuaState::IsPureFunction(L, -1)) bounded_ = true;
     }
   }
   std::string error;

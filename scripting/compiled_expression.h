@@ -25,9 +25,13 @@
 // Evaluation is bounded by the LuaState's instruction limit, except for
 // straight-line expressions, which cannot loop and so skip the count hook (a
 // hook call per VM instruction, measured +40% per evaluation): no `function`,
-// no string, bracket or method call (a script could change the string
-// metatable), and every global used is a number or a C function (upvalues
-// are fixed at compilation, so this cannot change later).
+// no string, bracket or method call, and every global used is a number or
+// one of the sandbox's functions of numbers (LuaState::IsPureFunction; sin,
+// sqrt, ...). Then no value the expression reaches has a metatable through
+// which Lua code could run, and no function it calls runs any: a table of a
+// script, any other C function (pcall, or load with a reader) or a sandbox
+// name a script rebound makes the expression bounded. Upvalues are fixed at
+// compilation, so this cannot change later.
 //
 // The LuaState must outlive the expression.
 

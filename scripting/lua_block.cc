@@ -14,6 +14,7 @@
 #include "mech/errors.h"
 #include "scripting/identifier_bindings.h"
 #include "scripting/identifiers.h"
+#include "scripting/lua_guards.h"
 #include "scripting/lua_lexer.h"
 #include "scripting/lua_state.h"
 
@@ -33,7 +34,11 @@ namespace {
 // its plain name (so no recursion, no method call, no call of a global a
 // script defined); and every sandbox function named only to be called (so
 // none can be rebound to a Lua function).
-// Anything else is bounded, as before.
+// Anything else is bounded, as before. Values can still run Lua code
+// through metamethods (a table of the control script whose __index loops;
+// "no other Lua function exists" holds only for the code's own): so
+// straight-line code reads globals through ReadGlobal, and its functions'
+// upvalues must be safe (SafeUpvalue).
 struct CodeScan {
   std::string rewritten;
   std::vector<std::string> identifiers;
@@ -98,6 +103,50 @@ CodeScan ScanCode(const std::string& code, const IdentifierTable& ids) {
     scan.rewritten.append(code, i, end - i);
   }
   return scan;
+}
+
+// __index of a straight-line block's environment (upvalue 1: the globals,
+// upvalue 2: set true once a read found an unsafe value). Reads a global
+// raw, as the table __index it replaces did (_G's metatable is protected
+// and empty). A value that can carry a metatable or run code -- a table,
+// function or userdata of a script -- could reach Lua code through a
+// metamethod, which straight-line code must not run unbounded: the call is
+// bounded from here on (LuaState::BoundFromHere), and the block knows to
+// bound every later call.
+// Called by Lua (may long-jump): owns no C++ object with a destructor.
+int ReadGlobal(lua_State* L) {
+  lua_pushvalue(L, 2);
+  const int type = lua_rawget(L, lua_upvalueindex(1));
+  if (type == LUA_TFUNCTION && LuaState::IsPureFunction(L, -1)) return 1;  // sin, sqrt, ...
+  if (type == LUA_TTABLE || type == LUA_TFUNCTION || type == LUA_TUSERDATA || type == LUA_TTHREAD) {
+    lua_pushboolean(L, 1);
+    lua_replace(L, lua_upvalueindex(2));
+    LuaState::BoundFromHere(L);
+  }
+  return 1;
+}
+
+// True when the value at `index`, an upvalue of a straight-line function,
+// runs no Lua code however the code uses it: a number, string, boolean or
+// nil, one of the sandbox's functions of numbers, the block's environment
+// (at `env`), or a table without a metatable (one made by the code itself).
+bool SafeUpvalue(lua_State* L, int index, int env) {
+  switch (lua_type(L, index)) {
+    case LUA_TNIL:
+    case LUA_TBOOLEAN:
+    case LUA_TNUMBER:
+    case LUA_TSTRING:
+      return true;
+    case LUA_TFUNCTION:
+      return LuaState::IsPureFunction(L, index);
+    case LUA_TTABLE:
+      if (lua_rawequal(L, index, env)) return true;
+      if (!lua_getmetatable(L, index)) return true;
+      lua_pop(L, 1);
+      return false;
+    default:
+      return false;
+  }
 }
 
 struct Port {
@@ -253,6 +302,8 @@ class LuaBlock : public blocks::Block {
   // Runs the code once in an environment of its own and keeps references to
   // its functions and to a closure over the identifier upvalues.
   void Compile(const Code& code, const IdentifierTable& ids, bool has_states) {
+    if (const std::string problem = CompileCostProblem(code.text); !problem.empty())
+      throw InputError("the Lua code cannot be compiled: " + problem);
     const CodeScan scan = ScanCode(code.text, ids);
     // line 1: the upvalues, then blank lines up to the code's line in its file
     std::string chunk = "local __mechflow_binder";
@@ -282,10 +333,15 @@ class LuaBlock : public blocks::Block {
     if (!lua_checkstack(L, static_cast<int>(scan.identifiers.size()) + 8)) fail("the code names too many identifiers");
     int status = luaL_loadbufferx(L, chunk.data(), chunk.size(), code.chunk_name.c_str(), "t");
     if (status != LUA_OK) fail("the Lua code does not compile: " + lua_.ErrorText(status));
-    // the environment: a table of its own whose reads fall through to the globals
+    // the environment: a table of its own whose reads fall through to the
+    // globals; straight-line code reads them through ReadGlobal
     lua_newtable(L);
     lua_newtable(L);
     lua_pushglobaltable(L);
+    if (!scan.may_loop) {
+      lua_pushboolean(L, 0);
+      lua_pushcclosure(L, &ReadGlobal, 2);
+    }
     lua_setfield(L, -2, "__index");
     lua_setmetatable(L, -2);
     lua_pushvalue(L, -1);
@@ -317,14 +373,22 @@ class LuaBlock : public blocks::Block {
              " state(s); define outputs(t, states..., inputs...)");
       DeclareNoFeedthrough();
     }
-    // straight-line code may skip the instruction count, unless a function
-    // it calls turned out to be Lua (a sandbox name bound to one at load)
+    // straight-line code may skip the instruction count, unless it read a
+    // global through which Lua code could run, or a value it keeps could run
+    // some (a sandbox name bound to another function or to a table)
     bounded_ = scan.may_loop;
+    if (!bounded_) {
+      lua_getmetatable(L, top + 1);
+      lua_getfield(L, -1, "__index");
+      lua_getupvalue(L, -1, 2);
+      bounded_ = lua_toboolean(L, -1);
+      lua_pop(L, 3);
+    }
     for (const int ref : {outputs_ref_, derivatives_ref_}) {
       if (ref < 0) continue;
       lua_rawgeti(L, LUA_REGISTRYINDEX, ref);
       for (int i = 1; lua_getupvalue(L, -1, i); ++i) {
-        if (lua_isfunction(L, -1) && !lua_iscfunction(L, -1)) bounded_ = true;
+        if (!SafeUpvalue(L, -1, top + 1)) bounded_ = true;
         lua_pop(L, 1);
       }
       lua_pop(L, 1);
@@ -378,7 +442,9 @@ class LuaBlock : public blocks::Block {
       BoundedCall bounded(lua_);
       status = lua_pcall(L, n, LUA_MULTRET, top + 1);
     } else {
+      StraightLineCall straight(lua_);
       status = lua_pcall(L, n, LUA_MULTRET, top + 1);
+      if (straight.bounded_midway()) bounded_ = true;
     }
     if (status != LUA_OK) {
       const std::string message = lua_.ErrorText(status);
@@ -434,7 +500,9 @@ class LuaBlock : public blocks::Block {
   int outputs_ref_ = -1;
   int derivatives_ref_ = -1;
   int binder_ref_ = -1;
-  bool bounded_ = true;  // false for straight-line code (CodeScan::may_loop)
+  // false for straight-line code (CodeScan::may_loop) that reaches no value
+  // through which Lua code could run; set when a call finds one
+  mutable bool bounded_ = true;
   // scratch and the last call of `outputs`, sized once; a diagram is evaluated
   // by one simulator at a time (it shares the one Lua state anyway)
   mutable std::vector<double> args_;

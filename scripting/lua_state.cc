@@ -23,6 +23,9 @@ constexpr std::size_t kMaxErrorLength = 2000;
 // Every function below is called by Lua and may raise a Lua error (a
 // long jump): none may own a C++ object with a destructor.
 
+// Registry field: the set of the sandbox's own functions of numbers.
+constexpr const char* kPureFunctionsKey = "mechflow.pure_functions";
+
 // The LuaState that owns L (kept in Lua's extra space for the hook).
 LuaState& OwnerOf(lua_State* L) { return **static_cast<LuaState**>(lua_getextraspace(L)); }
 
@@ -136,6 +139,19 @@ int SetUp(lua_State* L) {
     lua_pushcfunction(L, f.func);
     lua_setglobal(L, f.name);
   }
+  // the functions of numbers just set up, as keys (IsPureFunction)
+  lua_newtable(L);
+  const auto add = [L](const char* name) {
+    if (lua_getglobal(L, name) != LUA_TFUNCTION) {  // pi
+      lua_pop(L, 1);
+      return;
+    }
+    lua_pushboolean(L, 1);
+    lua_rawset(L, -3);
+  };
+  for (const Alias& alias : kMathAliases) add(alias.global);
+  for (const luaL_Reg& f : kExtraFunctions) add(f.name);
+  lua_setfield(L, LUA_REGISTRYINDEX, kPureFunctionsKey);
   return 0;
 }
 
@@ -168,8 +184,10 @@ void LuaState::InstructionHook(lua_State* L, lua_Debug*) {
   if (call.exceeded == Exceeded::kInstructions) {
     lua_pushfstring(L, "instruction limit exceeded (%I instructions in one call; endless loop?)",
                     static_cast<lua_Integer>(lua->instruction_limit_));
-  } else {
+  } else if (call.exceeded == Exceeded::kTime) {
     lua_pushfstring(L, "time limit exceeded (one call may run for %f s)", lua->time_limit_);
+  } else {
+    lua_pushstring(L, lua->refusal_);
   }
   lua_concat(L, 2);
   lua_error(L);
@@ -183,7 +201,12 @@ void* LuaState::Allocate(void* ud, void* ptr, std::size_t old_size, std::size_t 
     memory->used -= old_bytes;
     return nullptr;
   }
-  if (new_size > old_bytes && memory->used - old_bytes + new_size > memory->limit) return nullptr;
+  if (new_size > old_bytes && memory->used - old_bytes + new_size > memory->limit) {
+    // Lua collects the whole heap before it gives up: a loop of refused
+    // allocations is a loop of full collections
+    if (memory->owner) memory->owner->HurryTimeCheck();
+    return nullptr;
+  }
   void* block = std::realloc(ptr, new_size);
   if (block) memory->used = memory->used - old_bytes + new_size;
   if (block && new_size >= kLargeBlock && memory->owner) memory->owner->HurryTimeCheck();
@@ -221,16 +244,18 @@ LuaState::~LuaState() {
   if (L_) lua_close(L_);
 }
 
+void LuaState::Arm() {
+  call_ = {};
+  call_.start = Now();
+  if (instruction_limit_ > 0) call_.interval = static_cast<int>(std::min<long>(instruction_limit_, kCheckInterval));
+  lua_sethook(L_, &InstructionHook, LUA_MASKCOUNT, call_.interval);
+}
+
 BoundedCall::BoundedCall(LuaState& lua) : L_(lua.get()) {
   // a hook already set means an enclosing call is bounded (ours is removed
   // when that call returns)
   if ((lua.instruction_limit_ > 0 || lua.time_limit_ > 0.0) && !lua_gethook(L_)) {
-    LuaState::CallBudget& call = lua.call_;
-    call = {};
-    call.start = Now();
-    if (lua.instruction_limit_ > 0)
-      call.interval = static_cast<int>(std::min<long>(lua.instruction_limit_, LuaState::kCheckInterval));
-    lua_sethook(L_, &LuaState::InstructionHook, LUA_MASKCOUNT, call.interval);
+    lua.Arm();
     armed_ = true;
   }
 }
@@ -241,8 +266,48 @@ BoundedCall::~BoundedCall() {
   OwnerOf(L_).call_.exceeded = LuaState::Exceeded::kNone;
 }
 
+StraightLineCall::~StraightLineCall() {
+  if (!lua_.call_.armed_midway) return;
+  lua_sethook(lua_.get(), nullptr, 0, 0);
+  lua_.call_ = {};
+}
+
+// Called by Lua (may long-jump): owns no C++ object with a destructor.
+void LuaState::BoundFromHere(lua_State* L) {
+  LuaState& lua = OwnerOf(L);
+  if (lua_gethook(L) || (lua.instruction_limit_ <= 0 && lua.time_limit_ <= 0.0)) return;
+  lua.Arm();  // Lua sets the running functions' traps: the hook counts from the next instruction
+  lua.call_.armed_midway = true;
+}
+
+// Called by Lua (long-jumps): owns no C++ object with a destructor.
+int LuaState::RaiseLimit(lua_State* L, const char* text) {
+  LuaState& lua = OwnerOf(L);
+  if (lua_gethook(L) && lua.call_.exceeded == Exceeded::kNone) {
+    std::snprintf(lua.refusal_, sizeof lua.refusal_, "%s", text);
+    lua.call_.exceeded = Exceeded::kRefused;
+    lua_sethook(L, &InstructionHook, LUA_MASKCOUNT, 1);
+  }
+  luaL_where(L, 1);  // the line that called the guarded function
+  lua_pushstring(L, text);
+  lua_concat(L, 2);
+  return lua_error(L);
+}
+
+void LuaState::CheckTimeSoon(lua_State* L) { OwnerOf(L).HurryTimeCheck(); }
+
 bool LuaState::LimitPassed(lua_State* L) {
   return OwnerOf(L).call_.exceeded != Exceeded::kNone;
+}
+
+bool LuaState::IsPureFunction(lua_State* L, int index) {
+  if (!lua_iscfunction(L, index)) return false;
+  index = lua_absindex(L, index);
+  lua_getfield(L, LUA_REGISTRYINDEX, kPureFunctionsKey);
+  lua_pushvalue(L, index);
+  const bool pure = lua_rawget(L, -2) == LUA_TBOOLEAN;
+  lua_pop(L, 2);
+  return pure;
 }
 
 std::string LuaState::ErrorText(int status) const {
@@ -275,6 +340,11 @@ bool LuaState::Call(int num_args, int num_results, std::string* error) {
 }
 
 bool LuaState::Run(std::string_view code, const std::string& chunk_name, std::string* error) {
+  if (std::string problem = CompileCostProblem(code); !problem.empty()) {
+    const bool named = !chunk_name.empty() && (chunk_name[0] == '@' || chunk_name[0] == '=');
+    if (error) *error = (named ? chunk_name.substr(1) : chunk_name) + ": " + problem;
+    return false;
+  }
   const int status = luaL_loadbufferx(L_, code.data(), code.size(), chunk_name.c_str(), "t");
   if (status != LUA_OK) {
     if (error) *error = ErrorText(status);

@@ -27,9 +27,11 @@
 //   the error is raised again at every instruction until the call returns,
 //   so no Lua code can run on. Both are checked by a count hook (every
 //   kCheckInterval instructions), armed at the start of the call and removed
-//   at its end, so there is no cost between calls; a large allocation past
-//   the time limit makes the hook run at the next instruction. C functions whose work
-//   the count cannot see are guarded separately (scripting/lua_guards.h).
+//   at its end, so there is no cost between calls; a large allocation (or a
+//   refused one, after which Lua collects the whole heap) past the time limit
+//   makes the hook run at the next instruction. C functions whose work the
+//   count cannot see are guarded separately (scripting/lua_guards.h); a
+//   guard's refusal (RaiseLimit) is raised again like a limit's error.
 //
 // Lua errors long-jump: no C++ frame owning resources may sit between a
 // lua_pcall and the code that raises. Every call into Lua from C++ goes
@@ -94,7 +96,8 @@ class LuaState {
   // Loads `code` as a text chunk named `chunk_name` ("@file.lua" gives
   // messages "file.lua:12: ...", "=name" gives "name:12: ...") and runs it
   // with no results. Returns false with the message in *error on a syntax or
-  // run-time error.
+  // run-time error, or when compiling it could take too long
+  // (CompileCostProblem in scripting/lua_guards.h).
   bool Run(std::string_view code, const std::string& chunk_name, std::string* error);
 
   // The text of the error value on top of the stack after a failed call that
@@ -111,9 +114,31 @@ class LuaState {
   // the hook that raises it, runs with hooks off and must not run at all.
   static bool LimitPassed(lua_State* L);
 
+  // Raises `text` (with the calling line's position) as a limit's error:
+  // inside a bounded call, every further instruction raises it again, so a
+  // guard's refusal cannot be caught and ignored. For the guards of
+  // scripting/lua_guards.h; never returns.
+  static int RaiseLimit(lua_State* L, const char* text);
+
+  // Looks at the clock after C work the count cannot see (a long search, a
+  // full garbage collection): past the time limit, the hook runs at the next
+  // instruction. Cheap; does nothing outside a bounded call.
+  static void CheckTimeSoon(lua_State* L);
+
+  // Arms the count hook from inside a call that runs without it (see
+  // StraightLineCall), from the point where that call reached a value through
+  // which Lua code could run. Inside a bounded call it does nothing.
+  static void BoundFromHere(lua_State* L);
+
   // Names defined by the sandbox for expressions (sin, ln, pi, ...).
   static bool IsBuiltinName(std::string_view name);
   static std::vector<std::string> BuiltinNames();
+
+  // True when the value at `index` is one of the sandbox's own functions of
+  // numbers (the functions named by BuiltinNames, as set up): whatever its
+  // arguments, it runs no Lua code and reaches no metatable. A global of the
+  // same name that a script rebound is not.
+  static bool IsPureFunction(lua_State* L, int index);
 
  private:
   struct Memory {
@@ -130,19 +155,24 @@ class LuaState {
   static void* Allocate(void* ud, void* ptr, std::size_t old_size, std::size_t new_size);
 
   friend class BoundedCall;
+  friend class StraightLineCall;
   static void InstructionHook(lua_State* L, lua_Debug* ar);
 
   // What the hook of the current bounded call has seen.
-  enum class Exceeded { kNone, kInstructions, kTime };
+  enum class Exceeded { kNone, kInstructions, kTime, kRefused };
   struct CallBudget {
     long instructions = 0;  // counted so far, in steps of the hook's interval
     double start = 0.0;     // steady clock, s
     int interval = kCheckInterval;
     Exceeded exceeded = Exceeded::kNone;
+    bool armed_midway = false;  // by BoundFromHere, in a StraightLineCall
   };
+  // Arms the hook for a new bounded call (the hook must not be set).
+  void Arm();
 
   Memory memory_;
   CallBudget call_;
+  char refusal_[400] = "";  // a guard's message (kRefused), raised again by the hook
   long instruction_limit_ = 0;
   double time_limit_ = 0.0;
   bool unsafe_ = false;
@@ -165,6 +195,26 @@ class BoundedCall {
  private:
   lua_State* L_;
   bool armed_ = false;
+};
+
+// Runs straight-line code (which cannot loop) without the count hook, so a
+// call costs no hook. Should that code reach a value through which Lua code
+// could run (a table of a script, with a metatable), it calls
+// LuaState::BoundFromHere, and the rest of the call is bounded; the
+// destructor removes the hook again.
+class StraightLineCall {
+ public:
+  explicit StraightLineCall(LuaState& lua) : lua_(lua) {}
+  ~StraightLineCall();
+  StraightLineCall(const StraightLineCall&) = delete;
+  StraightLineCall& operator=(const StraightLineCall&) = delete;
+
+  // True once the call was bounded from midway: the code is not safe to run
+  // unbounded, and its next calls should be bounded from the start.
+  bool bounded_midway() const { return lua_.call_.armed_midway; }
+
+ private:
+  LuaState& lua_;
 };
 
 }  // namespace mechflow::scripting
