@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Loading, checking and scheduling large diagrams: `mechflow check` of a
-# chain of N gain blocks (N = 5000 ... 100000) and of a line of N bodies
-# joined by translational joints and springs (N = 1000 ... 10000), with the
-# wall time and peak memory of each and the growth exponent between sizes.
+# chain of N gain blocks (N = 5000 ... 100000), of a line of N bodies joined
+# by translational joints and springs (N = 1000 ... 50000), and of N
+# identifiers, defined by numbers (`identifiers`) or each by an expression
+# of the one above (`expressions`, N = 10000 ... 100000), with the wall time
+# and peak memory of each and the growth exponent between sizes.
 #   bench/large_inputs.sh [build folder]     (default: build)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -30,6 +32,19 @@ bodies() {  # N bodies in a line, each on a translational joint and a spring
     print "</mechanism></diagram>" }'
 }
 
+identifiers() {  # N identifiers defined by numbers; a gain reads the last
+  awk -v n="$1" 'BEGIN {
+    print "<diagram name=\"ids\"><identifiers>"
+    for (i = 0; i < n; ++i) printf "<identifier name=\"p%d\" value=\"%d\"/>\n", i, i
+    printf "</identifiers><blocks><block type=\"integrator\" name=\"x\"/><block type=\"gain\" name=\"g\" k=\"p%d\"/>", n - 1
+    print "</blocks><connections><connect from=\"x.y\" to=\"g.u\"/><connect from=\"g.y\" to=\"x.u\"/></connections></diagram>" }'
+}
+expressions() {  # N identifiers, each the one above plus one
+  identifiers "$1" | awk '/<identifier name="p[0-9]+"/ && !/"p0"/ {
+    match($0, /"p[0-9]+"/); i = substr($0, RSTART + 2, RLENGTH - 3)
+    printf "<identifier name=\"p%d\" value=\"p%d + 1\"/>\n", i, i - 1; next } { print }'
+}
+
 measure() {  # kind n -> "seconds kib"
   "$1" "$2" > "$work/d.xml"
   /usr/bin/time -f "%e %M" -o "$work/time" "$mechflow" check "$work/d.xml" > /dev/null
@@ -53,7 +68,9 @@ report() {  # kind sizes...
 }
 
 report blocks 5000 10000 20000 50000 100000
-report bodies 1000 2000 4000 10000
+report bodies 1000 2000 4000 10000 20000 50000
+report identifiers 10000 20000 50000 100000
+report expressions 10000 20000 50000 100000
 
 # Instruction counts (callgrind: exact and repeatable on a busy machine),
 # for the growth exponent without timing noise; skipped without valgrind.

@@ -648,15 +648,23 @@ std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const E
     elements.push_back(ReadElement(r, e, *model, kin0));
   }
   // Work and dissipation sensors need a state in their element, an energy
-  // balance in every element.
+  // balance in every element (found by name through an index: a sensor per
+  // element would otherwise search them all).
+  std::map<std::string, mech::ForceElement*, std::less<>> element_by_name;
+  for (auto& element : elements) element_by_name.emplace(element->name(), element.get());
+  bool every_element_tracked = false;
   for (const ElementDesc& e : m.children) {
     if (e.tag != "sensor") continue;
     const std::string kind = e.Text("kind"), quantity = e.Text("quantity", "force");
     const bool balance = kind == "energy_balance";
     if (!balance && !(kind == "element" && (quantity == "work" || quantity == "dissipated"))) continue;
-    const std::string name = e.Text("element");
-    for (auto& element : elements)
-      if (balance || element->name() == name) element->TrackWork();
+    if (balance) {
+      if (!every_element_tracked)
+        for (auto& element : elements) element->TrackWork();
+      every_element_tracked = true;
+    } else if (const auto it = element_by_name.find(e.Text("element")); it != element_by_name.end()) {
+      it->second->TrackWork();
+    }
   }
   std::vector<std::string> input_names;
   for (const ElementDesc& e : m.children)

@@ -189,14 +189,40 @@ void InverseDynamics(const Model& model, const Kinematics& kin, std::span<const 
   }
 }
 
-void MassMatrix(const Model& model, const Kinematics& kin, Eigen::MatrixXd* M, DynamicsWorkspace* ws) {
+namespace {
+
+// ws->composite[i]: the inertia of segment i and everything it carries, in its frame.
+void CompositeInertias(const Model& model, const Kinematics& kin, DynamicsWorkspace* ws) {
   const auto& segments = model.segments();
   const int n = static_cast<int>(segments.size());
-  M->setZero(model.nv(), model.nv());
   for (int i = 0; i < n; ++i) ws->composite[i] = segments[i].inertia;
   for (int i = n - 1; i >= 0; --i)
     if (segments[i].parent != kGround)
       ws->composite[segments[i].parent] += TransformInertiaToParent(kin.X[i], ws->composite[i]);
+}
+
+}  // namespace
+
+void MassMatrixDiagonal(const Model& model, const Kinematics& kin, Eigen::VectorXd* diagonal, DynamicsWorkspace* ws) {
+  CompositeInertias(model, kin, ws);
+  diagonal->setZero(model.nv());
+  const auto& segments = model.segments();
+  for (int i = 0; i < static_cast<int>(segments.size()); ++i) {
+    const Segment& seg = segments[i];
+    if (seg.motion == SegmentMotion::kFree) {  // S = identity: the composite's own diagonal
+      diagonal->segment(seg.v_index, 6) = ws->composite[i].diagonal();
+    } else if (seg.drive == SegmentDrive::kDof) {
+      const Vec6& S = kin.axis[i];
+      (*diagonal)(seg.v_index) = S.dot(ws->composite[i] * S);
+    }
+  }
+}
+
+void MassMatrix(const Model& model, const Kinematics& kin, Eigen::MatrixXd* M, DynamicsWorkspace* ws) {
+  const auto& segments = model.segments();
+  const int n = static_cast<int>(segments.size());
+  M->setZero(model.nv(), model.nv());
+  CompositeInertias(model, kin, ws);
   using Columns = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
   auto motion_axes = [&](int i) {
     const Segment& seg = segments[i];

@@ -59,6 +59,10 @@ void InverseDynamics(const Model& model, const Kinematics& kin, std::span<const 
 
 // Composite-rigid-body algorithm: the symmetric nv x nv mass matrix.
 void MassMatrix(const Model& model, const Kinematics& kin, Eigen::MatrixXd* M, DynamicsWorkspace* ws);
+// Its diagonal alone (nv), M_ii = S_i^T Ic_i S_i with Ic_i the composite
+// inertia of what coordinate i carries: linear in the segments, where M
+// itself is quadratic (dense for a serial chain).
+void MassMatrixDiagonal(const Model& model, const Kinematics& kin, Eigen::VectorXd* diagonal, DynamicsWorkspace* ws);
 
 // The segment's true spatial acceleration from the algorithms' one.
 Vec6 TrueAcceleration(const Model& model, const Kinematics& kin, const DynamicsWorkspace& ws, int segment);

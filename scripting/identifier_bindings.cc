@@ -1,6 +1,7 @@
 #include "scripting/identifier_bindings.h"
 
-#include <algorithm>
+#include <string_view>
+#include <unordered_set>
 
 #include <lua.hpp>
 
@@ -37,6 +38,8 @@ void BindIdentifiers(lua_State* L, int index) {
 
 int RebindIdentifiers(lua_State* L, const IdentifierTable& identifiers, const std::vector<std::string>& changed) {
   if (changed.empty()) return 0;
+  // a run's start rebinds every identifier: a hash set keeps that linear
+  const std::unordered_set<std::string_view> wanted(changed.begin(), changed.end());
   int set = 0;
   PushBindings(L);
   lua_pushnil(L);
@@ -44,8 +47,9 @@ int RebindIdentifiers(lua_State* L, const IdentifierTable& identifiers, const st
     lua_pop(L, 1);  // the value; the function (key) stays for lua_next
     for (int i = 1; const char* name = lua_getupvalue(L, -1, i); ++i) {
       lua_pop(L, 1);
-      if (std::find(changed.begin(), changed.end(), name) == changed.end()) continue;
-      lua_pushnumber(L, identifiers.Value(name));
+      const int id = wanted.count(name) ? identifiers.FindLowerCase(name) : -1;
+      if (id < 0) continue;
+      lua_pushnumber(L, identifiers.value(id));
       lua_setupvalue(L, -2, i);
       ++set;
     }

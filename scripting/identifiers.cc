@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <unordered_set>
 
 #include <lua.hpp>
 
@@ -57,25 +58,33 @@ std::string WithoutPosition(std::string message) {
 // --- Lua side of the evaluation environment ------------------------------------
 // Called by Lua: no C++ objects with destructors (lua_error long-jumps).
 
-// The identifiers an expression may see, as plain arrays.
+// What an expression's environment sees: the first `visible` identifiers of
+// `table`. A full userdata the environment holds; Eval clears `table` when
+// the evaluation ends, so a function the expression leaked (into a global,
+// say) fails instead of reading a table that may be gone.
 struct VisibleIdentifiers {
-  const char* const* names;  // lower-case
-  const double* values;
-  int count;
+  const IdentifierTable* table;
+  int visible;
 };
 
-// __index of the environment: the identifier with the lower-cased name, else
-// the global of that exact name, else an error object {unknown = name}.
+// __index of the environment: the visible identifier with the lower-cased
+// name (a hash lookup, so an expression costs the same over 10 or 10^5
+// identifiers), else the global of that exact name, else an error object
+// {unknown = name}.
 int LowerCaseIndex(lua_State* L) {
   if (lua_type(L, 2) != LUA_TSTRING) return 0;
+  const auto* visible = static_cast<const VisibleIdentifiers*>(lua_touserdata(L, lua_upvalueindex(1)));
+  if (!visible->table) return luaL_error(L, "an expression's names are read after its evaluation ended");
   std::size_t length = 0;
   const char* key = lua_tolstring(L, 2, &length);
   luaL_Buffer buffer;
   char* lower = luaL_buffinitsize(L, &buffer, length);
   for (std::size_t i = 0; i < length; ++i) lower[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(key[i])));
-  luaL_pushresultsize(&buffer, length);
-  if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
-  lua_pop(L, 1);
+  const int id = visible->table->FindLowerCase(std::string_view(lower, length));
+  if (id >= 0 && id < visible->visible) {
+    lua_pushnumber(L, visible->table->value(id));
+    return 1;
+  }
   if (lua_getglobal(L, key) != LUA_TNIL) return 1;
   lua_createtable(L, 0, 1);
   lua_pushvalue(L, 2);
@@ -83,21 +92,24 @@ int LowerCaseIndex(lua_State* L) {
   return lua_error(L);
 }
 
-// Returns a new environment table for the identifiers passed as a light
-// userdata (a VisibleIdentifiers). Run in protected mode: it allocates.
+// Returns a new environment table for the identifiers [0, visible) of the
+// table passed as a light userdata, and the VisibleIdentifiers it holds.
+// Run in protected mode: it allocates. Its cost does not depend on how many
+// identifiers there are.
 int BuildEnvironment(lua_State* L) {
-  const auto* visible = static_cast<const VisibleIdentifiers*>(lua_touserdata(L, 1));
+  const auto* table = static_cast<const IdentifierTable*>(lua_touserdata(L, 1));
+  const int visible = static_cast<int>(lua_tointeger(L, 2));
   lua_createtable(L, 0, 0);  // the environment, empty: every lookup goes to __index
   lua_createtable(L, 0, 1);  // its metatable
-  lua_createtable(L, 0, visible->count);
-  for (int i = 0; i < visible->count; ++i) {
-    lua_pushnumber(L, visible->values[i]);
-    lua_setfield(L, -2, visible->names[i]);
-  }
+  auto* seen = static_cast<VisibleIdentifiers*>(lua_newuserdatauv(L, sizeof(VisibleIdentifiers), 0));
+  *seen = {table, visible};
+  lua_pushvalue(L, -1);
+  lua_insert(L, -4);  // environment, metatable, userdata -> userdata, environment, metatable, userdata
   lua_pushcclosure(L, &LowerCaseIndex, 1);
   lua_setfield(L, -2, "__index");
   lua_setmetatable(L, -2);
-  return 1;
+  lua_insert(L, -2);  // -> environment, userdata
+  return 2;
 }
 
 }  // namespace
@@ -152,6 +164,7 @@ void IdentifierTable::Add(const std::string& name, const std::string& definition
   item.unit = unit;
   if (item.definition.empty()) throw InputError(origin + ": identifier '" + name + "' has an empty value");
   item.is_expression = !ParseNumber(item.definition, &item.value);
+  index_.emplace(lower, size());
   items_.push_back(std::move(item));
 }
 
@@ -186,28 +199,27 @@ double IdentifierTable::Eval(LuaState& lua, const std::string& text, int visible
   }
 
   // environment: the visible identifiers (case-insensitive), then the globals
-  std::vector<const char*> names;
-  std::vector<double> values;
-  for (int i = 0; i < visible; ++i) {
-    names.push_back(items_[i].name.c_str());
-    values.push_back(items_[i].value);
-  }
-  VisibleIdentifiers identifiers{names.data(), values.data(), visible};
   lua_pushcfunction(L, &BuildEnvironment);
-  lua_pushlightuserdata(L, &identifiers);
-  status = lua_pcall(L, 1, 1, 0);
+  lua_pushlightuserdata(L, const_cast<IdentifierTable*>(this));
+  lua_pushinteger(L, visible);
+  status = lua_pcall(L, 2, 2, 0);
   if (status != LUA_OK) {
     const std::string message = lua.ErrorText(status);
     lua_settop(L, top);
     throw InputError(what + ": " + message);
   }
-  lua_setupvalue(L, -2, 1);  // the chunk's only upvalue is _ENV
+  // stack: chunk, environment, its VisibleIdentifiers -> VisibleIdentifiers, chunk (which holds the environment)
+  auto* seen = static_cast<VisibleIdentifiers*>(lua_touserdata(L, -1));
+  lua_insert(L, top + 1);
+  lua_setupvalue(L, top + 2, 1);  // the chunk's only upvalue is _ENV
+  const int base = top + 1;       // results come above the VisibleIdentifiers, kept alive until they are read
 
   // run, bounded
   {
     BoundedCall bounded(lua);
     status = lua_pcall(L, 0, LUA_MULTRET, 0);
   }
+  seen->table = nullptr;
   if (status != LUA_OK) {
     std::string unknown;
     if (lua_istable(L, -1) && lua_getfield(L, -1, "unknown") == LUA_TSTRING) unknown = lua_tostring(L, -1);
@@ -233,9 +245,9 @@ double IdentifierTable::Eval(LuaState& lua, const std::string& text, int visible
   }
 
   // exactly one finite number
-  const int results = lua_gettop(L) - top;
-  const int type = results > 0 ? lua_type(L, top + 1) : LUA_TNIL;
-  const double value = type == LUA_TNUMBER ? lua_tonumber(L, top + 1) : 0.0;
+  const int results = lua_gettop(L) - base;
+  const int type = results > 0 ? lua_type(L, base + 1) : LUA_TNIL;
+  const double value = type == LUA_TNUMBER ? lua_tonumber(L, base + 1) : 0.0;
   lua_settop(L, top);
   if (results != 1)
     throw InputError(what + ": '" + blocks::Excerpt(text) + "' gives " + std::to_string(results) +
@@ -264,10 +276,25 @@ double IdentifierTable::EvaluateExpression(LuaState& lua, const std::string& tex
 }
 
 void IdentifierTable::NoteFixedUses(const std::string& text, const std::string& what) const {
+  // repeats are removed when the uses are read (rarely): a search here would
+  // cost every block that uses an identifier all the places noted before
   for (const int id : NamedIn(text)) {
     auto& uses = items_[id].fixed_uses;
-    if (std::find(uses.begin(), uses.end(), what) == uses.end()) uses.push_back(what);
+    if (uses.empty() || uses.back() != what) uses.push_back(what);
   }
+}
+
+const std::vector<std::string>& IdentifierTable::fixed_uses(int i) const {
+  const Item& item = items_.at(i);
+  auto& uses = item.fixed_uses;
+  if (item.unique_uses == uses.size()) return uses;
+  std::unordered_set<std::string> seen;
+  std::vector<std::string> unique;
+  for (const std::string& use : uses)
+    if (seen.insert(use).second) unique.push_back(use);
+  uses = std::move(unique);
+  item.unique_uses = uses.size();
+  return uses;
 }
 
 std::vector<int> IdentifierTable::NamedIn(const std::string& text) const {
@@ -299,11 +326,11 @@ void IdentifierTable::SetValues(const std::vector<double>& values) {
   for (int i = 0; i < size(); ++i) items_[i].value = values.at(i);
 }
 
-int IdentifierTable::Find(const std::string& name) const {
-  const std::string lower = ToLower(name);
-  for (int i = 0; i < size(); ++i)
-    if (items_[i].name == lower) return i;
-  return -1;
+int IdentifierTable::Find(const std::string& name) const { return FindLowerCase(ToLower(name)); }
+
+int IdentifierTable::FindLowerCase(std::string_view lower) const noexcept {
+  const auto it = index_.find(lower);
+  return it == index_.end() ? -1 : it->second;
 }
 
 double IdentifierTable::Value(const std::string& name) const {

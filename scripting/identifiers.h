@@ -20,7 +20,10 @@
 //   ids.Evaluate(lua);              // c follows m
 //   double k = ids.EvaluateExpression(lua, "-c/m", "d.xml:9: block 'k' parameter 'k'");
 
+#include <functional>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace mechflow::scripting {
@@ -69,7 +72,8 @@ class IdentifierTable {
   // and are no fixed uses. EvaluateExpression notes the identifiers its text
   // names; other builders call NoteFixedUses. Bookkeeping only, hence const.
   void NoteFixedUses(const std::string& text, const std::string& what) const;
-  const std::vector<std::string>& fixed_uses(int i) const { return items_.at(i).fixed_uses; }
+  // Each place once, in the order first noted.
+  const std::vector<std::string>& fixed_uses(int i) const;
 
   // Every value, in order, and their restoration (a control script's changes
   // undone before the next run).
@@ -81,6 +85,7 @@ class IdentifierTable {
 
   int size() const { return static_cast<int>(items_.size()); }
   int Find(const std::string& name) const;  // index or -1, case-insensitive
+  int FindLowerCase(std::string_view lower) const noexcept;  // index or -1, for a name already lower-case
   bool Has(const std::string& name) const { return Find(name) >= 0; }
   double Value(const std::string& name) const;  // throws std::out_of_range when unknown
   std::vector<std::string> Names() const;       // lower-case, in order
@@ -103,13 +108,21 @@ class IdentifierTable {
     bool is_expression = false;
     bool overridden = false;
     double value = 0.0;
-    mutable std::vector<std::string> fixed_uses;
+    mutable std::vector<std::string> fixed_uses;  // may hold repeats until fixed_uses(i) removes them
+    mutable std::size_t unique_uses = 0;          // the first unique_uses entries hold none
+  };
+  // Hashes std::string and std::string_view alike, so lookups need no copy.
+  struct NameHash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>()(s); }
   };
   // Evaluates `text` seeing identifiers [0, visible); `self` is the index of
   // the identifier being defined, or -1. Errors start with `what`.
   double Eval(LuaState& lua, const std::string& text, int visible, int self, const std::string& what) const;
 
   std::vector<Item> items_;
+  // lower-case name -> index into items_ (names are only ever appended)
+  std::unordered_map<std::string, int, NameHash, std::equal_to<>> index_;
 };
 
 // Lower-case copy (identifier names are case-insensitive).

@@ -32,31 +32,34 @@ void __libc_free(void*);
 namespace {
 std::atomic<bool> g_counting{false};
 std::atomic<long> g_calls{0};
-[[maybe_unused]] void Count() {
-  if (g_counting.load(std::memory_order_relaxed)) g_calls.fetch_add(1, std::memory_order_relaxed);
+std::atomic<long long> g_bytes{0};  // bytes asked for by the counted calls
+[[maybe_unused]] void Count(std::size_t bytes) {
+  if (!g_counting.load(std::memory_order_relaxed)) return;
+  g_calls.fetch_add(1, std::memory_order_relaxed);
+  g_bytes.fetch_add(static_cast<long long>(bytes), std::memory_order_relaxed);
 }
 }  // namespace
 
 #if MECHFLOW_MALLOC_COUNTED
 extern "C" {
 void* malloc(std::size_t n) {
-  Count();
+  Count(n);
   return __libc_malloc(n);
 }
 void* calloc(std::size_t n, std::size_t size) {
-  Count();
+  Count(n * size);
   return __libc_calloc(n, size);
 }
 void* realloc(void* p, std::size_t n) {
-  Count();
+  Count(n);
   return __libc_realloc(p, n);
 }
 void* aligned_alloc(std::size_t alignment, std::size_t n) {
-  Count();
+  Count(n);
   return __libc_memalign(alignment, n);
 }
 int posix_memalign(void** out, std::size_t alignment, std::size_t n) {
-  Count();
+  Count(n);
   *out = __libc_memalign(alignment, n);
   return *out ? 0 : 12;  // ENOMEM
 }

@@ -37,22 +37,25 @@ std::optional<BlockSparsity> MechanismSparsity(const mech::Mechanism& m,
   if (m.drive_work_state() >= 0) return std::nullopt;  // its rate reads every acceleration
 
   // the root segment of every segment, then groups of roots joined by loops
+  // (parents come before their children: one pass, where walking each
+  // segment's path was quadratic in a serial chain)
   std::vector<int> root(num_segments);
   for (int s = 0; s < num_segments; ++s) {
-    int r = s;
-    while (model.segments()[r].parent != mech::kGround) r = model.segments()[r].parent;
-    root[s] = r;
+    const int parent = model.segments()[s].parent;
+    root[s] = parent == mech::kGround ? s : root[parent];
   }
   Groups groups(num_segments);
   auto segment_of_body = [&](int body) { return model.bodies()[body].segment; };
+  std::vector<std::vector<int>> joint_segments(model.joints().size());  // (one pass: not one per loop)
+  for (int s = 0; s < num_segments; ++s)
+    if (const int j = model.segments()[s].joint; j >= 0) joint_segments[j].push_back(s);
   for (int j = 0; j < static_cast<int>(model.joints().size()); ++j) {
     const mech::Joint& joint = model.joints()[j];
     if (!joint.is_cut && !joint.convel) continue;
     std::vector<int> members;
     for (const int body : {joint.body1, joint.body2})
       if (segment_of_body(body) != mech::kGround) members.push_back(root[segment_of_body(body)]);
-    for (int s = 0; s < num_segments; ++s)
-      if (model.segments()[s].joint == j) members.push_back(root[s]);
+    for (const int s : joint_segments[j]) members.push_back(root[s]);
     for (std::size_t k = 1; k < members.size(); ++k) groups.Join(members[k], members[0]);
   }
   auto group_of_segment = [&](int s) { return groups.Find(root[s]); };
