@@ -10,6 +10,7 @@
 
 #include "blocks/suggest.h"
 #include "cli/force_analysis_command.h"
+#include "cli/output_budget.h"
 #include "cli/psd_command.h"
 
 namespace mechflow::cli {
@@ -125,6 +126,7 @@ std::string HelpText(const std::string& command) {
            "                    a mechanism the element and what it switched to\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
+           "  --max-output SIZE the budget per output file, bytes or with K, M, G, T (default 1G)\n"
            "Every option takes its value as --opt VALUE or --opt=VALUE.\n"
            "\n"
            "Exit codes: 0 finished, 1 simulation failed (results up to the failure are\n"
@@ -196,6 +198,7 @@ std::string HelpText(const std::string& command) {
            "  --unsafe-lua      as for mechflow run, for every run\n"
            "  --verbose         write each run's event log beside its results\n"
            "                    (NAME.runK.ID=VALUE....events.txt)\n"
+           "  --max-output SIZE the budget per output file (each run's results), as for run\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
            "\n"
            "Built with MPI (cmake -DMECHFLOW_MPI=ON), `mpirun -n K mechflow sweep ...`\n"
@@ -288,6 +291,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.atol = ParseNumber(value(arg), arg);
     } else if (arg == "--interval" && runs) {
       a.interval = ParseNumber(value(arg), arg);
+    } else if (arg == "--max-output" && runs) {
+      a.max_output_bytes = ParseByteSize(value(arg), arg);
     } else if (arg == "--results" && runs) {
       a.results = value(arg);
     } else if (arg == "--animate" && a.command == "run") {
@@ -317,6 +322,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
     } else if (arg.rfind("--", 0) == 0) {
       std::vector<std::string> options = {"--set", "--set-file", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
       if (runs) options.insert(options.end(), {"--rtol", "--atol", "--interval", "--results", "--quiet"});
+      if (runs) options.push_back("--max-output");
       if (a.command == "modes") options.push_back("--equilibrium");
       if (a.command == "run") options.insert(options.end(), {"--animate", "--gltf", "--no-animate"});
       if (a.command == "sweep") options.insert(options.end(), {"--vary", "--jobs"});
