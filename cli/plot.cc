@@ -18,11 +18,15 @@ namespace mechflow::cli {
 namespace {
 
 // One column's curve: from the CSV, or from an envelope (the band between its
-// min and max, and both lines) in the colour of the `curve`-th curve.
-std::string Curve(const std::string& file, int x, int y, bool envelope, int curve, const std::string& title) {
+// min and max, and both lines) in the colour of the `curve`-th curve. A
+// plain curve takes that colour only when `coloured` (else gnuplot's own
+// order gives it).
+std::string Curve(const std::string& file, int x, int y, bool envelope, int curve, const std::string& title,
+                  bool coloured = false) {
   std::ostringstream s;
   if (!envelope) {
-    s << file << " using " << x << ":" << y << " every ::1 with lines lw 1.5 title " << GnuplotQuote(title);
+    s << file << " using " << x << ":" << y << " every ::1 with lines lw 1.5 "
+      << (coloured ? "lc " + std::to_string(curve) + " " : "") << "title " << GnuplotQuote(title);
     return s.str();
   }
   s << file << " using " << x << ":" << y << ":" << y + 1 << " every ::1 with filledcurves fs solid noborder lc "
@@ -89,8 +93,7 @@ std::string OverlayScript(const std::vector<diagrams::PlotGroup>& groups, const 
         s << (curve ? ", \\\n     " : "");
         ++curve;
         if (band) s << Curve(GnuplotQuote(run.envelope_name), 4, EnvelopeMinColumn(plotted, c), true, curve, label);
-        else if (enveloped) s << Curve(GnuplotQuote(run.csv_name), 1, c + 1, false, curve, label) << " lc " << curve;
-        else s << Curve(GnuplotQuote(run.csv_name), 1, c + 1, false, curve, label);
+        else s << Curve(GnuplotQuote(run.csv_name), 1, c + 1, false, curve, label, enveloped);
       }
     if (!curve) s << "[0:1] 0 notitle";
     s << "\n";

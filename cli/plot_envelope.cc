@@ -83,14 +83,15 @@ void PlotEnvelope::Fold(const double* values, long long row) {
 void PlotEnvelope::Halve() {
   const std::size_t n = columns_.size(), m = xy_columns_.size();
   for (int to = 0; to < kBins / 2; ++to) {
-    const int a = 2 * to, b = a + 1;  // a before b; either may be empty
+    const int a = 2 * to, b = a + 1;  // a before b; either may be empty (`to` may be a)
+    const bool both = count_[a] && count_[b];
     const int first = count_[a] ? a : b, last = count_[b] ? b : a;
     count_[to] = count_[a] + count_[b];
     t_first_[to] = t_first_[first];
     t_last_[to] = t_last_[last];
     for (std::size_t k = 0; k < n; ++k) {
-      const double lo = count_[a] && count_[b] ? std::min(min_[a * n + k], min_[b * n + k]) : min_[first * n + k];
-      const double hi = count_[a] && count_[b] ? std::max(max_[a * n + k], max_[b * n + k]) : max_[first * n + k];
+      const double lo = both ? std::min(min_[a * n + k], min_[b * n + k]) : min_[first * n + k];
+      const double hi = both ? std::max(max_[a * n + k], max_[b * n + k]) : max_[first * n + k];
       min_[to * n + k] = lo;
       max_[to * n + k] = hi;
     }

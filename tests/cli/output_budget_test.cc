@@ -45,11 +45,11 @@ TEST(OutputBudgetTest, SizesTakeBinarySuffixes) {
 
 TEST(OutputBudgetTest, ARunPastTheBudgetIsRefusedBeforeItStarts) {
   const fs::path dir = Dir("refused");
-  // 10^9 rows of 3 columns: about 56 GiB, refused at once (the run would take hours)
-  const auto big = testing::RunMechflow("run " + kDampingRatio + " --t-end 1e6 --interval 1e-3 --out " +
+  // 10^8 rows of 3 columns: about 5.6 GiB, refused at once (the run would take many minutes)
+  const auto big = testing::RunMechflow("run " + kDampingRatio + " --t-end 99999 --interval 1e-3 --out " +
                                         (dir / "out").string());
   EXPECT_EQ(big.exit_code, 2) << big.out << big.err;
-  EXPECT_THAT(big.err, HasSubstr("damping_ratio.csv would be about 55.9 GiB (1000000001 rows x 3 columns"));
+  EXPECT_THAT(big.err, HasSubstr("damping_ratio.csv would be about 5.59 GiB (99999001 rows x 3 columns"));
   EXPECT_THAT(big.err, HasSubstr("past the budget of 1 GiB per output file"));
   EXPECT_THAT(big.err, HasSubstr("lower the interval, shorten t_end, log fewer signals, or raise the budget with "
                                  "--max-output 8G"));
@@ -74,10 +74,10 @@ TEST(OutputBudgetTest, ARunPastTheBudgetIsRefusedBeforeItStarts) {
 
 TEST(OutputBudgetTest, EverySweepRunIsEstimated) {
   const fs::path dir = Dir("sweep");
-  const auto sweep = testing::RunMechflow("sweep " + kDampingRatio + " --vary beta=0.1,0.2 --t-end 1e6 --interval 1e-3 "
+  const auto sweep = testing::RunMechflow("sweep " + kDampingRatio + " --vary beta=0.1,0.2 --t-end 99999 --interval 1e-3 "
                                           "--out " + (dir / "out").string());
   EXPECT_EQ(sweep.exit_code, 2) << sweep.out << sweep.err;
-  EXPECT_THAT(sweep.err, HasSubstr("damping_ratio.run1.beta=0.1.csv would be about 55.9 GiB"));
+  EXPECT_THAT(sweep.err, HasSubstr("damping_ratio.run1.beta=0.1.csv would be about 5.59 GiB"));
   EXPECT_THAT(sweep.err, HasSubstr("--max-output 8G"));
   const auto options = testing::RunMechflow("sweep " + kDampingRatio + " --vary beta=0.1 --max-output 8Q");
   EXPECT_EQ(options.exit_code, 2);
