@@ -51,7 +51,7 @@ OutputEstimate EstimateResultsCsv(const blocks::SolverOptions& solver, int colum
   char reckoning[160];
   std::snprintf(reckoning, sizeof reckoning, "%.0f rows x %d columns x %.0f bytes", rows, columns, kCsvBytesPerValue);
   return {file, rows * columns * kCsvBytesPerValue, rows, reckoning,
-          "lower the interval, shorten t_end, log fewer signals, or raise the budget with --max-output 8G"};
+          "raise the output interval, shorten t_end, log fewer signals, or raise the budget with --max-output 8G"};
 }
 
 void RefuseOverBudget(const OutputEstimate& estimate, std::uint64_t budget) {

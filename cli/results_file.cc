@@ -30,7 +30,7 @@ void ResultsFile::WriteRow(const double* values, int count) {
     buffer_.resize(before);
     stopped_ = "'" + path_ + "' reached the output budget of " + ByteSizeText(static_cast<double>(limit_)) +
                " after " + std::to_string(rows_) + " rows (more than estimated before the run: rows at events); the rows up to " +
-               "there are written; lower the interval, shorten t_end, log fewer signals, or raise the budget " +
+               "there are written; raise the output interval, shorten t_end, log fewer signals, or raise the budget " +
                "with --max-output 8G";
     return;
   }

@@ -51,7 +51,7 @@ TEST(OutputBudgetTest, ARunPastTheBudgetIsRefusedBeforeItStarts) {
   EXPECT_EQ(big.exit_code, 2) << big.out << big.err;
   EXPECT_THAT(big.err, HasSubstr("damping_ratio.csv would be about 5.59 GiB (99999001 rows x 3 columns"));
   EXPECT_THAT(big.err, HasSubstr("past the budget of 1 GiB per output file"));
-  EXPECT_THAT(big.err, HasSubstr("lower the interval, shorten t_end, log fewer signals, or raise the budget with "
+  EXPECT_THAT(big.err, HasSubstr("raise the output interval, shorten t_end, log fewer signals, or raise the budget with "
                                  "--max-output 8G"));
   EXPECT_FALSE(fs::exists(dir / "out" / "damping_ratio.csv"));  // nothing made, nothing truncated
 
