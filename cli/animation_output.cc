@@ -2,6 +2,7 @@
 
 #include "graphics/animation.h"
 #include "graphics/gltf.h"
+#include "graphics/size_estimate.h"
 #include "mech/errors.h"
 
 namespace mechflow::cli {
@@ -41,6 +42,22 @@ bool AnimationOutput::Write(const OutputFolder& folder, std::ostream& out, std::
   if (!html_.empty()) write(html_, graphics::AnimationHtml(scene_, *recording_, title));
   if (!glb_.empty()) write(glb_, graphics::GltfBinary(scene_, *recording_, title));
   return written;
+}
+
+std::vector<OutputEstimate> AnimationOutput::EstimateSizes(double rows) const {
+  if (!recording_) return {};
+  const graphics::AnimationSizeEstimate e = graphics::EstimateAnimationSize(
+      scene_, loaded_.solver.t_start, loaded_.solver.t_end, rows, static_cast<int>(recording_->columns().size()));
+  const std::string reckoning = std::to_string(static_cast<long long>(e.frames)) + " frames x " +
+                                std::to_string(scene_.bodies.size()) + " bodies, and " +
+                                ByteSizeText(e.mesh_bytes) + " of shapes";
+  const std::string advice =
+      "give fewer bodies shapes, coarser shapes, or a shorter t_end; leave the animation out with --no-animate; "
+      "or raise the budget with --max-output 8G";
+  std::vector<OutputEstimate> files;
+  if (!html_.empty()) files.push_back({html_, e.html_bytes, 0.0, reckoning, advice});
+  if (!glb_.empty()) files.push_back({glb_, e.glb_bytes, 0.0, reckoning, advice});
+  return files;
 }
 
 }  // namespace mechflow::cli

@@ -6,9 +6,11 @@
 #include <memory>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "blocks/simulator.h"
 #include "cli/arguments.h"
+#include "cli/output_budget.h"
 #include "cli/output_folder.h"
 #include "diagrams/loader.h"
 #include "graphics/recorder.h"
@@ -26,6 +28,10 @@ class AnimationOutput {
   // Writes the files, saying each on `out`; false when one could not be
   // written (said on `err`).
   bool Write(const OutputFolder& folder, std::ostream& out, std::ostream& err) const;
+
+  // The size of each file it will write, for a run of `rows` rows (the
+  // output budget, cli/output_budget.h).
+  std::vector<OutputEstimate> EstimateSizes(double rows) const;
 
  private:
   const diagrams::LoadedDiagram& loaded_;

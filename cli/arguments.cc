@@ -12,6 +12,7 @@
 #include "blocks/excerpt.h"
 #include "blocks/suggest.h"
 #include "cli/force_analysis_command.h"
+#include "cli/output_budget.h"
 #include "cli/psd_command.h"
 #include "mech/errors.h"
 
@@ -142,6 +143,7 @@ std::string HelpText(const std::string& command) {
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
            "  --allow-read DIR  the diagram may read files (tables, Lua, mechanisms) in DIR's\n"
            "                    folder tree too, not only in its own folder's (repeatable)\n"
+           "  --max-output SIZE the budget per output file, bytes or with K, M, G, T (default 1G)\n"
            "Every option takes its value as --opt VALUE or --opt=VALUE; a number is the\n"
            "whole value in decimal (1e-3, -2.5, .5; not 0x10, inf or 1abc).\n"
            "\n"
@@ -215,6 +217,7 @@ std::string HelpText(const std::string& command) {
            "  --unsafe-lua, --allow-read  as for mechflow run, for every run\n"
            "  --verbose         write each run's event log beside its results\n"
            "                    (NAME.runK.ID=VALUE....events.txt)\n"
+           "  --max-output SIZE the budget per output file (each run's results), as for run\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
            "\n"
            "Built with MPI (cmake -DMECHFLOW_MPI=ON), `mpirun -n K mechflow sweep ...`\n"
@@ -311,6 +314,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.atol = ParseNumber(value(arg), arg);
     } else if (arg == "--interval" && runs) {
       a.interval = ParseNumber(value(arg), arg);
+    } else if (arg == "--max-output" && runs) {
+      a.max_output_bytes = ParseByteSize(value(arg), arg);
     } else if (arg == "--results" && runs) {
       a.results = value(arg);
     } else if (arg == "--animate" && a.command == "run") {
@@ -339,6 +344,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       std::vector<std::string> options = {"--set", "--set-file", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
       if (runs) options.insert(options.end(), {"--rtol", "--atol", "--interval", "--results", "--quiet"});
       if (a.command != "psd") options.push_back("--allow-read");
+      if (runs) options.push_back("--max-output");
       if (a.command == "modes") options.push_back("--equilibrium");
       if (a.command == "run") options.insert(options.end(), {"--animate", "--gltf", "--no-animate"});
       if (a.command == "sweep") options.insert(options.end(), {"--vary", "--jobs"});

@@ -1,6 +1,7 @@
 #pragma once
 // Command-line parsing for `mechflow COMMAND FILE [options]`.
 
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,7 @@ struct Arguments {
   bool equilibrium = false;                               // modes --equilibrium
   std::vector<std::pair<std::string, std::vector<double>>> vary;  // sweep --vary NAME=V1,V2,...
   std::optional<int> jobs;                                // sweep --jobs N (>= 1)
+  std::optional<std::uint64_t> max_output_bytes;          // run, sweep --max-output SIZE: bytes per output file
   // options of one command only (force-analysis ...), with their values, in
   // order; that command reads them
   std::vector<std::pair<std::string, std::string>> command_options;

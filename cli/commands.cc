@@ -12,7 +12,9 @@
 
 #include "cli/modes_report.h"
 #include "cli/interrupt.h"
+#include "cli/output_budget.h"
 #include "cli/output_folder.h"
+#include "cli/plot_envelope.h"
 #include "cli/report.h"
 #include "cli/run_outputs.h"
 #include "cli/force_analysis_command.h"
@@ -80,15 +82,36 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   sim.SetReports(loaded.reports);
   sim.SetControl(loaded.control.get());
   sim.SetInterruptFlag(InterruptFlag());
-  const std::unique_ptr<ResultsFile> results_file = StreamResults(loaded, &sim, folder);
   const AnimationOutput animation(loaded, args, &sim);  // shapes checked now: bad geometry is bad input
+  // every file estimated before any is made: past its budget is bad input
+  const std::uint64_t budget = args.max_output_bytes.value_or(kDefaultMaxOutputBytes);
+  const OutputEstimate csv_size = EstimateResultsCsv(sim.options(), sim.results().num_columns(), loaded.csv_file);
+  RefuseOverBudget(csv_size, budget);
+  for (const OutputEstimate& file : animation.EstimateSizes(csv_size.rows))
+    RefuseOverBudget(file, budget);
+  // the plot of a long run is drawn from an envelope of its rows
+  std::unique_ptr<PlotEnvelope> envelope;
+  if (!loaded.plot_file.empty()) {
+    std::vector<int> xy_columns;
+    for (const diagrams::XYPlotRequest& p : loaded.xy_plots)
+      for (const auto& [x, y] : p.curves) xy_columns.insert(xy_columns.end(), {x, y});
+    std::sort(xy_columns.begin(), xy_columns.end());
+    xy_columns.erase(std::unique(xy_columns.begin(), xy_columns.end()), xy_columns.end());
+    envelope = std::make_unique<PlotEnvelope>(PlottedColumns(loaded.groups), xy_columns,
+                                              loaded.solver.t_end - loaded.solver.t_start, nullptr);
+  }
+  const std::unique_ptr<ResultsFile> results_file = StreamResults(loaded, &sim, folder, budget, envelope.get());
   const InterruptHandlers handlers;  // Ctrl-C, SIGTERM, SIGHUP: cli/interrupt.h
 
   const auto wall_start = std::chrono::steady_clock::now();
   blocks::RunOutcome outcome;
   {
     Progress progress(loaded.solver.t_start, loaded.solver.t_end);
-    outcome = sim.Run([&](double t) { progress(t); });
+    outcome = sim.Run([&](double t) {
+      progress(t);
+      // past the budget (more rows than estimated): the run ends, its rows kept
+      if (!results_file->stopped().empty()) throw SimulationError(results_file->stopped());
+    });
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
@@ -120,7 +143,8 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
 
   // results are written whether or not the run finished
   int plot_stopped_by = 0;  // a signal while gnuplot drew
-  bool all_written = WriteRunOutputs(loaded, sim, folder, results_file.get(), out, err, &plot_stopped_by);
+  bool all_written =
+      WriteRunOutputs(loaded, sim, folder, results_file.get(), out, err, &plot_stopped_by, envelope.get());
   all_written = animation.Write(folder, out, err) && all_written;
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);

@@ -10,22 +10,34 @@
 
 #include "blocks/results.h"
 #include "cli/output_folder.h"
+#include "cli/plot_envelope.h"
 #include "diagrams/loader.h"
 
 namespace mechflow::cli {
+
+// A long run's plot data (cli/plot_envelope.h), written beside the plot:
+// the time panels draw from `name`, the x-y panels from `xy_name`.
+struct EnvelopeFiles {
+  const PlotEnvelope* envelope = nullptr;  // nullptr: every row of the CSV
+  std::string name, xy_name;
+};
 
 // The gnuplot script that draws `groups` of the CSV file `csv_name` into
 // `plot_name`, both plain names in the folder gnuplot runs in. Every text
 // is a single-quoted gnuplot string that cannot end its line.
 // `xy`: panels of one column against another, after the time panels.
+// With an envelope, the time panels draw its band between each column's
+// min and max lines, in the colours they would have.
 std::string GnuplotScript(const blocks::Results& results, const std::vector<diagrams::PlotGroup>& groups,
                           const std::string& title, const std::string& csv_name, const std::string& plot_name,
-                          const std::vector<diagrams::XYPlotRequest>& xy = {});
+                          const std::vector<diagrams::XYPlotRequest>& xy = {}, const EnvelopeFiles& envelope = {});
 
 // One run of a sweep for the overlay: its results file and its label
 // ("beta=0.1").
 struct OverlayRun {
   std::string csv_name, label;
+  // a long run: its envelope of PlottedColumns(groups), drawn instead
+  std::string envelope_name = {};
 };
 // The sweep's overlay (the seed's Fig. 7.2): a panel per logged group, in it
 // every column of the group from every run, labelled by the run.

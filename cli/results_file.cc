@@ -5,6 +5,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include "cli/output_budget.h"
+
 namespace mechflow::cli {
 namespace {
 
@@ -21,7 +23,18 @@ ResultsFile::ResultsFile(const OutputFolder& folder, const std::string& name, co
 ResultsFile::~ResultsFile() { Close(); }
 
 void ResultsFile::WriteRow(const double* values, int count) {
+  if (!stopped_.empty()) return;
+  const std::size_t before = buffer_.size();
   blocks::AppendCsvRow(values, count, &buffer_);
+  if (static_cast<std::uint64_t>(bytes_) + buffer_.size() > limit_) {
+    buffer_.resize(before);
+    stopped_ = "'" + path_ + "' reached the output budget of " + ByteSizeText(static_cast<double>(limit_)) +
+               " after " + std::to_string(rows_) + " rows (more than estimated before the run: rows at events); the rows up to " +
+               "there are written; raise the output interval, shorten t_end, log fewer signals, or raise the budget " +
+               "with --max-output 8G";
+    return;
+  }
+  ++rows_;
   if (buffer_.size() >= kBufferBytes) Flush();
 }
 

@@ -9,6 +9,7 @@
 // as it got, to be named as cut (its rows before the cut are still worth
 // having).
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,12 @@ class ResultsFile final : public blocks::RowSink {
   ResultsFile& operator=(const ResultsFile&) = delete;
 
   void WriteRow(const double* values, int count) override;
+  // The file stops before the row that would take it past `bytes` (the
+  // output budget: rows at events can outnumber the estimate); stopped()
+  // then says so, and the run is to end.
+  void SetByteLimit(std::uint64_t bytes) { limit_ = bytes; }
+  const std::string& stopped() const { return stopped_; }
+  long long rows() const { return rows_; }  // rows in the file
   // Writes what is buffered and closes; "" or what went wrong.
   std::string Close();
   const std::string& path() const { return path_; }
@@ -41,6 +48,9 @@ class ResultsFile final : public blocks::RowSink {
   std::string buffer_;
   std::string error_, why_;
   long long bytes_ = 0;
+  std::uint64_t limit_ = UINT64_MAX;
+  std::string stopped_;
+  long long rows_ = 0;
 };
 
 }  // namespace mechflow::cli

@@ -15,7 +15,8 @@
 namespace mechflow::cli {
 
 std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded, blocks::Simulator* sim,
-                                           const OutputFolder& folder) {
+                                           const OutputFolder& folder, std::uint64_t max_bytes,
+                                           PlotEnvelope* envelope) {
   std::unique_ptr<ResultsFile> file;
   try {
     file = std::make_unique<ResultsFile>(folder, loaded.csv_file, sim->results().columns());
@@ -24,12 +25,15 @@ std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded
   }
   std::vector<int> keep;
   for (const diagrams::SpectrumRequest& s : loaded.spectra) keep.push_back(sim->results().FindColumn(s.column));
-  sim->StreamRows(file.get(), keep);
+  file->SetByteLimit(max_bytes);
+  if (envelope) envelope->set_next(file.get());
+  sim->StreamRows(envelope ? static_cast<blocks::RowSink*>(envelope) : file.get(), keep);
   return file;
 }
 
 bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim, const OutputFolder& folder,
-                     ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by) {
+                     ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by,
+                     const PlotEnvelope* envelope) {
   std::vector<std::string> written, failed, cut;
   const auto write = [&](const std::string& name, const std::string& bytes, const std::string& note) {
     try {
@@ -54,7 +58,7 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
   const std::string& csv = loaded.csv_file;
   if (const std::string problem = results_file->Close(); problem.empty()) {
     written.push_back(csv);
-    out << "wrote " << folder.PathOf(csv) << " (" << sim.results().num_rows() << " rows)\n";
+    out << "wrote " << folder.PathOf(csv) << " (" << results_file->rows() << " rows)\n";
   } else {
     err << problem << "\n";
     // kept: the rows before the cut are what the run computed
@@ -78,8 +82,15 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
     err << "warning: no plot: the run left " << sim.results().num_rows() << " row"
         << (sim.results().num_rows() == 1 ? "" : "s") << ", nothing to draw\n";
   } else if (!loaded.plot_file.empty()) {
-    const std::string script =
-        GnuplotScript(sim.results(), loaded.groups, loaded.description.name, csv, loaded.plot_file, loaded.xy_plots);
+    // a long run's plot draws from its envelope, beside the plot
+    EnvelopeFiles files;
+    if (envelope && envelope->worthwhile()) {
+      files = {envelope, loaded.plot_file + ".envelope.csv", loaded.plot_file + ".xy.csv"};
+      write(files.name, envelope->Csv(sim.results().columns()), "");
+      if (!loaded.xy_plots.empty()) write(files.xy_name, envelope->XYCsv(sim.results().columns()), "");
+    }
+    const std::string script = GnuplotScript(sim.results(), loaded.groups, loaded.description.name, csv,
+                                             loaded.plot_file, loaded.xy_plots, files);
     try {
       const std::string problem = DrawPlot(script, folder, loaded.plot_file);
       if (problem.empty()) {

@@ -3,21 +3,25 @@
 // results CSV (streamed during the run: cli/results_file.h), the figures of its <report>s (NAME.report.csv), the control
 // script's changes (NAME.changes.csv) and the plot with its gnuplot script.
 
+#include <cstdint>
 #include <memory>
 #include <ostream>
 
 #include "blocks/simulator.h"
 #include "cli/output_folder.h"
+#include "cli/plot_envelope.h"
 #include "cli/results_file.h"
 #include "diagrams/loader.h"
 
 namespace mechflow::cli {
 
-// Streams the run's rows into its results file, keeping in memory only the
-// columns its <spectrum>s need. Throws InputError when the file cannot be
-// made (before the run).
+// Streams the run's rows into its results file (through `envelope`, the
+// plot's, when not nullptr), keeping in memory only the columns its
+// <spectrum>s need. The file stops at `max_bytes` (ResultsFile::stopped).
+// Throws InputError when the file cannot be made (before the run).
 std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded, blocks::Simulator* sim,
-                                           const OutputFolder& folder);
+                                           const OutputFolder& folder, std::uint64_t max_bytes,
+                                           PlotEnvelope* envelope);
 
 // Closes the results file and writes every other file the run has
 // something for, saying each one on `out`.
@@ -26,7 +30,9 @@ std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded
 // with its rows before the cut) and not written; returns false then (exit
 // code 1). A signal while gnuplot draws stops the plots (the other files are
 // still written) and sets `*stopped_by` to it.
+// A long run's plot is drawn from `envelope` (written beside it) when given.
 bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim, const OutputFolder& folder,
-                     ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by);
+                     ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by,
+                     const PlotEnvelope* envelope = nullptr);
 
 }  // namespace mechflow::cli

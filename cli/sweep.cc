@@ -24,7 +24,9 @@
 #include "blocks/simulator.h"
 #include "blocks/suggest.h"
 #include "cli/interrupt.h"
+#include "cli/output_budget.h"
 #include "cli/output_folder.h"
+#include "cli/plot_envelope.h"
 #include "cli/results_file.h"
 #include "cli/ranks.h"
 #include "cli/report.h"
@@ -78,7 +80,14 @@ struct Plan {
   bool animated = false;                    // <output animation> or <output gltf>: not written by a sweep
   std::vector<std::string> columns;        // the results' column names
   bool event_logs = false;                 // --verbose: each run's event log beside its results
+  std::uint64_t max_output = kDefaultMaxOutputBytes;  // bytes per results file (--max-output)
+  std::vector<int> plotted;                // the overlay's columns: a long run's envelope follows them
 };
+
+// A run's envelope for the overlay, beside its results.
+std::string EnvelopeName(const std::string& results_name) {
+  return fs::path(results_name).replace_extension(".envelope.csv").string();
+}
 
 // The values of run `index`: mixed radix, the last identifier fastest.
 std::vector<double> Combination(const Plan& plan, int index) {
@@ -142,9 +151,15 @@ RunRow RunOne(const Plan& plan, int index) {
     sim.SetInterruptFlag(InterruptFlag());
     // rows streamed as computed, as `run` does; written whether or not the run finishes
     const std::string name = RunFileName(plan, loaded.csv_file, index, values);
+    // its values may lengthen the run: each run is estimated before it starts
+    RefuseOverBudget(EstimateResultsCsv(sim.options(), sim.results().num_columns(), name), plan.max_output);
     ResultsFile file(*plan.folder, name, sim.results().columns());
-    sim.StreamRows(&file, {});
-    const blocks::RunOutcome outcome = sim.Run();
+    file.SetByteLimit(plan.max_output);
+    PlotEnvelope envelope(plan.plotted, {}, loaded.solver.t_end - loaded.solver.t_start, &file);
+    sim.StreamRows(&envelope, {});
+    const blocks::RunOutcome outcome = sim.Run([&](double) {
+      if (!file.stopped().empty()) throw SimulationError(file.stopped());  // past the budget: rows kept
+    });
     ran = true;
     ok = outcome.ok;
     stopped = outcome.stopped;
@@ -154,6 +169,11 @@ RunRow RunOne(const Plan& plan, int index) {
     figures = sim.results().figures();
     if (const std::string problem = file.Close(); !problem.empty()) throw WriteError(problem);
     results_file = name;
+    // a long run's curves in the overlay come from its envelope (and no
+    // envelope of an earlier sweep stays to be drawn)
+    if (envelope.worthwhile() && !plan.groups.empty())
+      plan.folder->Write(EnvelopeName(name), envelope.Csv(sim.results().columns()));
+    else plan.folder->Clear(EnvelopeName(name));
     if (plan.event_logs) {
       std::ostringstream log;
       PrintEventLog(*loaded.diagram, sim.events(), log);
@@ -196,6 +216,7 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.common.overrides = args.overrides;
   plan.common.expression_overrides = args.set_expressions;
   plan.event_logs = args.verbose;
+  plan.max_output = args.max_output_bytes.value_or(kDefaultMaxOutputBytes);
   plan.common.t_end = args.t_end;
   plan.common.rtol = args.rtol;
   plan.common.atol = args.atol;
@@ -233,11 +254,17 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.csv_file = base.csv_file;
   plan.animated = !base.animation_file.empty() || !base.gltf_file.empty();
   plan.groups = base.groups;
+  plan.plotted = PlottedColumns(base.groups);
   plan.columns = {"time"};
   for (const blocks::SignalRef& s : base.logged)
     for (int i = 0; i < s.width; ++i)
       plan.columns.push_back(s.width == 1 ? s.name : s.name + "[" + std::to_string(i) + "]");
   *header = SummaryHeader(plan, base);
+  // each run's results, at the diagram's own values, within the budget
+  // (runs whose values lengthen them are checked again as they start)
+  RefuseOverBudget(EstimateResultsCsv(base.solver, static_cast<int>(plan.columns.size()),
+                                      RunFileName(plan, plan.csv_file, 0, Combination(plan, 0))),
+                   plan.max_output);
   const fs::path csv(base.csv_file);
   *summary_name = (csv.parent_path() / (csv.stem().string() + ".sweep.csv")).string();
   return plan;
@@ -397,7 +424,9 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   for (int i = 0; i < plan.runs; ++i) {
     const std::vector<double> values = Combination(plan, i);
     const std::string name = RunFileName(plan, plan.csv_file, i, values);
-    if (plan.folder->HasFile(name)) overlay.push_back({name, Assignments(plan, values, ", ")});
+    if (plan.folder->HasFile(name))
+      overlay.push_back({name, Assignments(plan, values, ", "),
+                         plan.folder->HasFile(EnvelopeName(name)) ? EnvelopeName(name) : ""});
   }
   const std::string plot = fs::path(summary_name).replace_extension(".png").string();
   try {

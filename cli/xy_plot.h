@@ -3,6 +3,12 @@
 // curves, each a column of a CSV file against another, with axis labels and
 // optional log scales. Force-analysis loops, dynamic stiffness against a
 // parameter, spectra.
+//
+// Every row of the CSV is drawn: these files do not grow with a run's
+// length (a loop has --samples rows of one period, a spectrum half a
+// --segment, a stiffness table a row per case). A run's own <xy> panels,
+// which do, are drawn by cli/plot.h from the extreme rows of each bin of
+// time (cli/plot_envelope.h).
 
 #include <string>
 #include <vector>
