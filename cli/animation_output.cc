@@ -28,19 +28,30 @@ bool AnimationOutput::Write(const OutputFolder& folder, std::ostream& out, std::
   for (const std::string& warning : recording_->warnings())
     err << "warning: a shape keeps its last geometry " << warning << "\n";
   bool written = true;
-  const auto write = [&](const std::string& file, const std::string& bytes) {
+  const auto write = [&](const std::string& file, const std::string& bytes, std::size_t frames,
+                         const std::string& note) {
     try {
       folder.Write(file, bytes);
-      out << "wrote " << folder.PathOf(file) << " (" << recording_->times().size() << " frames of "
-          << recording_->num_bodies() << " bodies, " << bytes.size() / 1024 << " KiB)\n";
+      out << "wrote " << folder.PathOf(file) << " (" << frames << " frames of " << recording_->num_bodies()
+          << " bodies, " << bytes.size() / 1024 << " KiB" << note << ")\n";
     } catch (const WriteError& e) {
       err << e.what() << "\n";
       written = false;
     }
   };
   const std::string& title = loaded_.description.name;
-  if (!html_.empty()) write(html_, graphics::AnimationHtml(scene_, *recording_, title));
-  if (!glb_.empty()) write(glb_, graphics::GltfBinary(scene_, *recording_, title));
+  if (!html_.empty()) write(html_, graphics::AnimationHtml(scene_, *recording_, title), recording_->times().size(), "");
+  if (glb_.empty()) return written;
+  try {
+    const graphics::Gltf gltf = graphics::GltfBinary(scene_, *recording_, title);
+    write(glb_, gltf.bytes, gltf.frames,
+          gltf.merged ? "; " + std::to_string(gltf.merged) + (gltf.merged == 1 ? " frame" : " frames") +
+                            " merged into the next: float32 times cannot tell them apart this long after the start"
+                      : "");
+  } catch (const graphics::GltfRefused& e) {  // the other files are written; the run reports the missing one
+    err << "no glTF file " << folder.PathOf(glb_) << ": " << e.what() << "\n";
+    written = false;
+  }
   return written;
 }
 

@@ -26,7 +26,8 @@ class AnimationOutput {
   AnimationOutput(const diagrams::LoadedDiagram& loaded, const Arguments& args, blocks::Simulator* sim);
 
   // Writes the files, saying each on `out`; false when one could not be
-  // written (said on `err`).
+  // written or a glTF file cannot hold the run (graphics::GltfRefused), said
+  // on `err`: the run then exits 1 with its other files written.
   bool Write(const OutputFolder& folder, std::ostream& out, std::ostream& err) const;
 
   // The size of each file it will write, for a run of `rows` rows (the

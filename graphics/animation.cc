@@ -15,11 +15,28 @@ std::string Base64Of(const std::vector<T>& values) {
   return "\"" + Base64(values.data(), values.size() * sizeof(T)) + "\"";
 }
 
-// JSON inside a <script>: "</" would end the element early.
-std::string ScriptSafe(std::string json) {
-  for (std::size_t i = 0; (i = json.find("</", i)) != std::string::npos; i += 3) json.replace(i, 2, "<\\/");
-  return json;
+}  // namespace
+
+// The HTML parser reads a <script> before JavaScript does: "</script" ends
+// it and "<!--" with "<script" hides the rest of the page. JSON has these
+// characters only inside strings, where \u escapes mean the same to
+// JavaScript; U+2028 and U+2029 ended string literals before ES2019.
+std::string ScriptSafeJson(const std::string& json) {
+  std::string out;
+  out.reserve(json.size());
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (c == '<') out += "\\u003c";
+    else if (c == '>') out += "\\u003e";
+    else if (c == '&') out += "\\u0026";
+    else if (c == '\xE2' && json.compare(i + 1, 2, "\x80\xA8") == 0) out += "\\u2028", i += 2;
+    else if (c == '\xE2' && json.compare(i + 1, 2, "\x80\xA9") == 0) out += "\\u2029", i += 2;
+    else out += c;
+  }
+  return out;
 }
+
+namespace {
 
 std::string Escaped(const std::string& text) {
   std::string out;
@@ -97,7 +114,7 @@ std::string AnimationHtml(const Scene& scene, const AnimationRecorder& recording
           "<label>plot <select id=\"signal\"><option value=\"\">none</option></select></label>"
           "<button id=\"reset\">reset view</button></div>\n<pre id=\"mechflow-test\"></pre>\n"
        << "<script>\n" << kThreeJs << "\n</script>\n<script>\n" << kOrbitControlsJs << "\n</script>\n"
-       << "<script>\nconst MECHFLOW_DATA = " << ScriptSafe(DataJson(scene, recording, title)) << ";\n</script>\n"
+       << "<script>\nconst MECHFLOW_DATA = " << ScriptSafeJson(DataJson(scene, recording, title)) << ";\n</script>\n"
        << "<script>\n" << kViewerJs << "\n</script>\n</body>\n</html>\n";
   return html.str();
 }

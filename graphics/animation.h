@@ -15,4 +15,8 @@ namespace mechflow::graphics {
 
 std::string AnimationHtml(const Scene& scene, const AnimationRecorder& recording, const std::string& title);
 
+// JSON text as the page embeds it in a <script>: '<', '>', '&', U+2028 and
+// U+2029 as \u escapes, so no name in it can end or hide the element.
+std::string ScriptSafeJson(const std::string& json);
+
 }  // namespace mechflow::graphics

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <sstream>
 
 #include <Eigen/Geometry>
@@ -18,13 +19,24 @@ constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 
 std::string Number(double v) { return blocks::CsvNumber(v); }
 
+// Names the owner of an accessor's element (a vertex, a frame) for a refusal.
+using Where = std::function<std::string(std::size_t element)>;
+
 // The binary chunk and the JSON of its bufferViews and accessors.
 class Buffer {
  public:
   // An accessor of `count` elements of `type` ("SCALAR", "VEC3", ...) with
   // `components` floats each; min and max are given for POSITION and
-  // animation inputs, which the format requires.
-  int Floats(const std::vector<float>& values, int components, const char* type, int target, bool bounds) {
+  // animation inputs, which the format requires. Every float of the file
+  // passes here: one that overflowed (or is NaN) refuses the file, naming
+  // `where` it came from.
+  int Floats(const std::vector<float>& values, int components, const char* type, int target, bool bounds,
+             const Where& where) {
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (!std::isfinite(values[i]))
+        throw GltfRefused(where(i / components) +
+                          ": beyond float32's range (+-3.4e38), the glTF file's only number type; scale the model "
+                          "(other units) or leave out --gltf (<output gltf>)");
     const int count = static_cast<int>(values.size()) / components;
     std::string extra;
     if (bounds) {
@@ -89,9 +101,32 @@ void Append(std::vector<float>* out, Eigen::Quaterniond q) {
   out->insert(out->end(), {float(q.x()), float(q.y()), float(q.z()), float(q.w())});
 }
 
+// The recorded frames the animation keeps, and their times from the first
+// one in float32, strictly increasing: of frames whose times round to one
+// float the last is kept (the run's last row stays last).
+struct Keyframes {
+  std::vector<int> frames;
+  std::vector<float> times;
+};
+Keyframes KeyframesOf(const std::vector<double>& recorded) {
+  Keyframes k;
+  for (std::size_t f = 0; f < recorded.size(); ++f) {
+    const float t = static_cast<float>(recorded[f] - recorded.front());
+    if (!k.times.empty() && t <= k.times.back()) {
+      k.frames.back() = static_cast<int>(f);
+    } else {
+      k.frames.push_back(static_cast<int>(f));
+      k.times.push_back(t);
+    }
+  }
+  return k;
+}
+
+std::string At(double t) { return " at t = " + Number(t) + " s"; }
+
 }  // namespace
 
-std::string GltfBinary(const Scene& scene, const AnimationRecorder& recording, const std::string& title) {
+Gltf GltfBinary(const Scene& scene, const AnimationRecorder& recording, const std::string& title) {
   Buffer buffer;
   std::ostringstream meshes, materials, nodes, channels, samplers;
   const int num_bodies = static_cast<int>(scene.bodies.size());
@@ -106,9 +141,12 @@ std::string GltfBinary(const Scene& scene, const AnimationRecorder& recording, c
               << ",\"pbrMetallicRoughness\":{\"baseColorFactor\":" << LinearColour(s.color, s.opacity)
               << ",\"metallicFactor\":0.1,\"roughnessFactor\":0.6}" << (s.opacity < 1 ? ",\"alphaMode\":\"BLEND\"" : "")
               << (mesh.double_sided ? ",\"doubleSided\":true" : "") << "}";
+    const Where vertex = [&](std::size_t) { return s.origin + ": shape '" + s.name + "': a vertex"; };
     std::string primitive = "{\"attributes\":{\"POSITION\":" +
-                            std::to_string(buffer.Floats(mesh.positions, 3, "VEC3", kArrayBuffer, true));
-    if (!line) primitive += ",\"NORMAL\":" + std::to_string(buffer.Floats(VertexNormals(mesh), 3, "VEC3", kArrayBuffer, false));
+                            std::to_string(buffer.Floats(mesh.positions, 3, "VEC3", kArrayBuffer, true, vertex));
+    if (!line)
+      primitive += ",\"NORMAL\":" +
+                   std::to_string(buffer.Floats(VertexNormals(mesh), 3, "VEC3", kArrayBuffer, false, vertex));
     primitive += "}";
     if (!line) primitive += ",\"indices\":" + std::to_string(buffer.Indices(mesh.indices));
     primitive += ",\"material\":" + std::to_string(num_materials++) + ",\"mode\":" + (line ? "3" : "4") + "}";
@@ -140,13 +178,17 @@ std::string GltfBinary(const Scene& scene, const AnimationRecorder& recording, c
   for (int b = 0; b < num_bodies; ++b) nodes << "," << holder_node(b + 1, scene.bodies[b].label);
   for (const std::string& node : spring_nodes) nodes << "," << node;
 
-  // the motion
-  const int frames = static_cast<int>(recording.times().size());
-  const std::vector<float> times(recording.times().begin(), recording.times().end());
-  const int input = buffer.Floats(times, 1, "SCALAR", 0, true);
-  int num_samplers = 0;
-  const auto channel = [&](int node, const char* path, const std::vector<float>& values, const char* type) {
-    const int output = buffer.Floats(values, type[3] == '4' ? 4 : 3, type, 0, false);
+  // the motion, at the keyframes; `what` names a channel's owner
+  const Keyframes keys = KeyframesOf(recording.times());
+  const auto time_of = [&](std::size_t key) { return recording.times()[keys.frames[key]]; };
+  int input = -1, num_samplers = 0;
+  const auto channel = [&](int node, const char* path, const std::vector<float>& values, const char* type,
+                           const std::string& what) {
+    if (input < 0)
+      input = buffer.Floats(keys.times, 1, "SCALAR", 0, true,
+                            [&](std::size_t key) { return "the time from the start" + At(time_of(key)); });
+    const int output = buffer.Floats(values, type[3] == '4' ? 4 : 3, type, 0, false,
+                                     [&](std::size_t key) { return what + At(time_of(key)) + ": its " + path; });
     samplers << (num_samplers ? "," : "") << "{\"input\":" << input << ",\"output\":" << output
              << ",\"interpolation\":\"LINEAR\"}";
     channels << (num_samplers ? "," : "") << "{\"sampler\":" << num_samplers << ",\"target\":{\"node\":" << node
@@ -155,28 +197,30 @@ std::string GltfBinary(const Scene& scene, const AnimationRecorder& recording, c
   };
   for (int b = 0; b < num_bodies; ++b) {
     std::vector<float> translation, rotation;
-    for (int f = 0; f < frames; ++f) {
+    for (const int f : keys.frames) {
       const mech::Pose pose = recording.Pose(f, b);
       Append(&translation, pose.p);
       Append(&rotation, Eigen::Quaterniond(pose.R));
     }
-    channel(first_body + b, "translation", translation, "VEC3");
-    channel(first_body + b, "rotation", rotation, "VEC4");
+    const std::string what = "body '" + scene.bodies[b].label + "'";
+    channel(first_body + b, "translation", translation, "VEC3", what);
+    channel(first_body + b, "rotation", rotation, "VEC4", what);
   }
   int spring = 0;
   for (const Shape& s : scene.shapes) {
     if (s.kind != "spring") continue;
     std::vector<float> translation, rotation, scale;
-    for (int f = 0; f < frames; ++f) {
+    for (const int f : keys.frames) {
       const SpringTransform placed = PlaceSpring(s, recording.Pose(f, s.body), recording.Pose(f, s.body2));
       Append(&translation, placed.translation);
       Append(&rotation, placed.rotation);
       Append(&scale, Vec3(1, placed.length, 1));
     }
     const int node = first_spring + spring++;
-    channel(node, "translation", translation, "VEC3");
-    channel(node, "rotation", rotation, "VEC4");
-    channel(node, "scale", scale, "VEC3");
+    const std::string what = s.origin + ": spring '" + s.name + "'";
+    channel(node, "translation", translation, "VEC3", what);
+    channel(node, "rotation", rotation, "VEC4", what);
+    channel(node, "scale", scale, "VEC3", what);
   }
 
   std::ostringstream json;
@@ -204,7 +248,8 @@ std::string GltfBinary(const Scene& scene, const AnimationRecorder& recording, c
   word(static_cast<std::uint32_t>(bin.size()));
   word(0x004E4942);  // "BIN"
   glb += bin;
-  return glb;
+  const int num_keys = static_cast<int>(keys.frames.size());
+  return {std::move(glb), num_keys, static_cast<int>(recording.times().size()) - num_keys};
 }
 
 }  // namespace mechflow::graphics

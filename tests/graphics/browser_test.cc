@@ -22,6 +22,7 @@
 
 #include "graphics/encoding.h"
 #include "tests/cli/mechflow_command.h"
+#include "tests/graphics/hostile_names.h"
 
 namespace mechflow {
 namespace {
@@ -171,6 +172,33 @@ TEST_F(BrowserTest, TheQuarterCarsAnimationShowsTheSimulatedPoses) {
     EXPECT_NEAR(cursor[0], t, 1e-9);
     EXPECT_NEAR(cursor[1], row[body_column], 1e-6);
   }
+}
+
+// Text as the page's DOM dump shows it: '<', '>' and '&' as entities.
+std::string DumpedText(const std::string& text) {
+  std::string out;
+  for (const char c : text) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+  return out;
+}
+
+// Names holding "<!--<script>" and "</script>" neither end nor hide the
+// page's data script: the viewer runs and shows the body under its name.
+TEST_F(BrowserTest, ThePageShowsBodiesWhoseNamesHoldScriptTags) {
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const fs::path dir = fs::path(::testing::TempDir()) / ("browser_" + test);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "d.xml") << testing::kHostileNamesDiagram;
+  const auto run = testing::RunMechflow("run " + (dir / "d.xml").string() + " --out " + (dir / "out").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string report = BrowserReport("file://" + (dir / "out" / "d.html").string() + "#test=0.5");
+  ASSERT_FALSE(report.empty()) << "the page did not run its viewer";
+  EXPECT_THAT(report, HasSubstr("\"errors\":[]"));
+  const std::string label = DumpedText(testing::kHostileBodyLabel);
+  const std::vector<double> pose = ArrayAfter(report, label);
+  ASSERT_EQ(pose.size(), 7u) << report.substr(0, 400);
+  EXPECT_NEAR(pose[2], 0.5, 1e-6);  // z = t
+  EXPECT_THAT(report, HasSubstr("\"" + label + "\":\"" + DumpedText("</script> <!-- &")));  // hovering names the box
 }
 
 // UM's molecule: along the unit direction d(u, v) the surface lies at
