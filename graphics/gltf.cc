@@ -184,6 +184,7 @@ Gltf GltfBinary(const Scene& scene, const AnimationRecorder& recording, const st
   int input = -1, num_samplers = 0;
   const auto channel = [&](int node, const char* path, const std::vector<float>& values, const char* type,
                            const std::string& what) {
+    if (keys.frames.empty()) return;  // no row recorded: the scene without motion (an accessor holds one at least)
     if (input < 0)
       input = buffer.Floats(keys.times, 1, "SCALAR", 0, true,
                             [&](std::size_t key) { return "the time from the start" + At(time_of(key)); });
