@@ -245,6 +245,18 @@ std::string HelpText(const std::string& command) {
          "Options: --help (also after a command), --version.\n";
 }
 
+void ReadSetFile(const std::string& text, const std::string& path, Arguments* a) {
+  std::istringstream in(text);
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (++number == 1) line = std::string(blocks::WithoutByteOrderMark(line));  // as spreadsheets save it
+    line = line.substr(0, line.find('#'));
+    const auto first = line.find_first_not_of(" \t\r"), last = line.find_last_not_of(" \t\r");
+    if (first == std::string::npos) continue;
+    AddSet(line.substr(first, last - first + 1), path + ":" + std::to_string(number), a);
+  }
+}
+
 Arguments ParseArguments(const std::vector<std::string>& args) {
   Arguments a;
   size_t i = 0;
@@ -288,20 +300,13 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
     } else if (arg == "--set-file") {
       // NAME=VALUE lines (OpenModelica's override file); '#' starts a comment
       const std::string path = value(arg);
-      std::istringstream in;
+      std::string text;
       try {  // a regular file of bounded size: not a FIFO that blocks, nor /dev/zero
-        in.str(blocks::ReadInputFile(path, "file"));
+        text = blocks::ReadInputFile(path, "file");
       } catch (const InputError& e) {
         throw UsageError(std::string("--set-file: ") + e.what());
       }
-      int number = 0;
-      for (std::string line; std::getline(in, line);) {
-        if (++number == 1) line = std::string(blocks::WithoutByteOrderMark(line));  // as spreadsheets save it
-        line = line.substr(0, line.find('#'));
-        const auto first = line.find_first_not_of(" \t\r"), last = line.find_last_not_of(" \t\r");
-        if (first == std::string::npos) continue;
-        AddSet(line.substr(first, last - first + 1), path + ":" + std::to_string(number), &a);
-      }
+      ReadSetFile(text, path, &a);
     } else if (arg == "--variant") {
       a.variants.push_back(value(arg));
     } else if (arg == "--t-end") {

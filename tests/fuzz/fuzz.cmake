@@ -6,11 +6,15 @@
 # With -DMECHFLOW_FUZZ=ON and clang (scripts/fuzz.sh): each target as a
 # libFuzzer binary (fuzz_NAME); the whole project is then built with
 # -fsanitize=fuzzer-no-link,address,undefined (see the top CMakeLists.txt).
-set(MECHFLOW_FUZZ_TARGETS diagram_loader time_function lua)
-# seed corpora: the example diagrams for the loader, small files for the others
+set(MECHFLOW_FUZZ_TARGETS diagram_loader time_function lua table results_table set_file scene)
+# seed corpora: the example diagrams for the loader and the shapes, small files for the others
 set(seeds_diagram_loader diagrams/examples)
 set(seeds_time_function tests/fuzz/seeds/time_function)
 set(seeds_lua tests/fuzz/seeds/lua)
+set(seeds_table tests/fuzz/seeds/table)
+set(seeds_results_table tests/fuzz/seeds/results_table)
+set(seeds_set_file tests/fuzz/seeds/set_file)
+set(seeds_scene diagrams/examples)
 foreach(name ${MECHFLOW_FUZZ_TARGETS})
   set(source ${CMAKE_CURRENT_SOURCE_DIR}/tests/fuzz/fuzz_${name}.cc)
   add_executable(fuzz_replay_${name} ${source} tests/fuzz/replay_main.cc)
