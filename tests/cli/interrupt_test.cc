@@ -47,7 +47,8 @@ Ended InterruptedRun(int signal, const fs::path& dir, const std::vector<std::str
   std::ofstream(diagram) << xml;
   const std::string out = (dir / "out").string(), err = (dir / "err").string();
   std::vector<std::string> args = {MECHFLOW_BINARY, sweep.empty() ? "run" : "sweep", diagram.string(), "--t-end",
-                                   "1e7", "--out", (dir / "results").string()};
+                                   "1e7", "--out", (dir / "results").string(),
+                                   "--max-output", "8G"};  // 2e7 rows would be past the default budget
   args.insert(args.end(), sweep.begin(), sweep.end());
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
