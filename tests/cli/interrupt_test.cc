@@ -106,8 +106,9 @@ std::string EndlessDiagram(const fs::path& dir) {
 // until it is running, sends `signal`, and collects what it printed.
 Ended InterruptedRun(int signal, const fs::path& dir, const std::vector<std::string>& sweep = {}) {
   Start start;
+  // 2e7 rows would be past the default output budget
   start.args = {sweep.empty() ? "run" : "sweep", EndlessDiagram(dir), "--t-end", "1e7", "--out",
-                (dir / "results").string()};
+                (dir / "results").string(), "--max-output", "8G"};
   start.args.insert(start.args.end(), sweep.begin(), sweep.end());
   const pid_t pid = Spawn(start, dir);
   std::this_thread::sleep_for(std::chrono::milliseconds(800));  // loading takes a few ms; the run some minutes
@@ -195,7 +196,8 @@ TEST(InterruptTest, SighupAlike) {
 TEST(InterruptTest, AnIgnoredSighupStaysIgnored) {
   const fs::path dir = fs::path(::testing::TempDir()) / "interrupt_nohup";
   Start start;
-  start.args = {"run", EndlessDiagram(dir), "--t-end", "1e7", "--out", (dir / "results").string()};
+  start.args = {"run", EndlessDiagram(dir), "--t-end", "1e7", "--out", (dir / "results").string(), "--max-output",
+                "8G"};
   start.ignoring_hup = true;
   const pid_t pid = Spawn(start, dir);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
