@@ -177,11 +177,18 @@ int Hooked(lua_State* L) {
 TEST_F(SandboxExpressionTest, OnlyExpressionsThatCanLoopAreCounted) {
   lua_register(lua_.get(), "hooked", &Hooked);
   const double x = 1.0;
-  // straight-line: numbers and C functions only, so it cannot loop
-  EXPECT_EQ(Compile("hooked() + sin(x) * pi").Evaluate(&x), std::sin(1.0) * M_PI);
-  // each of these could reach Lua code that loops, so each is counted
-  for (const char* expression : {"hooked() + #'ab' - 2", "hooked() + (function() return 0 end)()",
-                                 "hooked() + math.abs(0)", "hooked() + ({0})[1]", "hooked() + #(''):rep(0)"})
+  // straight-line: numbers and the sandbox's functions of numbers only, so it
+  // cannot loop and is not counted (under a limit of one instruction, a
+  // counted evaluation would fail)
+  const CompiledExpression fast = Compile("sin(x) * pi");
+  lua_.set_instruction_limit(1);
+  EXPECT_EQ(fast.Evaluate(&x), std::sin(1.0) * M_PI);
+  lua_.set_instruction_limit(10'000'000);
+  // each of these could reach Lua code that loops, so each is counted; so is
+  // a call of any other C function (hooked itself: pcall or load may run Lua)
+  for (const char* expression : {"hooked() + 0 * sin(x)", "hooked() + #'ab' - 2",
+                                 "hooked() + (function() return 0 end)()", "hooked() + math.abs(0)",
+                                 "hooked() + ({0})[1]", "hooked() + #(''):rep(0)"})
     EXPECT_EQ(Compile(expression).Evaluate(&x), 1.0) << expression;
   EXPECT_EQ(lua_gethook(lua_.get()), nullptr);  // and the hook is gone afterwards
 }
