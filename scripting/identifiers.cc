@@ -13,6 +13,7 @@
 #include "blocks/excerpt.h"
 #include "blocks/suggest.h"
 #include "mech/errors.h"
+#include "scripting/lua_guards.h"
 #include "scripting/lua_state.h"
 
 namespace mechflow::scripting {
@@ -189,7 +190,11 @@ double IdentifierTable::Eval(LuaState& lua, const std::string& text, int visible
   lua_State* L = lua.get();
   const int top = lua_gettop(L);
 
-  // compile: "return <text>" accepts exactly an expression list
+  // compile: "return <text>" accepts exactly an expression list; Lua's
+  // compiler is quadratic in some constructs, so a text it would spend
+  // minutes on is refused first
+  if (const std::string problem = CompileCostProblem(text); !problem.empty())
+    throw InputError(what + ": " + problem);
   const std::string chunk = "return " + text;
   int status = luaL_loadbufferx(L, chunk.data(), chunk.size(), kChunkName, "t");
   if (status != LUA_OK) {

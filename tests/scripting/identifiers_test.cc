@@ -217,5 +217,17 @@ TEST(IdentifierTableTest, ExpressionsOverAllIdentifiers) {
   EXPECT_EQ(lua_gettop(lua.get()), 0);
 }
 
+// Lua's compiler takes time growing with the square of the number of
+// 'and'/'or' in one chunk (a million: about half an hour): an identifier's
+// expression that long is refused before it is compiled.
+TEST(IdentifierTableTest, ExpressionsLuaWouldCompileForMinutesAreRefused) {
+  LuaState lua;
+  std::string chain = "1";
+  for (int i = 0; i < 100000; ++i) chain += " and 1";
+  const std::string message = EvaluationError(lua, {{"x", chain}});
+  EXPECT_THAT(message, StartsWith("d.xml:1"));
+  EXPECT_THAT(message, HasSubstr("'and'/'or'"));
+}
+
 }  // namespace
 }  // namespace mechflow::scripting
