@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -337,6 +338,19 @@ void Unpack(const std::string& s, std::vector<RunRow>* all) {
 
 }  // namespace
 
+std::vector<std::thread> StartThreads(int wanted, const std::function<void()>& worker, const ThreadStarter& start) {
+  std::vector<std::thread> threads;
+  threads.reserve(static_cast<std::size_t>(std::max(0, wanted)));  // no reallocation below: push_back cannot throw
+  for (int j = 0; j < wanted; ++j) {
+    try {
+      threads.push_back(start(worker));
+    } catch (const std::exception&) {  // std::system_error (EAGAIN), or no memory for the thread's state
+      break;
+    }
+  }
+  return threads;
+}
+
 int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   std::unique_ptr<Ranks> ranks;
   try {
@@ -366,14 +380,6 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   const int cores = std::max(1u, std::thread::hardware_concurrency());
   const int jobs = std::max(1, std::min<int>(args.jobs.value_or(std::max(1, cores / ranks->local_size())),
                                              static_cast<int>(mine.size())));
-  if (ranks->root())
-    out << "mechflow sweep " << args.file << ": " << plan.runs << " run" << (plan.runs == 1 ? "" : "s") << ", "
-        << jobs << " at a time" << (ranks->size() > 1 ? " in each of " + std::to_string(ranks->size()) + " processes" : "")
-        << "\n"
-        << (plan.animated ? "note: a sweep writes no animation; animate one case with `mechflow run " + args.file +
-                                " --set NAME=VALUE`\n"
-                          : "")
-        << std::flush;
   const auto wall_start = std::chrono::steady_clock::now();
   std::vector<RunRow> rows(mine.size());
   const InterruptHandlers handlers;  // Ctrl-C, SIGTERM: the runs under way end, the rest are not run
@@ -386,8 +392,21 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
         progress.Done(!rows[k].ok);
       }
     };
-    std::vector<std::thread> threads;
-    for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
+    // this thread is one of the jobs; the threads it could start are the others
+    std::vector<std::thread> threads =
+        StartThreads(jobs - 1, worker, [](const std::function<void()>& w) { return std::thread(w); });
+    const int running = 1 + static_cast<int>(threads.size());
+    if (running < jobs)
+      err << "mechflow: could start only " << running << " of " << jobs << " threads; running with " << running
+          << "\n" << std::flush;
+    if (ranks->root())
+      out << "mechflow sweep " << args.file << ": " << plan.runs << " run" << (plan.runs == 1 ? "" : "s") << ", "
+          << running << " at a time"
+          << (ranks->size() > 1 ? " in each of " + std::to_string(ranks->size()) + " processes" : "") << "\n"
+          << (plan.animated ? "note: a sweep writes no animation; animate one case with `mechflow run " + args.file +
+                                  " --set NAME=VALUE`\n"
+                            : "")
+          << std::flush;
     worker();
     for (std::thread& t : threads) t.join();
   }
@@ -419,9 +438,12 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   }
   out << "wrote " << plan.folder->PathOf(summary_name) << " (" << plan.runs << " run" << (plan.runs == 1 ? "" : "s")
       << ")\n";
-  // every run's curves over one another, a panel per logged group
+  // every run's curves over one another, a panel per logged group. A signal
+  // from here on (the summary is written) leaves the overlay out; one during
+  // the runs does not: the overlay shows the runs done, as `run` plots its rows
+  const auto stopped_now = [&] { return interrupted == 0 && *InterruptFlag() != 0; };
   std::vector<OverlayRun> overlay;
-  for (int i = 0; i < plan.runs; ++i) {
+  for (int i = 0; i < plan.runs && !stopped_now(); ++i) {
     const std::vector<double> values = Combination(plan, i);
     const std::string name = RunFileName(plan, plan.csv_file, i, values);
     if (plan.folder->HasFile(name))
@@ -429,17 +451,26 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
                          plan.folder->HasFile(EnvelopeName(name)) ? EnvelopeName(name) : ""});
   }
   const std::string plot = fs::path(summary_name).replace_extension(".png").string();
-  try {
-    const std::string warning = DrawPlot(
-        OverlayScript(plan.groups, plan.columns, overlay, fs::path(plan.csv_file).stem().string() + " sweep", plot),
-        *plan.folder, plot);
-    if (warning.empty()) out << "wrote " << plan.folder->PathOf(plot) << " (every run over one another)\n";
-    else err << "warning: no plot: " << warning << "\n";
-  } catch (const WriteError& e) {
-    err << e.what() << "\n";
-    return 1;
+  const auto signal_name = [] { return *InterruptFlag() == SIGTERM ? "SIGTERM" : "SIGINT"; };
+  if (stopped_now()) {
+    err << "warning: no plot: interrupted by " << signal_name() << "\n";
+  } else {
+    try {
+      const std::string warning = DrawPlot(
+          OverlayScript(plan.groups, plan.columns, overlay, fs::path(plan.csv_file).stem().string() + " sweep", plot),
+          *plan.folder, plot);
+      if (warning.empty()) out << "wrote " << plan.folder->PathOf(plot) << " (every run over one another)\n";
+      else err << "warning: no plot: " << warning << "\n";
+    } catch (const WriteError& e) {
+      // a Ctrl-C at the terminal reaches gnuplot too (same process group) and ends it: not a write failure
+      if (!*InterruptFlag()) {
+        err << e.what() << "\n";
+        return 1;
+      }
+      err << "warning: no plot: interrupted by " << signal_name() << "\n";
+    }
   }
-  if (interrupted) return 128 + interrupted;  // 130 SIGINT, 143 SIGTERM
+  if (const int signal = *InterruptFlag()) return 128 + signal;  // 130 SIGINT, 143 SIGTERM
   return failed > 0 ? 1 : 0;
 }
 

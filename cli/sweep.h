@@ -25,7 +25,10 @@
 // every --vary is checked (a known identifier defined by a number, not varied
 // twice, not also given by --set): bad input exits 2 without a run.
 
+#include <functional>
 #include <ostream>
+#include <thread>
+#include <vector>
 
 #include "cli/arguments.h"
 
@@ -33,5 +36,13 @@ namespace mechflow::cli {
 
 // Exit code: 0 every run finished, 1 some failed (summary written), 2 bad input.
 int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err);
+
+// Starts a thread running `worker` (std::thread's constructor in a sweep).
+using ThreadStarter = std::function<std::thread(const std::function<void()>& worker)>;
+// Up to `wanted` threads running `worker`, started by `start`; stops at the
+// first that cannot start (std::system_error: a process limit such as
+// ulimit -u, or the system's), so the threads already running are returned
+// to be joined instead of being destroyed joinable (std::terminate).
+std::vector<std::thread> StartThreads(int wanted, const std::function<void()>& worker, const ThreadStarter& start);
 
 }  // namespace mechflow::cli

@@ -29,9 +29,13 @@ class Loads {
     discard_ = false;  // also after an evaluation for sensors that threw
   }
   // Sums the loads' power from now on (segment velocities from the
-  // kinematics the Add* calls get, generalized ones from v); an empty v
-  // stops it.
-  void TrackPower(std::span<const double> v) { v_ = v; }
+  // kinematics the Add* calls get, generalized ones from v). v may be
+  // empty: a mechanism whose every joint time drives has no velocity
+  // coordinates, but its bodies move and its elements do work.
+  void TrackPower(std::span<const double> v) {
+    v_ = v;
+    track_power_ = true;
+  }
   double power() const { return power_; }
   // A force (global components) acting on `body` at the global point x.
   // Loads on Base0 (or bodies welded to it) are taken by the ground.
@@ -43,7 +47,7 @@ class Loads {
     const Vec3 r = pose.R.transpose() * (x - pose.p);
     segment_[s].head<3>() += r.cross(f);
     segment_[s].tail<3>() += f;
-    if (!v_.empty()) {
+    if (track_power_) {
       const Vec6& velocity = kin.velocity[s];
       power_ += f.dot(velocity.tail<3>() + velocity.head<3>().cross(r));
     }
@@ -54,13 +58,13 @@ class Loads {
     if (s == kGround || discard_) return;
     const Vec3 moment = kin.pose[s].R.transpose() * torque;
     segment_[s].head<3>() += moment;
-    if (!v_.empty()) power_ += moment.dot(kin.velocity[s].head<3>());
+    if (track_power_) power_ += moment.dot(kin.velocity[s].head<3>());
   }
   // A generalized force on velocity coordinate `v_index` (a joint force).
   void AddGeneralizedForce(int v_index, double value) {
     if (discard_) return;
     tau_[v_index] += value;
-    if (!v_.empty()) power_ += value * v_[v_index];
+    if (track_power_) power_ += value * v_[v_index];
   }
 
   // While set (until Clear), the Add* calls take nothing: an evaluation
@@ -75,7 +79,8 @@ class Loads {
   std::vector<int> segment_of_body_;  // the model's bodies are large records; this one stays in the cache
   std::vector<Vec6> segment_;
   std::vector<double> tau_;
-  std::span<const double> v_;  // empty: no power sums
+  std::span<const double> v_;
+  bool track_power_ = false;
   double power_ = 0.0;
   bool discard_ = false;
 };

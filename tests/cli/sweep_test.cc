@@ -8,6 +8,8 @@
 
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,11 +19,14 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <system_error>
+#include <thread>
 #include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "cli/sweep.h"
 #include "tests/cli/mechflow_command.h"
 
 namespace mechflow::cli {
@@ -346,6 +351,67 @@ TEST(SweepTest, TwoMpiRanksEqualThreads) {
   EXPECT_EQ(a.at("damping_ratio.sweep.csv"), b.at("damping_ratio.sweep.csv"));
   EXPECT_TRUE(a == b);
 #endif
+}
+
+// The threads a sweep asks for past the first that cannot start (a process
+// limit) are not started; those running are handed back to be joined.
+TEST(SweepThreadsTest, AThreadThatCannotStartLeavesTheOthersRunning) {
+  for (const int fails_at : {0, 1, 3}) {
+    SCOPED_TRACE("the start of thread " + std::to_string(fails_at + 1) + " fails");
+    std::atomic<int> ran{0};
+    int starts = 0;
+    std::vector<std::thread> threads = StartThreads(5, [&] { ++ran; }, [&](const std::function<void()>& worker) {
+      if (starts++ == fails_at) throw std::system_error(EAGAIN, std::generic_category(), "thread");
+      return std::thread(worker);
+    });
+    EXPECT_EQ(static_cast<int>(threads.size()), fails_at);
+    EXPECT_EQ(starts, fails_at + 1);  // none tried after the failure
+    for (std::thread& t : threads) t.join();
+    EXPECT_EQ(ran, fails_at);
+  }
+  std::vector<std::thread> all = StartThreads(3, [] {}, [](const std::function<void()>& w) { return std::thread(w); });
+  EXPECT_EQ(all.size(), 3u);
+  for (std::thread& t : all) t.join();
+}
+
+// The same through the command: under an address-space limit that leaves
+// room for two 256 MB thread stacks, a sweep asking for 6 threads runs with
+// what it got, says so, and writes its summary (it ended in std::terminate).
+TEST(SweepTest, ThreadsThatCannotStartAreDoneWithout) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "a sanitizer's shadow memory does not fit an address-space limit";
+#else
+  // no gnuplot on the PATH: under the limit its own threads would fail (a warning instead of the plot)
+  const fs::path dir = FreshDir("nothreads"), no_programs = FreshDir("no_programs");
+  fs::create_directories(no_programs);
+  const Outcome o = mechflow::testing::RunMechflow(
+      "sweep " + kDampingRatio + " --vary beta=0.1,0.2,0.3,0.4,0.5,0.6 --t-end 1 --jobs 6 --out " + dir.string(),
+      "ulimit -s 262144 && ulimit -v 1000000 && PATH=" + no_programs.string() + " ");
+  EXPECT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_THAT(o.err, ::testing::ContainsRegex("mechflow: could start only [1-5] of 6 threads; running with [1-5]\n"));
+  const auto summary = ReadCsv(dir / "damping_ratio.sweep.csv");
+  ASSERT_EQ(summary.size(), 7u);
+  for (std::size_t r = 1; r < summary.size(); ++r) EXPECT_EQ(summary[r][2], "ok") << "row " << r;
+#endif
+}
+
+// A Ctrl-C at the terminal while the overlay is drawn reaches gnuplot too
+// (here a stand-in that sends it and fails): the summary is written, the
+// plot is left out, and the exit code is the signal's, not a write error's.
+TEST(SweepTest, AnInterruptWhileTheOverlayIsDrawnEndsTheSweepAsInterrupted) {
+  const fs::path dir = FreshDir("overlay_int"), bin = FreshDir("fake_gnuplot");
+  fs::create_directories(bin);
+  std::ofstream(bin / "gnuplot") << "#!/bin/sh\nkill -INT $PPID\nexit 1\n";
+  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
+  const Outcome o = mechflow::testing::RunMechflow(
+      "sweep " + kDampingRatio + " --vary beta=0.1,0.2 --t-end 1 --out " + dir.string(),
+      "PATH=" + bin.string() + ":$PATH ");
+  EXPECT_EQ(o.exit_code, 130) << o.err;
+  EXPECT_THAT(o.err, HasSubstr("warning: no plot: interrupted by SIGINT"));
+  EXPECT_THAT(o.out, HasSubstr("run 2/2 (beta=0.2): ok"));
+  const auto summary = ReadCsv(dir / "damping_ratio.sweep.csv");
+  ASSERT_EQ(summary.size(), 3u);
+  EXPECT_EQ(summary[2][2], "ok");
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -201,6 +202,43 @@ TEST(EnergyAccountingTest, ContactsStoreAndDissipate) {
   }
   EXPECT_GT(most_stored, 1e-6) << "the contacts should take load";
   EXPECT_GT(D1.back() + D2.back(), 0.1 * scale) << "impacts and sliding dissipate";
+}
+
+// A mechanism without a degree of freedom: a clock drives the body up and
+// down, z = A sin(w t), against gravity and a linear damper d to the ground.
+// Its elements' work is integrated all the same (the work states are the
+// only states): the damper takes
+//   D(t) = d A^2 w^2 (t/2 + sin(2 w t)/(4 w)),
+// its work is -D, and the drive's work balances the rest (energy_balance 0).
+TEST(EnergyAccountingTest, ADampedMotionThatAClockDrivesDissipatesInItsDamper) {
+  const double A = 0.1, w = 2 * std::numbers::pi, d = 20.0, m = 2.0;
+  const testing::XmlRun run = testing::RunXml(
+      "<diagram name='driven'><mechanism name='m' gravity='0 0 -9.81'>"
+      "<body name='B' mass='2' inertia='1 1 1'/>"
+      "<joint name='j' type='generalized' body1='Base0' body2='B'>"
+      "<et type='tt' axis='0 0 1' value='0.1*sin(2*pi*t)'/></joint>"
+      "<force name='damper' type='linear' body1='Base0' point1='0 0 -1' body2='B' c='0' d='20'/>"
+      "<sensor name='W' kind='element' element='damper' quantity='work'/>"
+      "<sensor name='D' kind='element' element='damper' quantity='dissipated'/>"
+      "<sensor name='T' kind='kinetic_energy'/>"
+      "<sensor name='balance' kind='energy_balance'/></mechanism>"
+      "<solver t_end='1.3' rtol='1e-8' atol='1e-10'/>"
+      "<output interval='0.01'><log signal='m.W'/><log signal='m.D'/><log signal='m.T'/>"
+      "<log signal='m.balance'/></output></diagram>");
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time"), W = run.Column("m.W"), D = run.Column("m.D"), T = run.Column("m.T"),
+             balance = run.Column("m.balance");
+  ASSERT_EQ(t.size(), 131u);
+  const double most = d * A * A * w * w * (1.3 / 2 + 1.0 / (4 * w));  // above D(t) on [0, 1.3]
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double dissipated = d * A * A * w * w * (t[i] / 2 + std::sin(2 * w * t[i]) / (4 * w));
+    const double v = A * w * std::cos(w * t[i]);
+    // at rtol 1e-8 (the work is a state, so under the solver's error control)
+    EXPECT_NEAR(D[i], dissipated, 1e-6 * most) << "t = " << t[i];
+    EXPECT_NEAR(W[i], -dissipated, 1e-6 * most) << "t = " << t[i];
+    EXPECT_NEAR(T[i], 0.5 * m * v * v, 1e-9 * most) << "t = " << t[i];
+    EXPECT_NEAR(balance[i], 0.0, 1e-6 * most) << "t = " << t[i];
+  }
 }
 
 }  // namespace
