@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <sstream>
 
 #include <cvode/cvode_ls.h>
 #include <cvode/cvode_proj.h>
@@ -93,6 +94,25 @@ namespace {
 
 // Right-hand-side failures (exceptions) tolerated in one run before it stops.
 constexpr int kMaxCallbackFailures = 30;
+
+// A value that is not finite as a user reads it ("nan", not "-nan").
+std::string NotFiniteText(double v) { return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"; }
+
+// v * 0 is 0 for a finite v and NaN otherwise; four sums in turn, which the
+// compiler vectorises (a test per element cost 2 % of P1's instructions).
+bool AllFinite(const std::vector<double>& values) {
+  const double* v = values.data();
+  const std::size_t n = values.size(), whole = n - n % 4;
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  for (std::size_t i = 0; i < whole; i += 4) {
+    s0 += v[i] * 0.0;
+    s1 += v[i + 1] * 0.0;
+    s2 += v[i + 2] * 0.0;
+    s3 += v[i + 3] * 0.0;
+  }
+  for (std::size_t i = whole; i < n; ++i) s0 += v[i] * 0.0;
+  return s0 + s1 + s2 + s3 == 0.0;
+}
 
 // The most nonzeros in one row of the pattern.
 int FullestRow(const SparsityPattern& pattern) {
@@ -349,11 +369,51 @@ bool Simulator::CheckCrossings(double t, double* x, bool row, double* t_root, do
 
 void Simulator::Record(double t, double* x, bool evaluated) {
   if (!evaluated) EvaluateAt(t, x);
+  if (!AllFinite(ctx_.signals)) [[unlikely]]
+    RefuseNonFiniteOutputs(t);
   row_[0] = t;
   const double* signals = ctx_.signals.data();
   for (std::size_t c = 0; c < row_signals_.size(); ++c) row_[c + 1] = signals[row_signals_[c]];
   results_.AddRow(row_.data());
   if (observer_) observer_->OnRow(t, x, ctx_);
+}
+
+void Simulator::RefuseNonFiniteOutputs(double t) const {
+  const std::vector<double>& signals = ctx_.signals;
+  // the first in evaluation order: the cause, not what it fed
+  int bad = -1;
+  for (const OutputNode& node : diagram_.schedule()) {
+    if (node.loop >= 0) continue;
+    const BlockLayout& layout = diagram_.layout(node.block);
+    const int first = layout.output_offset[node.port];
+    for (int i = first; bad < 0 && i < first + layout.output_width[node.port]; ++i)
+      if (!std::isfinite(signals[i])) bad = i;
+    if (bad >= 0) break;
+  }
+  for (std::size_t i = 0; bad < 0 && i < signals.size(); ++i)  // in a loop's unknowns
+    if (!std::isfinite(signals[i])) bad = static_cast<int>(i);
+  if (bad < 0) throw std::logic_error("RefuseNonFiniteOutputs: every signal is finite");
+  std::ostringstream out;
+  out << DescribeSignal(bad) << " is not finite (" << NotFiniteText(signals[bad]) << ") at t = " << t
+      << "; the rows before are kept (a value out of the range of double precision, or undefined: check what the "
+         "block computes from its inputs and parameters there)";
+  throw SimulationError(out.str());
+}
+
+std::string Simulator::DescribeSignal(int signal) const {
+  for (int b = 0; b < diagram_.num_blocks(); ++b) {
+    const BlockLayout& layout = diagram_.layout(b);
+    for (int p = 0; p < static_cast<int>(layout.output_offset.size()); ++p) {
+      const int first = layout.output_offset[p], width = layout.output_width[p];
+      if (signal < first || signal >= first + width) continue;
+      const std::string& origin = diagram_.origin(b);
+      std::string port = diagram_.block(b).output_port(p).name;
+      if (width > 1) port += "[" + std::to_string(signal - first) + "]";
+      return "block '" + diagram_.block(b).name() + "'" + (origin.empty() ? "" : " (" + origin + ")") + " output '" +
+             port + "'";
+    }
+  }
+  return "signal " + std::to_string(signal);
 }
 
 void Simulator::RefuseFrozenState() {
@@ -426,11 +486,23 @@ int Simulator::EvaluateRhs(double t, double* x, double* xdot) {
   for (int i = 0; i < d.num_states(); ++i) {
     if (!std::isfinite(xdot[i])) {
       // recoverable: CVODE retries with a smaller step, and fails if it persists
-      callback_failure_ = "derivative of a continuous state is not finite at t = " + std::to_string(t);
+      callback_failure_ = "the derivative of " + DescribeState(i) + " is not finite (" + NotFiniteText(xdot[i]) +
+                          ") at t = " + std::to_string(t);
       return 1;
     }
   }
   return 0;
+}
+
+std::string Simulator::DescribeState(int state) const {
+  for (const int b : diagram_.stateful_blocks()) {
+    const BlockLayout& layout = diagram_.layout(b);
+    if (state < layout.first_state || state >= layout.first_state + layout.num_states) continue;
+    const std::string& origin = diagram_.origin(b);
+    return "block '" + diagram_.block(b).name() + "'" + (origin.empty() ? "" : " (" + origin + ")") + " state '" +
+           diagram_.block(b).state_name(state - layout.first_state) + "'";
+  }
+  return "continuous state " + std::to_string(state);
 }
 
 int Simulator::EvaluateAnalyticJacobian(double t, double* x) {

@@ -258,6 +258,17 @@ class Simulator {
   // (the step size fell below the resolution of time): throws
   // SimulationError instead of letting such rows become output.
   void RefuseFrozenState();
+  // Before a row is written, with every output evaluated at t, when some
+  // signal is not finite (an overflow, 0/0; Record checks the whole signal
+  // vector once per row, not the right-hand side, whose Newton iterates may
+  // stray and recover): throws SimulationError naming the block and port,
+  // the first in schedule order.
+  [[noreturn]] void RefuseNonFiniteOutputs(double t) const;
+  // "block 'b' (file:line) output 'y[1]'" for the output port that holds
+  // `signal` at its element, or "signal N" when no output does.
+  std::string DescribeSignal(int signal) const;
+  // "block 'b' (file:line) state 'x'" for a continuous state.
+  std::string DescribeState(int state) const;
   // The smallest step: a few units of round-off of the run's largest time.
   static double MinimumStep(double t0, double t_end) {
     return 8.0 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t0), std::abs(t_end), 1e-300});

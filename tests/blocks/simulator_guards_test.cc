@@ -3,6 +3,7 @@
 // nothing from SUNDIALS; a step size at the resolution of time and a solver
 // state that froze end the run with a message instead of rows.
 
+#include <cmath>
 #include <memory>
 #include <vector>
 #include <string>
@@ -162,6 +163,141 @@ TEST(SimulatorGuardsTest, FrozenMotionIsTheSameStateWithANonzeroSlope) {
   EXPECT_EQ(FrozenState(x, x, std::vector<double>{0.0, 0.0}, 0.01, 1e-11, 1e-13), -1);
   EXPECT_EQ(FrozenState(x, x, std::vector<double>{1e-20, 0.0}, 0.01, 1e-11, 1e-13), -1);
   EXPECT_EQ(FrozenState(x, x, std::vector<double>{0.0, -3.0}, 0.01, 1e-11, 1e-13), 1);
+}
+
+// y = (t, 1 / (t - 0.25)): its second element overflows at t = 0.25 alone
+// (a row there: the interval is 0.125), as an interpolation between values
+// near the largest double would.
+class Overflow : public Block {
+ public:
+  Overflow() : Block("overflow", "tab") { DeclareOutputPort("y", 2); }
+
+ protected:
+  void DoCalcOutput(int, const BlockContext& ctx) const override {
+    ctx.output(0)[0] = ctx.time();
+    ctx.output(0)[1] = 1.0 / (ctx.time() - 0.25);
+  }
+};
+
+// y = 2 u.
+class Twice : public Block {
+ public:
+  explicit Twice(std::string name) : Block("twice", std::move(name)) {
+    DeclareInputPort("u", 2);
+    DeclareOutputPort("y", 2);
+  }
+
+ protected:
+  void DoCalcOutput(int, const BlockContext& ctx) const override {
+    for (int i = 0; i < 2; ++i) ctx.output(0)[i] = 2.0 * ctx.input(0)[i];
+  }
+};
+
+TEST(SimulatorGuardsTest, AnOutputThatIsNotFiniteFailsTheRunNamingBlockAndPort) {
+  // the downstream block first, so its signal comes first in the layout too:
+  // the message names the cause, in schedule order
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<Twice>("twice"), "d.xml:3");
+  builder.AddBlock(std::make_unique<Overflow>(), "d.xml:2");
+  builder.Connect("tab.y", "twice.u");
+  auto diagram = builder.Build();
+  SolverOptions options = Options();
+  options.output_interval = 0.125;
+  Simulator sim(*diagram, options, {diagram->ResolveSignal("twice.y")});
+  const RunOutcome outcome = sim.Run();
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_EQ(outcome.failure,
+            "block 'tab' (d.xml:2) output 'y[1]' is not finite (inf) at t = 0.25; the rows before are kept (a value "
+            "out of the range of double precision, or undefined: check what the block computes from its inputs and "
+            "parameters there)");
+  EXPECT_EQ(outcome.t_reached, 0.25);
+  // the rows before, and not the one with inf
+  const Results& r = sim.results();
+  ASSERT_EQ(r.num_rows(), 2);
+  EXPECT_EQ(r.at(1, 0), 0.125);
+  EXPECT_EQ(r.at(1, 2), 2.0 / (0.125 - 0.25));
+}
+
+// x' = -x; its output y reads x, but is NaN whenever it is computed for a
+// right-hand side (a Newton iterate that strays); `sink` integrates
+// nothing from it (s' = 0), so y sits in the dynamics schedule.
+class Stray : public Block {
+ public:
+  Stray() : Block("stray", "stray") {
+    DeclareOutputPort("y");
+    DeclareNoFeedthrough();
+    DeclareContinuousStates(1);
+  }
+
+ protected:
+  void DoInitialize(const BlockContext& ctx) const override { ctx.state()[0] = 1.0; }
+  void DoCalcOutput(int, const BlockContext& ctx) const override {
+    ctx.output(0)[0] = ctx.derivatives_follow() ? std::nan("") : ctx.state()[0];
+  }
+  void DoCalcDerivatives(const BlockContext& ctx) const override { ctx.derivative()[0] = -ctx.state()[0]; }
+};
+
+class Sink : public Block {
+ public:
+  Sink() : Block("sink", "sink") {
+    DeclareInputPort("u");
+    DeclareOutputPort("s");
+    DeclareNoFeedthrough();
+    DeclareContinuousStates(1);
+  }
+
+ protected:
+  void DoInitialize(const BlockContext& ctx) const override { ctx.state()[0] = 0.0; }
+  void DoCalcOutput(int, const BlockContext& ctx) const override { ctx.output(0)[0] = ctx.state()[0]; }
+  void DoCalcDerivatives(const BlockContext& ctx) const override {
+    ctx.derivative()[0] = std::isnan(ctx.input(0)[0]) ? 0.0 : 0.0;
+  }
+};
+
+TEST(SimulatorGuardsTest, ValuesThatStrayOnlyInsideTheSolverDoNotFailTheRun) {
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<Stray>());
+  builder.AddBlock(std::make_unique<Sink>());
+  builder.Connect("stray.y", "sink.u");
+  auto diagram = builder.Build();
+  Simulator sim(*diagram, Options(), {diagram->ResolveSignal("stray.y")});
+  const RunOutcome outcome = sim.Run();
+  ASSERT_TRUE(outcome.ok) << outcome.failure;
+  const Results& r = sim.results();
+  ASSERT_EQ(r.num_rows(), 31);
+  EXPECT_NEAR(r.at(30, 1), std::exp(-3.0), 1e-7);
+}
+
+// x' = 0, then NaN from t = 0.5 on: the failure names the state.
+class NanRate : public Block {
+ public:
+  NanRate() : Block("nan_rate", "bad") {
+    DeclareOutputPort("x");
+    DeclareNoFeedthrough();
+    DeclareContinuousStates(1);
+  }
+
+ protected:
+  void DoInitialize(const BlockContext& ctx) const override { ctx.state()[0] = 0.0; }
+  void DoCalcOutput(int, const BlockContext& ctx) const override { ctx.output(0)[0] = ctx.state()[0]; }
+  void DoCalcDerivatives(const BlockContext& ctx) const override {
+    ctx.derivative()[0] = ctx.time() < 0.5 ? 1.0 : std::nan("");
+  }
+};
+
+TEST(SimulatorGuardsTest, ADerivativeThatIsNotFiniteNamesItsBlockAndState) {
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<NanRate>(), "d.xml:4");
+  auto diagram = builder.Build();
+  Simulator sim(*diagram, Options(), {diagram->ResolveSignal("bad.x")});
+  const RunOutcome outcome = sim.Run();
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_NE(outcome.failure.find("the derivative of block 'bad' (d.xml:4) state '" + diagram->block(0).state_name(0) +
+                                 "' is not finite (nan) at t = 0.5"),
+            std::string::npos)
+      << outcome.failure;
+  EXPECT_GE(outcome.t_reached, 0.4);  // the last row, or the last step before 0.5
+  EXPECT_LE(outcome.t_reached, 0.5);
 }
 
 }  // namespace
