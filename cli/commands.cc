@@ -87,8 +87,9 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   const std::uint64_t budget = args.max_output_bytes.value_or(kDefaultMaxOutputBytes);
   const OutputEstimate csv_size = EstimateResultsCsv(sim.options(), sim.results().num_columns(), loaded.csv_file);
   RefuseOverBudget(csv_size, budget);
+  const std::uint64_t animation_budget = args.max_output_bytes.value_or(kDefaultMaxAnimationBytes);
   for (const OutputEstimate& file : animation.EstimateSizes(csv_size.rows))
-    RefuseOverBudget(file, budget);
+    RefuseOverBudget(file, animation_budget);
   // the plot of a long run is drawn from an envelope of its rows
   std::unique_ptr<PlotEnvelope> envelope;
   if (!loaded.plot_file.empty()) {

@@ -1,7 +1,8 @@
 #pragma once
 // Output budgets: every large file a run writes (the results CSV, the
 // animation NAME.html and NAME.glb) is estimated before the run and refused
-// past a budget per file (--max-output, default 1 GiB), so that a small
+// past a budget per file (--max-output, default 1 GiB, 256 MiB for the
+// animation), so that a small
 // diagram cannot fill a disk; and the results file stops at the budget if
 // the run makes more rows than estimated (rows at events).
 
@@ -14,6 +15,9 @@
 namespace mechflow::cli {
 
 inline constexpr std::uint64_t kDefaultMaxOutputBytes = std::uint64_t{1} << 30;  // 1 GiB per file
+// The animation's page and glTF by default: a browser or viewer that must
+// hold the whole file in memory gives up long before 1 GiB.
+inline constexpr std::uint64_t kDefaultMaxAnimationBytes = std::uint64_t{256} << 20;
 
 // Bytes per value of the results CSV: a shortest round-trip number and its
 // separator. Measured: 11.6 to 15.9 bytes in the examples' results

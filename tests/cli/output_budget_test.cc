@@ -134,5 +134,30 @@ TEST(OutputBudgetTest, ARunWhoseRowsOutgrowTheEstimateEndsAtTheBudget) {
   EXPECT_THAT(run.out, Not(HasSubstr("(20001 rows)")));
 }
 
+// The animation's files have a budget of their own by default (256 MiB): a
+// browser holds the whole page. 200 sliding boxes over 1000 s make about
+// 100000 frames x 200 bodies x 28 bytes, some 530 MiB, under the 1 GiB of
+// the results' budget; --max-output sets both.
+TEST(OutputBudgetTest, AnAnimationHasASmallerBudgetByDefault) {
+  const fs::path dir = Dir("animation_default");
+  std::string xml = "<diagram name='boxes'>\n<mechanism name='m'>\n";
+  for (int i = 1; i <= 200; ++i) {
+    const std::string b = "b" + std::to_string(i);
+    xml += "<body name='" + b + "' mass='1' inertia='1 1 1'/>\n<joint name='j" + std::to_string(i) +
+           "' type='translational' body1='Base0' body2='" + b + "' axis='1 0 0'/>\n<shape type='box' body='" + b +
+           "' size='0.1 0.1 0.1'/>\n";
+  }
+  xml += "<sensor name='x' kind='coordinate' dof='j1'/>\n</mechanism>\n<solver t_end='1000'/>\n"
+         "<output interval='0.01'><log signal='m.x'/></output>\n"
+         "</diagram>\n";
+  std::ofstream(dir / "boxes.xml") << xml;
+  const auto refused = testing::RunMechflow("run " + (dir / "boxes.xml").string() + " --animate --out " +
+                                            (dir / "out").string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.out << refused.err;
+  EXPECT_THAT(refused.err, HasSubstr("boxes.html would be about"));
+  EXPECT_THAT(refused.err, HasSubstr("past the budget of 256 MiB"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "boxes.csv"));
+}
+
 }  // namespace
 }  // namespace mechflow
