@@ -448,6 +448,7 @@ TEST_F(HostileDiagramTest, AnInfiniteCurveIsBadInput) {
   const auto check = RunMechflow("check " + path.string());
   EXPECT_EQ(check.exit_code, 2) << check.err;
   EXPECT_THAT(check.err, HasSubstr("c.xml:4: joint 'j' transformation 1: time function '1/t' is not finite at t = 0"));
+}
 
 // Everything mechflow starts (gnuplot) from here on: the command line runs
 // `cat INPUT | [PATH=...] mechflow ARGS` in the test's folder, so that what a
