@@ -38,6 +38,10 @@ struct Arguments {
   bool version = false;
 };
 
+// The NAME=VALUE lines of a --set-file's `text` ('#' starts a comment),
+// added to `a` as --set options are; UsageError naming path:line.
+void ReadSetFile(const std::string& text, const std::string& path, Arguments* a);
+
 // Throws UsageError with a message for bad command lines.
 Arguments ParseArguments(const std::vector<std::string>& args);
 

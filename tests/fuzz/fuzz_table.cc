@@ -17,7 +17,8 @@ void ReadTables(const std::string& text) {
     ReadTableCsv(text, "fuzz.csv", &xs, &ys);
   } catch (const mechflow::InputError&) {
   }
-  std::vector<double> x, y, values;
+  std::vector<double> x, y;
+  std::vector<std::vector<double>> values;
   ReadTable2DCsv(text, "fuzz.csv", &x, &y, &values);
 }
 
