@@ -106,6 +106,8 @@ inline std::unique_ptr<Block> MakeBlock(const std::string& type, const std::stri
         break;
       }
       case ParamKind::kText:
+        params.SetText(spec.name, text);
+        break;
       case ParamKind::kPath:  // the test's own file: not confined as a diagram's are
         params.SetFile(spec.name, text, ReadInputFile(text, "table file"));
         break;

@@ -224,7 +224,7 @@ TEST(IdentifierTableTest, ExpressionsLuaWouldCompileForMinutesAreRefused) {
   LuaState lua;
   std::string chain = "1";
   for (int i = 0; i < 100000; ++i) chain += " and 1";
-  const std::string message = EvaluationError(lua, {{"x", chain}});
+  const std::string message = EvaluationError(lua, {{"p", chain}});
   EXPECT_THAT(message, StartsWith("d.xml:1"));
   EXPECT_THAT(message, HasSubstr("'and'/'or'"));
 }
