@@ -175,7 +175,13 @@ int WaitUnlessInterrupted(pid_t pid, int seen, int* stopped_by) {
   *stopped_by = 0;
   for (;;) {
     const pid_t r = waitpid(pid, &status, WNOHANG);
-    if (r == pid || (r < 0 && errno != EINTR)) return status;
+    if (r == pid || (r < 0 && errno != EINTR)) {
+      // a signal that reached gnuplot too (a terminal's Ctrl-C goes to the
+      // whole group) may end it before this loop saw the signal: it came
+      // while gnuplot drew all the same
+      if (!*stopped_by && InterruptCount() != seen) *stopped_by = *InterruptFlag();
+      return status;
+    }
     if (!*stopped_by && InterruptCount() != seen) {
       *stopped_by = *InterruptFlag();
       kill(pid, SIGTERM);
