@@ -1,6 +1,7 @@
 #include "blocks/simulator.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -112,6 +113,21 @@ bool AllFinite(const std::vector<double>& values) {
   }
   for (std::size_t i = whole; i < n; ++i) s0 += v[i] * 0.0;
   return s0 + s1 + s2 + s3 == 0.0;
+}
+
+// An output (or sample) time t0 + k * interval as the decimal it stands for: the
+// product rounds (47 * 0.01 = 0.47000000000000003), and a row taken there
+// would read so in the results. The double nearest the time's 15 significant
+// digits, when it is within a few units in the last place of it (rounding,
+// not a grid of its own such as k / 3), so the row is taken at 0.47 and the
+// results, in the shortest form that reads back, show 0.47.
+double DecimalGridTime(double t) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, t, std::chars_format::general, 15).ptr;
+  double decimal = t;
+  std::from_chars(text, end, decimal);
+  const double ulp = std::nextafter(std::abs(t), std::numeric_limits<double>::infinity()) - std::abs(t);
+  return std::abs(decimal - t) <= 4.0 * ulp ? decimal : t;
 }
 
 // The most nonzeros in one row of the pattern.
@@ -630,7 +646,7 @@ double Simulator::NextSampleHit() const {
   const auto& periodic = diagram_.periodic_blocks();
   for (size_t i = 0; i < periodic.size(); ++i) {
     const SampleTime& st = diagram_.block(periodic[i]).sample_time();
-    next = std::min(next, st.offset + next_hit_[i] * st.period);
+    next = std::min(next, DecimalGridTime(st.offset + next_hit_[i] * st.period));  // as the rows' times
   }
   return next;
 }
@@ -642,7 +658,7 @@ void Simulator::HandleSampleHits(double t) {
     const SampleTime& st = diagram_.block(periodic[i]).sample_time();
     // the same formula that produced the stop time, so equality is exact --
     // except at t_end, which a hit may pass by a rounding (3 * 0.1 > 0.3)
-    if (!SameInstant(st.offset + next_hit_[i] * st.period, t)) continue;
+    if (!SameInstant(DecimalGridTime(st.offset + next_hit_[i] * st.period), t)) continue;
     diagram_.block(periodic[i]).OnSampleHit(BlockContext(&ctx_, &diagram_.layout(periodic[i])));
     ++next_hit_[i];
     ++stats_.sample_hits;
@@ -838,7 +854,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
     double t = t0;        // the last row, event or stop: the run's results reach here
     long steps = 0;       // since then (options_.max_steps)
     // output times are computed from an integer index: no drift over long runs
-    auto output_time = [&](long k) { return std::min(t0 + k * options_.output_interval, t_end); };
+    auto output_time = [&](long k) { return std::min(DecimalGridTime(t0 + k * options_.output_interval), t_end); };
     while (t < t_end && !stop_requested_ && !Interrupted()) {
       const double stop = NextStop();
       double t_out = std::min(output_time(next_output), stop);

@@ -62,11 +62,14 @@ std::vector<OutputEstimate> AnimationOutput::EstimateSizes(double rows) const {
   const std::string reckoning = std::to_string(static_cast<long long>(e.frames)) + " frames x " +
                                 std::to_string(scene_.bodies.size()) + " bodies, and " +
                                 ByteSizeText(e.mesh_bytes) + " of shapes";
+  // the page's plot: every logged column at the rows (at most 4096 points)
+  const std::string plot = ", a plot of " + std::to_string(static_cast<long long>(e.plot_points)) + " points x " +
+                           std::to_string(recording_->columns().size() + 1) + " numbers";
   const std::string advice =
       "give fewer bodies shapes, coarser shapes, or a shorter t_end; leave the animation out with --no-animate; "
       "or raise the budget with --max-output 8G";
   std::vector<OutputEstimate> files;
-  if (!html_.empty()) files.push_back({html_, e.html_bytes, 0.0, reckoning, advice});
+  if (!html_.empty()) files.push_back({html_, e.html_bytes, 0.0, reckoning + plot, advice});
   if (!glb_.empty()) files.push_back({glb_, e.glb_bytes, 0.0, reckoning, advice});
   return files;
 }

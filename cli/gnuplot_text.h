@@ -22,6 +22,20 @@ inline std::string GnuplotQuote(const std::string& s) {
   return out + "'";
 }
 
+// The look of the `curve`-th curve (from 0) of a panel: ten colours (the
+// Tableau 10 palette, none too pale on white), then the same ten dashed, then
+// dotted, dash-dotted and dash-dot-dotted: fifty curves all look different
+// (gnuplot's own order repeats its eight colours, all solid).
+inline std::string CurveStyle(int curve) {
+  static const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                         "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  static const char* const kDashes[] = {"1", "(12,6)", "(3,4)", "(14,5,3,5)", "(14,5,3,5,3,5)"};
+  constexpr int kColourCount = 10, kDashCount = 5;
+  curve = std::max(0, curve);
+  return "lc rgb '" + std::string(kColours[curve % kColourCount]) + "' dt " +
+         kDashes[(curve / kColourCount) % kDashCount];
+}
+
 // The head of every plot script: the terminal (PNG, or SVG by the plot's
 // extension) sized for `panels` panels of `panel_height` pixels, the CSV
 // separator, grid, key and margins (fixed, so that stacked axes align), and

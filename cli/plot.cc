@@ -8,11 +8,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <thread>
 
@@ -25,21 +27,20 @@ namespace mechflow::cli {
 namespace {
 
 // One column's curve: from the CSV, or from an envelope (the band between its
-// min and max, and both lines) in the colour of the `curve`-th curve. A
-// plain curve takes that colour only when `coloured` (else gnuplot's own
-// order gives it).
-std::string Curve(const std::string& file, int x, int y, bool envelope, int curve, const std::string& title,
-                  bool coloured = false) {
+// min and max, and both lines), in the look of the `curve`-th curve of its
+// panel (CurveStyle, from 0).
+std::string Curve(const std::string& file, int x, int y, bool envelope, int curve, const std::string& title) {
+  const std::string style = CurveStyle(curve);
   std::ostringstream s;
   if (!envelope) {
-    s << file << " using " << x << ":" << y << " every ::1 with lines lw 1.5 "
-      << (coloured ? "lc " + std::to_string(curve) + " " : "") << "title " << GnuplotQuote(title);
+    s << file << " using " << x << ":" << y << " every ::1 with lines lw 1.5 " << style << " title "
+      << GnuplotQuote(title);
     return s.str();
   }
-  s << file << " using " << x << ":" << y << ":" << y + 1 << " every ::1 with filledcurves fs solid noborder lc "
-    << curve << " notitle, \\\n       '' using " << x << ":" << y << " every ::1 with lines lw 1.5 lc " << curve
+  s << file << " using " << x << ":" << y << ":" << y + 1 << " every ::1 with filledcurves fs solid noborder "
+    << style << " notitle, \\\n       '' using " << x << ":" << y << " every ::1 with lines lw 1.5 " << style
     << " title " << GnuplotQuote(title) << ", \\\n       '' using " << x << ":" << y + 1
-    << " every ::1 with lines lw 1.5 lc " << curve << " notitle";
+    << " every ::1 with lines lw 1.5 " << style << " notitle";
   return s.str();
 }
 
@@ -62,7 +63,7 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
       const int c = g.columns[i];
       const std::string file = i ? "''" : GnuplotQuote(e ? envelope.name : csv_name);
       s << (i ? ", \\\n     " : "")
-        << Curve(file, e ? 4 : 1, e ? e->MinColumn(c) : c + 1, e, static_cast<int>(i) + 1, results.columns()[c]);
+        << Curve(file, e ? 4 : 1, e ? e->MinColumn(c) : c + 1, e, static_cast<int>(i), results.columns()[c]);
     }
     s << "\n";
   }
@@ -74,7 +75,8 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
       const auto [x, y] = p.curves[i];
       s << (i ? ", \\\n     " : "") << (i ? "''" : GnuplotQuote(e ? envelope.xy_name : csv_name)) << " using "
         << (e ? e->XYColumn(x) : x + 1) << ":" << (e ? e->XYColumn(y) : y + 1)
-        << " every ::1 with lines lw 1.5 title " << GnuplotQuote(results.columns()[y] + " : " + results.columns()[x]);
+        << " every ::1 with lines lw 1.5 " << CurveStyle(static_cast<int>(i)) << " title "
+        << GnuplotQuote(results.columns()[y] + " : " + results.columns()[x]);
     }
     s << "\n";
   }
@@ -83,13 +85,28 @@ std::string GnuplotScript(const blocks::Results& results, const std::vector<diag
   return s.str();
 }
 
+std::vector<std::string> LegendNumbers(const std::vector<double>& values) {
+  for (int digits = 6;; ++digits) {
+    std::vector<std::string> texts;
+    std::map<std::string, double> seen;  // a text and the value it showed
+    bool distinct = true;
+    for (const double v : values) {
+      char buffer[64];
+      const auto end =
+          std::to_chars(buffer, buffer + sizeof buffer, v == 0.0 ? 0.0 : v, std::chars_format::general, digits).ptr;
+      texts.emplace_back(buffer, end);
+      const auto [at, added] = seen.emplace(texts.back(), v);
+      distinct = distinct && (added || at->second == v);
+    }
+    if (distinct || digits >= 17) return texts;  // 17 digits tell every two doubles apart
+  }
+}
+
 std::string OverlayScript(const std::vector<diagrams::PlotGroup>& groups, const std::vector<std::string>& columns,
                           const std::vector<OverlayRun>& runs, const std::string& title, const std::string& plot_name) {
   const std::vector<int> plotted = PlottedColumns(groups);
   std::ostringstream s;
   s << GnuplotPreamble(plot_name, static_cast<int>(groups.size()), 300, 28, title) << "set xlabel 'time [s]'\n";
-  bool enveloped = false;  // a long run's curves are bands: every curve gets its colour by number
-  for (const OverlayRun& run : runs) enveloped = enveloped || !run.envelope_name.empty();
   for (const auto& g : groups) {
     s << "set title " << GnuplotQuote(g.name) << "\nset ylabel " << GnuplotQuote(g.axis_label) << "\nplot ";
     int curve = 0;
@@ -98,9 +115,9 @@ std::string OverlayScript(const std::vector<diagrams::PlotGroup>& groups, const 
         const std::string label = g.columns.size() > 1 ? run.label + " " + columns[c] : run.label;
         const bool band = !run.envelope_name.empty();
         s << (curve ? ", \\\n     " : "");
-        ++curve;
         if (band) s << Curve(GnuplotQuote(run.envelope_name), 4, EnvelopeMinColumn(plotted, c), true, curve, label);
-        else s << Curve(GnuplotQuote(run.csv_name), 1, c + 1, false, curve, label, enveloped);
+        else s << Curve(GnuplotQuote(run.csv_name), 1, c + 1, false, curve, label);
+        ++curve;
       }
     if (!curve) s << "[0:1] 0 notitle";
     s << "\n";

@@ -39,8 +39,15 @@ struct OverlayRun {
   // a long run: its envelope of PlottedColumns(groups), drawn instead
   std::string envelope_name = {};
 };
+// Numbers as a legend shows them, one text per value: 6 significant digits
+// ("0.0316228", not 0.0316227766016838), more where fewer would show two
+// different values alike (1 and 1.0000001), so every run is told apart.
+// A negative zero is 0.
+std::vector<std::string> LegendNumbers(const std::vector<double>& values);
+
 // The sweep's overlay (the seed's Fig. 7.2): a panel per logged group, in it
-// every column of the group from every run, labelled by the run.
+// every column of the group from every run, labelled by the run; each
+// curve of a panel in a look of its own (colour, then dash type).
 std::string OverlayScript(const std::vector<diagrams::PlotGroup>& groups, const std::vector<std::string>& columns,
                           const std::vector<OverlayRun>& runs, const std::string& title, const std::string& plot_name);
 

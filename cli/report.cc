@@ -23,9 +23,11 @@
 namespace mechflow::cli {
 namespace {
 
+// A number for people to read: a negative zero (a product or a sign
+// flipped at rest) is written 0, never "-0".
 std::string Format(const char* format, double value) {
   char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
+  std::snprintf(buffer, sizeof buffer, format, value == 0.0 ? 0.0 : value);
   return buffer;
 }
 
@@ -70,8 +72,9 @@ void PrintScriptChanges(const scripting::ControlScript& script, const scripting:
       ++count;
     }
     if (!first) continue;
-    out << "  " << identifiers.spelling(id) << ": " << count << " times, first " << first->value << " at t = "
-        << first->time << " s, last " << last->value << " at t = " << last->time << " s\n";
+    out << "  " << identifiers.spelling(id) << ": " << count << " times, first " << Format("%g", first->value)
+        << " at t = " << Format("%g", first->time) << " s, last " << Format("%g", last->value) << " at t = "
+        << Format("%g", last->time) << " s\n";
   }
 }
 

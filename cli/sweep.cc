@@ -43,6 +43,7 @@ namespace fs = std::filesystem;
 // would write 0.050000000000000003 into file names and the summary; without
 // an exponent in the everyday range (500000, not 5e+05).
 std::string Shortest(double v) {
+  if (v == 0.0) return "0";  // also -0
   char buffer[64];
   const double a = std::abs(v);
   const bool fixed = a == 0.0 || (a >= 1e-4 && a < 1e15);
@@ -106,6 +107,18 @@ std::string Assignments(const Plan& plan, const std::vector<double>& values, con
   std::string s;
   for (std::size_t k = 0; k < values.size(); ++k) s += (k ? separator : "") + plan.names[k] + "=" + Shortest(values[k]);
   return s;
+}
+
+// Run `index`'s name in the overlay's legend: "beta=0.0316228, mass=2",
+// each value in `texts` (LegendNumbers of its identifier's values).
+std::string LegendLabel(const Plan& plan, int index, const std::vector<std::vector<std::string>>& texts) {
+  std::string label;
+  for (int k = static_cast<int>(plan.names.size()) - 1; k >= 0; --k) {  // mixed radix, as Combination
+    const int n = static_cast<int>(plan.values[k].size());
+    label = plan.names[k] + "=" + texts[k][index % n] + (label.empty() ? "" : ", " + label);
+    index /= n;
+  }
+  return label;
 }
 
 // damping_ratio.csv -> damping_ratio.run02.beta=0.1.csv (folder kept).
@@ -443,11 +456,13 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   // the runs does not: the overlay shows the runs done, as `run` plots its rows
   const auto stopped_now = [&] { return interrupted == 0 && *InterruptFlag() != 0; };
   std::vector<OverlayRun> overlay;
+  std::vector<std::vector<std::string>> legend_numbers;
+  for (const std::vector<double>& values : plan.values) legend_numbers.push_back(LegendNumbers(values));
   for (int i = 0; i < plan.runs && !stopped_now(); ++i) {
     const std::vector<double> values = Combination(plan, i);
     const std::string name = RunFileName(plan, plan.csv_file, i, values);
     if (plan.folder->HasFile(name))
-      overlay.push_back({name, Assignments(plan, values, ", "),
+      overlay.push_back({name, LegendLabel(plan, i, legend_numbers),
                          plan.folder->HasFile(EnvelopeName(name)) ? EnvelopeName(name) : ""});
   }
   const std::string plot = fs::path(summary_name).replace_extension(".png").string();

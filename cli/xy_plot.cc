@@ -23,8 +23,8 @@ std::string XYPlotScript(const std::vector<XYPanel>& panels, const std::string& 
     for (std::size_t i = 0; i < p.curves.size(); ++i) {
       const XYCurve& c = p.curves[i];
       s << (i ? ", \\\n     " : "") << (i ? "''" : GnuplotQuote(csv_name)) << " using " << c.x_column + 1 << ":"
-        << c.y_column + 1 << " every ::1 with " << (c.points ? "linespoints pt 7 ps 0.8" : "lines") << " lw 1.5 title "
-        << GnuplotQuote(c.title);
+        << c.y_column + 1 << " every ::1 with " << (c.points ? "linespoints pt 7 ps 0.8" : "lines") << " lw 1.5 "
+        << CurveStyle(static_cast<int>(i)) << " title " << GnuplotQuote(c.title);
     }
     if (p.curves.empty()) s << "[0:1] 0 notitle";
     s << "\n";

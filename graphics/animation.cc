@@ -55,7 +55,7 @@ std::string Json(const Vec3& v) {
 
 // The viewer's data: MECHFLOW_DATA (graphics/web/viewer.js says what it holds).
 std::string DataJson(const Scene& scene, const AnimationRecorder& recording, const std::string& title) {
-  static_assert(sizeof(float) == 4, "float32 arrays");
+  static_assert(sizeof(float) == 4 && sizeof(double) == 8, "float32 and float64 arrays");
   std::ostringstream o;
   o << "{\"title\":" << Quoted(title) << ",\"bodies\":[";
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) o << (i ? "," : "") << Quoted(scene.bodies[i].label);
@@ -82,7 +82,9 @@ std::string DataJson(const Scene& scene, const AnimationRecorder& recording, con
   for (std::size_t i = 0; i < recording.times().size(); ++i) o << (i ? "," : "") << blocks::CsvNumber(recording.times()[i]);
   o << "],\"poses\":" << Base64Of(recording.poses()) << ",\"columns\":[";
   for (std::size_t i = 0; i < recording.columns().size(); ++i) o << (i ? "," : "") << Quoted(recording.columns()[i]);
-  o << "],\"signals\":" << Base64Of(recording.signals()) << "}";
+  o << "],\"plot\":{\"times\":" << Base64Of(recording.signals().Times())
+    << ",\"values\":" << Base64Of(recording.signals().Values())
+    << ",\"binned\":" << (recording.signals().binned() ? "true" : "false") << "}}";
   return o.str();
 }
 

@@ -12,7 +12,14 @@ namespace mechflow::graphics {
 
 AnimationRecorder::AnimationRecorder(const diagrams::LoadedDiagram& loaded, const Scene& scene,
                                      std::vector<std::string> columns, RecorderOptions options)
-    : loaded_(loaded), scene_(scene), options_(options), bodies_(scene.bodies), columns_(std::move(columns)) {
+    : loaded_(loaded),
+      scene_(scene),
+      options_(options),
+      bodies_(scene.bodies),
+      columns_(std::move(columns)),
+      signals_(columns_.size(), loaded.solver.t_start, loaded.solver.t_end - loaded.solver.t_start,
+               options.max_plot_points),
+      row_(columns_.size()) {
   const blocks::Diagram& diagram = *loaded.diagram;
   for (const SceneBody& body : bodies_) {
     int source = -1;
@@ -40,7 +47,6 @@ void AnimationRecorder::OnRow(double t, const double* x, const blocks::Context& 
   if (n >= 2 && times_[n - 1] - times_[n - 2] < options_.frame_spacing) {
     times_.back() = t;
     poses_.resize(poses_.size() - 7 * bodies_.size());
-    signals_.resize(signals_.size() - columns_.size());
   } else {
     if (times_.size() >= options_.max_frames) HalveFrames();
     times_.push_back(t);
@@ -63,8 +69,10 @@ void AnimationRecorder::OnRow(double t, const double* x, const blocks::Context& 
     for (const double v : {pose.p.x(), pose.p.y(), pose.p.z(), q.x(), q.y(), q.z(), q.w()})
       poses_.push_back(static_cast<float>(v));
   }
+  std::size_t c = 0;
   for (const blocks::SignalRef& s : loaded_.logged)
-    for (int i = 0; i < s.width; ++i) signals_.push_back(static_cast<float>(ctx.signals[s.offset + i]));
+    for (int i = 0; i < s.width && c < row_.size(); ++i) row_[c++] = ctx.signals[s.offset + i];
+  signals_.Add(t, row_.data());
   RecordShapeChanges(t);
 }
 
@@ -94,16 +102,14 @@ void AnimationRecorder::RecordShapeChanges(double t) {
 }
 
 void AnimationRecorder::HalveFrames() {
-  const std::size_t nb = 7 * bodies_.size(), nc = columns_.size();
+  const std::size_t nb = 7 * bodies_.size();
   std::size_t kept = 0;
   for (std::size_t f = 0; f < times_.size(); f += 2, ++kept) {
     times_[kept] = times_[f];
     std::copy_n(poses_.begin() + f * nb, nb, poses_.begin() + kept * nb);
-    std::copy_n(signals_.begin() + f * nc, nc, signals_.begin() + kept * nc);
   }
   times_.resize(kept);
   poses_.resize(kept * nb);
-  signals_.resize(kept * nc);
   options_.frame_spacing *= 2;
 }
 

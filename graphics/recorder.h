@@ -7,8 +7,10 @@
 // Frames are kept at least `frame_spacing` seconds apart (the display needs
 // no more: the viewer interpolates between frames), and the run's last row is
 // always the last frame. A frame holds, per scene body, its position and its
-// orientation as a unit quaternion (x y z, qx qy qz qw), and every logged
-// column, in float32: 28 bytes per body and 4 per column.
+// orientation as a unit quaternion (x y z, qx qy qz qw) in float32: 28 bytes
+// per body. The logged signals are kept at every row, not per frame
+// (graphics/signal_track.h: a long run's as the extremes of each bin of
+// time), so the plot shows the peaks the results hold.
 //
 // A shape naming identifiers is read again (ShapeBuilder::Read) when their
 // values differ from those of its last version, at most once per
@@ -26,6 +28,7 @@
 #include "blocks/simulator.h"
 #include "graphics/mesh.h"
 #include "graphics/scene.h"
+#include "graphics/signal_track.h"
 #include "mech/mechanism.h"
 
 namespace mechflow::graphics {
@@ -38,6 +41,8 @@ struct RecorderOptions {
   // t_end is.
   std::size_t max_frames = 100000;
   std::size_t max_version_bytes = std::size_t{32} << 20;
+  // points of the plot's signals: past this many rows, bins of extremes
+  std::size_t max_plot_points = SignalTrack::kMaxPoints;
 };
 
 // A shape's geometry from time t on.
@@ -59,7 +64,7 @@ class AnimationRecorder final : public blocks::RowObserver {
   const std::vector<float>& poses() const { return poses_; }  // frame-major, 7 per body
   int num_bodies() const { return static_cast<int>(bodies_.size()); }
   const std::vector<std::string>& columns() const { return columns_; }
-  const std::vector<float>& signals() const { return signals_; }  // frame-major, one per column
+  const SignalTrack& signals() const { return signals_; }  // the logged columns at the rows
   const std::vector<ShapeVersion>& versions() const { return versions_; }  // by time
 
   // Shapes that could not be read again at a script's new identifier values
@@ -95,7 +100,8 @@ class AnimationRecorder final : public blocks::RowObserver {
   std::vector<Follower> followers_;
   std::vector<double> times_;
   std::vector<float> poses_;
-  std::vector<float> signals_;
+  SignalTrack signals_;
+  std::vector<double> row_;  // the logged values of the row at hand
   std::vector<ShapeVersion> versions_;
   std::size_t version_bytes_ = 0;
   std::vector<std::string> warnings_;

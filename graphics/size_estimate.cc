@@ -24,11 +24,15 @@ AnimationSizeEstimate EstimateAnimationSize(const Scene& scene, double t_start, 
     springs += s.kind == "spring";
   }
   const double bodies = static_cast<double>(scene.bodies.size());
-  // HTML: float32 poses (7 per body) and signals in base64 (4/3), times as
-  // text (about 20 characters each), the meshes in base64, the scripts
+  // the plot's points: every row, up to the SignalTrack's bound
+  e.plot_points = std::min(rows, static_cast<double>(options.max_plot_points));
+  // HTML: float32 poses (7 per body) in base64 (4/3), frame times as text
+  // (about 20 characters each), the plot's float64 times and signals in
+  // base64, the meshes in base64, the scripts
   const double scripts = static_cast<double>(std::strlen(kThreeJs) + std::strlen(kOrbitControlsJs) +
                                              std::strlen(kViewerJs));
-  e.html_bytes = e.frames * ((bodies * 28.0 + columns * 4.0) * 4.0 / 3.0 + 20.0) + e.mesh_bytes * 4.0 / 3.0 + scripts;
+  e.html_bytes = e.frames * (bodies * 28.0 * 4.0 / 3.0 + 20.0) + e.plot_points * (8.0 + columns * 8.0) * 4.0 / 3.0 +
+                 e.mesh_bytes * 4.0 / 3.0 + scripts;
   // glTF: float32 times, a translation and a rotation per body (and a
   // scale per spring) per frame; meshes with their normals
   e.glb_bytes = e.frames * (4.0 + bodies * 28.0 + springs * 40.0) + e.mesh_bytes + normals;

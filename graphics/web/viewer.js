@@ -11,7 +11,12 @@
 //   versions {shape, t, positions}: a shape's geometry from t on (shapes that
 //            follow identifiers a control script changes)
 //   times, poses  frames; per frame and body x y z qx qy qz qw
-//   columns, signals  the logged signals per frame, for the plot
+//   columns  the logged signals' names
+//   plot     {times, values, binned}: the logged signals for the plot, at
+//            the output rows (values float64, point-major, as the results
+//            CSV has them); binned (a long run): two points per bin of time,
+//            its smallest and largest value in the order they came
+//            (graphics/signal_track.h)
 // World axes are mechflow's: z up.
 //
 // "#t=1.5" in the URL opens the page at that time.
@@ -31,9 +36,10 @@
   const data = MECHFLOW_DATA;
   const bytes = (b64) => Uint8Array.from(atob(b64), (c) => c.charCodeAt(0)).buffer;
   const floats = (b64) => new Float32Array(bytes(b64));
+  const doubles = (b64) => new Float64Array(bytes(b64));
   const times = data.times;
   const poses = floats(data.poses);
-  const signals = floats(data.signals);
+  const plotTimes = doubles(data.plot.times), plotValues = doubles(data.plot.values);
   const nb = data.bodies.length, nc = data.columns.length;
   const last = times.length - 1;
 
@@ -209,13 +215,30 @@
   const plot = document.getElementById('plot');
   const signalSelect = document.getElementById('signal');
   data.columns.forEach((name, c) => signalSelect.add(new Option(name, String(c))));
-  let curve = null;  // {column, image, lo, hi}
+  let curve = null;  // {column, image, lo, hi, points}
+  const value = (p, column) => plotValues[p * nc + column];
+  // the column's value at t: its points interpolated (at the instant of an
+  // event, the value after it)
+  function valueAt(column, t) {
+    const n = plotTimes.length;
+    if (n === 0) return NaN;
+    if (t < plotTimes[0]) return value(0, column);
+    let lo = 0, hi = n;  // the last point at or before t: lo
+    while (hi - lo > 1) {
+      const mid = (lo + hi) >> 1;
+      if (plotTimes[mid] <= t) lo = mid; else hi = mid;
+    }
+    if (lo + 1 >= n || !(plotTimes[lo + 1] > plotTimes[lo])) return value(lo, column);
+    const w = (t - plotTimes[lo]) / (plotTimes[lo + 1] - plotTimes[lo]);
+    return value(lo, column) + w * (value(lo + 1, column) - value(lo, column));
+  }
   function setSignal(column) {
     curve = null;
     plot.style.display = column < 0 ? 'none' : 'block';
     if (column < 0) return;
     let lo = Infinity, hi = -Infinity;
-    for (let f = 0; f < times.length; ++f) { const y = signals[f * nc + column]; lo = Math.min(lo, y); hi = Math.max(hi, y); }
+    for (let p = 0; p < plotTimes.length; ++p) { const y = value(p, column); lo = Math.min(lo, y); hi = Math.max(hi, y); }
+    const drawn = { lo, hi };  // the extremes of the curve, before the axis is widened
     if (!(hi > lo)) { lo -= 1; hi += 1; }
     const image = document.createElement('canvas');
     image.width = plot.width; image.height = plot.height;
@@ -227,18 +250,18 @@
     c.fillText(lo.toPrecision(4), 6, plot.height - 6);
     c.strokeStyle = '#1f5fbf';
     c.beginPath();
-    for (let f = 0; f < times.length; ++f) {
-      const [x, y] = plotPoint(f, column, lo, hi);
-      if (f === 0) c.moveTo(x, y); else c.lineTo(x, y);
+    for (let p = 0; p < plotTimes.length; ++p) {
+      const [x, y] = plotPoint(plotTimes[p], value(p, column), lo, hi);
+      if (p === 0) c.moveTo(x, y); else c.lineTo(x, y);
     }
     c.stroke();
-    curve = { column, image, lo, hi };
+    curve = { column, image, lo, hi, drawn };
     signalSelect.value = String(column);
     drawPlot();
   }
-  function plotPoint(f, column, lo, hi) {
-    const x = 4 + (plot.width - 8) * (times[f] - times[0]) / Math.max(times[last] - times[0], 1e-12);
-    const y = plot.height - 4 - (plot.height - 34) * (signals[f * nc + column] - lo) / (hi - lo);
+  function plotPoint(t, v, lo, hi) {
+    const x = 4 + (plot.width - 8) * (t - times[0]) / Math.max(times[last] - times[0], 1e-12);
+    const y = plot.height - 4 - (plot.height - 34) * (v - lo) / (hi - lo);
     return [x, y];
   }
   function drawPlot() {
@@ -246,12 +269,13 @@
     const c = plot.getContext('2d');
     c.clearRect(0, 0, plot.width, plot.height);
     c.drawImage(curve.image, 0, 0);
-    const [x, y] = plotPoint(currentFrame, curve.column, curve.lo, curve.hi);
+    const v = valueAt(curve.column, current);
+    const [x, y] = plotPoint(current, v, curve.lo, curve.hi);
     c.strokeStyle = '#d02020';
     c.beginPath(); c.moveTo(x, 30); c.lineTo(x, plot.height); c.stroke();
     c.fillStyle = '#d02020';
     c.fillRect(x - 2, y - 2, 5, 5);
-    c.fillText(signals[currentFrame * nc + curve.column].toPrecision(5), Math.min(x + 4, plot.width - 60), 26);
+    c.fillText(v.toPrecision(5), Math.min(x + 4, plot.width - 60), 26);
   }
   signalSelect.onchange = () => setSignal(signalSelect.value === '' ? -1 : Number(signalSelect.value));
 
@@ -354,8 +378,12 @@
       return Array.from(a.slice(0, 3 * Math.min(trace.line.geometry.drawRange.count, times.length)));
     },
     plot(column) { setSignal(data.columns.indexOf(column)); },
-    // the plot's cursor: the frame's time and the signal's value there
-    cursor() { return curve ? [times[currentFrame], signals[currentFrame * nc + curve.column]] : null; },
+    // the plot's cursor: the time shown and the signal's value there
+    cursor() { return curve ? [current, valueAt(curve.column, current)] : null; },
+    // the plotted curve: its points, whether binned, its smallest and largest value
+    plotted() {
+      return curve ? { points: plotTimes.length, binned: data.plot.binned, min: curve.drawn.lo, max: curve.drawn.hi } : null;
+    },
     // what hovering at the screen position of body's origin names
     hoverName(body) {
       const g = bodies[data.bodies.indexOf(body)];
@@ -385,6 +413,7 @@
       }
       report.seen.push(seen);
     }
+    report.plotted = window.mechflowTest.plotted();
     report.errors = errors;
     document.getElementById('mechflow-test').textContent = JSON.stringify(report);
     requestAnimationFrame(() => renderer.render(world, camera));  // the page shows the last time seen

@@ -29,9 +29,10 @@ TEST(SampleHoldTest, UpdatesExactlyAtOffsetPlusMultiplesOfThePeriod) {
   const auto t = run.Time(), held = run.Column("h.y");
   ASSERT_EQ(t.size(), 1001u);
   for (size_t i = 0; i < t.size(); ++i) {
-    // the hit times as the simulator computes them: offset + k period
+    // the hit times as the simulator computes them: offset + k period, as
+    // the decimal it stands for (0.15, not 0.05 + 0.1 = 0.15000000000000002)
     double expected = -1.0;
-    for (long k = 0; offset + k * period <= t[i] + 1e-12; ++k) expected = offset + k * period;
+    for (long k = 0; offset + k * period <= t[i] + 1e-12; ++k) expected = std::round((offset + k * period) * 1e6) / 1e6;
     // the clock is sampled exactly at t_k, so the held value is t_k itself
     EXPECT_EQ(held[i], expected) << "t = " << t[i];
   }

@@ -69,6 +69,7 @@ TEST(OutputBudgetTest, ARunPastTheBudgetIsRefusedBeforeItStarts) {
   EXPECT_EQ(animated.exit_code, 2) << animated.err;
   EXPECT_THAT(animated.err, HasSubstr("damping_ratio.html would be about"));
   EXPECT_THAT(animated.err, HasSubstr("frames x 1 bodies"));
+  EXPECT_THAT(animated.err, HasSubstr("a plot of 2001 points x 3 numbers"));  // the plot's signals at every row
   EXPECT_THAT(animated.err, HasSubstr("--no-animate"));
 }
 

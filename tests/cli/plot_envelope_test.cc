@@ -195,7 +195,7 @@ TEST(PlotEnvelopeTest, ALongRunIsDrawnFromItsEnvelopeAShortOneFromItsRows) {
   const auto short_run = testing::RunMechflow("run " + (dir / "d.xml").string() + " --out " + (dir / "out").string());
   ASSERT_EQ(short_run.exit_code, 0) << short_run.err;
   const std::string plain = testing::ReadFile(dir / "out" / "d.png.gp");
-  EXPECT_THAT(plain, HasSubstr("plot 'd.csv' using 1:2 every ::1 with lines lw 1.5 title 's.y'\n"));
+  EXPECT_THAT(plain, HasSubstr("plot 'd.csv' using 1:2 every ::1 with lines lw 1.5 lc rgb '#1f77b4' dt 1 title 's.y'\n"));
   EXPECT_THAT(plain, Not(HasSubstr("envelope")));
 }
 

@@ -1,8 +1,11 @@
 // The animation's recorder (graphics/recorder.h): frames at the display
 // rate with the run's last row last, poses equal to the kinematics, shapes
 // read again when a script changes their identifiers, and memory bounded on
-// long runs (every other frame or version dropped, the spacing doubled).
+// long runs (every other frame or version dropped, the spacing doubled);
+// the logged signals at every row, a long run's as the extremes of bins of
+// time that keep every peak.
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -45,10 +48,61 @@ TEST(RecorderTest, FramesAreAtTheDisplayRateWithTheLastRowLast) {
   ASSERT_EQ(rec.times().size(), 224u);  // rows 9 ms apart (the first at least 1/120 s) to 1.998 s, and t = 2
   EXPECT_DOUBLE_EQ(rec.times().front(), 0.0);
   EXPECT_NEAR(rec.times().back(), 2.0, 1e-12);
-  for (std::size_t f = 0; f < rec.times().size(); ++f) {
+  for (std::size_t f = 0; f < rec.times().size(); ++f)
     EXPECT_NEAR(rec.Pose(static_cast<int>(f), 0).p.z(), rec.times()[f], 1e-6);
-    EXPECT_NEAR(rec.signals()[f], rec.times()[f], 1e-6);  // the logged z
+}
+
+TEST(RecorderTest, TheSignalsAreKeptAtEveryRow) {
+  const auto r = Record(mechflow::testing::LoadXml(kDriven), {});
+  const SignalTrack& track = r->recorder->signals();
+  EXPECT_FALSE(track.binned());
+  const std::vector<double> times = track.Times(), values = track.Values();
+  ASSERT_EQ(times.size(), 2001u);  // rows 1 ms apart, not the frames' 9 ms
+  ASSERT_EQ(values.size(), 2001u);
+  for (std::size_t i = 0; i < times.size(); ++i) EXPECT_NEAR(values[i], times[i], 1e-12);  // the logged z, in double
+}
+
+// A spike of one row among many (an end stop's hit in a long run): binned,
+// the track keeps it, and the sine's crests and troughs, in at most its
+// bound of points.
+TEST(SignalTrackTest, ALongRunsBinsKeepEveryExtreme) {
+  constexpr int kRows = 100001;
+  SignalTrack track(2, 0.0, 100.0, 64);
+  for (int r = 0; r < kRows; ++r) {
+    const double t = r * 0.001, row[2] = {r == 54321 ? 7.5 : std::sin(t), r == 777 ? -3.0 : 0.0};
+    track.Add(t, row);
   }
+  ASSERT_TRUE(track.binned());
+  const std::vector<double> times = track.Times(), values = track.Values();
+  ASSERT_LE(times.size(), 64u);
+  ASSERT_GE(times.size(), 32u);
+  ASSERT_EQ(values.size(), 2 * times.size());
+  EXPECT_EQ(times.front(), 0.0);
+  EXPECT_NEAR(times.back(), 100.0, 1e-9);
+  double high = -1e9, low = 1e9, low_other = 1e9, high_sine_elsewhere = -1e9;
+  for (std::size_t p = 0; p < times.size(); ++p) {
+    if (p > 0) {
+      EXPECT_GE(times[p], times[p - 1]);
+    }
+    high = std::max(high, values[2 * p]);
+    low = std::min(low, values[2 * p]);
+    low_other = std::min(low_other, values[2 * p + 1]);
+    if (std::abs(times[p] - 54.321) > 5) high_sine_elsewhere = std::max(high_sine_elsewhere, values[2 * p]);
+  }
+  EXPECT_EQ(high, 7.5);
+  EXPECT_EQ(low_other, -3.0);
+  EXPECT_NEAR(low, -1.0, 1e-6);  // the sine's troughs and crests survive too
+  EXPECT_NEAR(high_sine_elsewhere, 1.0, 1e-6);
+}
+
+TEST(SignalTrackTest, UpToItsBoundEveryRowIsKept) {
+  SignalTrack track(1, 0.0, 1.0, 64);
+  for (int r = 0; r < 64; ++r) {
+    const double v = r % 2 ? 1.0 : -1.0;
+    track.Add(r / 63.0, &v);
+  }
+  EXPECT_FALSE(track.binned());
+  EXPECT_EQ(track.Times().size(), 64u);
 }
 
 TEST(RecorderTest, LongRunsKeepABoundedNumberOfFrames) {
