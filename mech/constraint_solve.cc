@@ -69,7 +69,9 @@ void CompactRows(ConstraintWorkspace* ws) {
     same = same && count < static_cast<int>(ws->rows.size()) && ws->rows[count] == i;
     ++count;
   }
-  if (!same || count != static_cast<int>(ws->rows.size())) {
+  // Jc's width too: with no row left from the start (a loop that constrains
+  // nothing movable) the sizes would stay those of an empty matrix
+  if (!same || count != static_cast<int>(ws->rows.size()) || ws->Jc.cols() != n) {
     ws->rows.clear();
     for (int i = 0; i < m; ++i)
       if (ws->J.row(i).cwiseAbs().maxCoeff() != 0.0) ws->rows.push_back(i);

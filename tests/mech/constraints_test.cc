@@ -116,6 +116,22 @@ TEST(ConstraintsTest, FourBarConservesEnergyWithProjection) {
   EXPECT_LT(worst / std::abs(e0), 1e-6) << "energy " << e0;
 }
 
+TEST(ConstraintsTest, ALoopThatConstrainsNothingMovableLeavesTheBodyAtRest) {
+  // Two welds of one body to the base: the second closes a loop whose
+  // Jacobian is zero. The projections and the dynamics once read a step sized
+  // for no rows at all (a crash found by fuzzing the scene builder).
+  ModelBuilder m;
+  m.AddBody(testing::Box("B", 1.0, {0.1, 0.1, 0.1}, Vec3::Zero()));
+  m.AddJoint(testing::ChainJoint("weld1", "Base0", "B", {}));
+  m.AddJoint(testing::ChainJoint("weld2", "Base0", "B", {}));
+  Mechanism mech(m.Build(), {}, {});
+  MechanismWorkspace ws(mech);
+  std::vector<double> x(mech.num_states()), xdot(mech.num_states(), 1.0);
+  InitialState(mech, {}, x, {}, &ws);
+  EvaluateMechanism(mech, 0.0, x, {}, {}, &ws, xdot);
+  for (double d : xdot) EXPECT_EQ(d, 0.0);
+}
+
 TEST(ConstraintsTest, ReactionsBalanceAHangingBodyAndACutJoint) {
   // A body hanging from two hinges on the same axis: the second closes a
   // loop with fully redundant equations. Together the reactions carry m g.
