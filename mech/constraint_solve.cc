@@ -62,19 +62,22 @@ void DampedGramSolve(ConstraintWorkspace* ws) {
 // allocate only when that set of rows changes.
 void CompactRows(ConstraintWorkspace* ws) {
   const int m = static_cast<int>(ws->J.rows()), n = static_cast<int>(ws->J.cols());
+  // (with no freedom at all, as two welds of one body, every row is zero; and
+  // a row view of a matrix of no columns is not to be taken)
+  auto nonzero = [&](int i) { return n > 0 && (ws->J.row(i).array() != 0.0).any(); };
   int count = 0;
   bool same = true;
   for (int i = 0; i < m; ++i) {
-    if (ws->J.row(i).cwiseAbs().maxCoeff() == 0.0) continue;
+    if (!nonzero(i)) continue;
     same = same && count < static_cast<int>(ws->rows.size()) && ws->rows[count] == i;
     ++count;
   }
-  // Jc's width too: with no row left from the start (a loop that constrains
-  // nothing movable) the sizes would stay those of an empty matrix
+  // Jc's width too: with no row left from the start the sizes would stay
+  // those of an empty matrix
   if (!same || count != static_cast<int>(ws->rows.size()) || ws->Jc.cols() != n) {
     ws->rows.clear();
     for (int i = 0; i < m; ++i)
-      if (ws->J.row(i).cwiseAbs().maxCoeff() != 0.0) ws->rows.push_back(i);
+      if (nonzero(i)) ws->rows.push_back(i);
     ws->Jc.resize(count, n);
     ws->X.resize(n, count);
     ws->G.resize(count, count);
@@ -153,7 +156,7 @@ void SolveConstrainedAccelerations(std::span<const double> f, std::span<double> 
   // With M~ = L L^T and X = L^-1 J^T: G = X^T X, J M~^-1 f = X^T y with
   // y = L^-1 f, and v' = L^-T (y + X lambda~). Lower halves only.
   CompactRows(ws);
-  const double jj = ws->Jc.colwise().squaredNorm().maxCoeff();
+  const double jj = n > 0 ? ws->Jc.colwise().squaredNorm().maxCoeff() : 0.0;  // (no freedom at all: welds)
   const double alpha = jj > 0.0 ? ws->M.diagonal().maxCoeff() / jj : 0.0;
   ws->M.selfadjointView<Eigen::Lower>().rankUpdate(ws->Jc.transpose(), alpha);
   ws->M_llt.compute(ws->M);

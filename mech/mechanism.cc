@@ -178,6 +178,7 @@ void CheckLoopsLeaveMotion(const Mechanism& mechanism, MechanismWorkspace* ws) {
     std::vector<int> columns;
     for (int c = 0; c < model.nv(); ++c)
       if (rows.col(c).lpNorm<Eigen::Infinity>() > 1e-12) columns.push_back(c);
+    if (columns.empty()) continue;  // it moves nothing (two welds of one body): nothing to lock
     Eigen::MatrixXd sub(rows.rows(), columns.size());
     for (std::size_t i = 0; i < columns.size(); ++i) sub.col(i) = rows.col(columns[i]);
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(sub);
