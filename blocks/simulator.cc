@@ -250,6 +250,7 @@ std::vector<ReportFigure> Simulator::figures() const {
         }
       }
     }
+    f.value *= r.signal.column_factor;  // in the report's unit (SignalRef::column_factor)
     out.push_back(std::move(f));
   }
   return out;

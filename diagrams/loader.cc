@@ -148,6 +148,39 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
   }
 }
 
+// The unit of a signal: the block's (a sensor's, an identifier's), else "".
+std::string SignalUnit(const LoadedDiagram& loaded, const blocks::SignalRef& s) {
+  const blocks::Diagram& diagram = *loaded.diagram;
+  for (int b = 0; b < diagram.num_blocks(); ++b)
+    for (int p = 0; p < diagram.block(b).num_outputs(); ++p) {
+      if (diagram.layout(b).output_offset[p] != s.offset) continue;
+      const auto* id = dynamic_cast<const scripting::IdentifierBlock*>(&diagram.block(b));
+      return id ? loaded.identifiers->unit(id->identifier()) : diagram.block(b).OutputUnit(p);
+    }
+  return "";
+}
+
+// SI per unit of a <report>'s figure: a figure is SI (the signal's quantity;
+// times it for an integral; a time for a crossing or period) and is shown in
+// its unit. A unit of another dimension than the figure's known one is bad input.
+double ReportUnitToSi(const blocks::ReportRequest& r, const std::string& own_unit, const Attribute& unit) {
+  std::string error;
+  const std::optional<Unit> wanted = ParseUnit(unit.value, &error);
+  if (!wanted) throw InputError(unit.loc.str() + ": <report> of '" + r.signal.name + "': " + error);
+  const Dimension second{{0, 0, 1}};
+  std::optional<Dimension> figure;
+  if (r.kind == blocks::ReportKind::kCrossing || r.kind == blocks::ReportKind::kPeriod) {
+    figure = second;
+  } else if (const std::optional<Unit> own = Trim(own_unit).empty() ? std::nullopt : ParseUnit(own_unit, &error)) {
+    figure = r.kind == blocks::ReportKind::kIntegral ? own->dimension.Times(second) : own->dimension;
+  }
+  if (figure && !figure->SameAs(wanted->dimension))
+    throw InputError(unit.loc.str() + ": <report> of '" + r.signal.name + "': its " +
+                     blocks::ReportKindName(r.kind) + " is " + figure->Describe() + " (" + figure->SiUnit() +
+                     "), which cannot be shown in " + wanted->text + " (" + wanted->dimension.Describe() + ")");
+  return wanted->to_si;
+}
+
 // SI per unit of a logged column: signals are SI, a column in `log_unit`
 // ("" none: the signal's own unit, SI unless it is an identifier's) shows
 // them converted. A <log> unit of another dimension than the signal's own
@@ -172,17 +205,7 @@ void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
   std::map<std::string, std::string> column_origin;
   int column = 1;
   out->units = {"s"};
-  // the unit of a signal: the block's (a sensor's, an identifier's), else ""
-  const auto unit_of = [&](const blocks::SignalRef& s) -> std::string {
-    const blocks::Diagram& diagram = *out->diagram;
-    for (int b = 0; b < diagram.num_blocks(); ++b)
-      for (int p = 0; p < diagram.block(b).num_outputs(); ++p) {
-        if (diagram.layout(b).output_offset[p] != s.offset) continue;
-        const auto* id = dynamic_cast<const scripting::IdentifierBlock*>(&diagram.block(b));
-        return id ? out->identifiers->unit(id->identifier()) : diagram.block(b).OutputUnit(p);
-      }
-    return "";
-  };
+  const auto unit_of = [&](const blocks::SignalRef& s) { return SignalUnit(*out, s); };
   auto add = [&](blocks::SignalRef s, const std::string& group, const SourceLoc& loc, const std::string& unit) {
     if (s.name == "time")
       throw InputError(loc.str() + ": a logged column named 'time', which is the name of the first column (the "
@@ -281,7 +304,10 @@ void CollectReports(const DiagramDescription& d, const Evaluator& eval, LoadedDi
     const Attribute* label = FindAttribute(r.attributes, "label");
     request.label = label ? label->value : std::string(blocks::ReportKindName(request.kind)) + " of " +
                                                request.signal.name;
-    if (const Attribute* unit = FindAttribute(r.attributes, "unit")) request.unit = unit->value;
+    if (const Attribute* unit = FindAttribute(r.attributes, "unit")) {
+      request.unit = Trim(unit->value);
+      request.signal.column_factor = 1.0 / ReportUnitToSi(request, SignalUnit(*out, request.signal), *unit);
+    }
     out->reports.push_back(std::move(request));
   }
 }

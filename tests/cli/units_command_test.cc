@@ -85,5 +85,23 @@ TEST(UnitsCommandTest, ALogUnitConvertsItsColumnAndSaysSo) {
                                      "deg (an angle)"));
 }
 
+TEST(UnitsCommandTest, AReportUnitConvertsItsFigure) {
+  const fs::path dir = Write("report", "",
+                             "<blocks><block type='constant' name='c' value='0.25'/></blocks>\n"
+                             "<solver t_end='1'/>\n<output interval='0.5'><log signal='c.y'/>"
+                             "<report final='c.y' label='length' unit='mm'/></output>\n");
+  const auto run = testing::RunMechflow("run " + (dir / "d.xml").string() + " --out " + (dir / "out").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("length: 250 mm"));
+  EXPECT_THAT(testing::ReadFile(dir / "out" / "d.report.csv"), HasSubstr("length,final,c.y,250,mm,"));
+  const fs::path bad = Write("report_bad", "",
+                             "<blocks><block type='constant' name='c' value='1'/></blocks>\n<solver t_end='1'/>\n"
+                             "<output><report period='c.y' level='0' unit='mm'/></output>\n");
+  const auto refused = testing::RunMechflow("run " + (bad / "d.xml").string() + " --out " + (bad / "out").string());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.err, HasSubstr("d.xml:6: <report> of 'c.y': its period is a time (s), which cannot be shown "
+                                     "in mm (a length)"));
+}
+
 }  // namespace
 }  // namespace mechflow
