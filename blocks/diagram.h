@@ -29,6 +29,9 @@ struct SignalRef {
   std::string name;  // "block.port"
   int offset = 0;
   int width = 1;
+  // a logged column holds the signal times this: 1 / (SI per unit) when it
+  // is logged in a unit other than SI (<log unit="deg">)
+  double column_factor = 1.0;
 };
 
 struct Connection {

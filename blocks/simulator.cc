@@ -169,7 +169,10 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
   ctx_.discrete.assign(diagram_.num_discrete_states(), 0.0);
   row_.resize(results_.num_columns());
   for (const SignalRef& s : logged_)
-    for (int i = 0; i < s.width; ++i) row_signals_.push_back(s.offset + i);
+    for (int i = 0; i < s.width; ++i) {
+      row_signals_.push_back(s.offset + i);
+      row_factors_.push_back(s.column_factor);
+    }
   frozen_y_.assign(diagram_.num_states(), 0.0);
   frozen_slope_.assign(diagram_.num_states(), 0.0);
   frozen_before_.assign(diagram_.num_states(), 0.0);
@@ -263,6 +266,7 @@ std::vector<ReportFigure> Simulator::figures() const {
         }
       }
     }
+    f.value *= r.signal.column_factor;  // in the report's unit (SignalRef::column_factor)
     out.push_back(std::move(f));
   }
   return out;
@@ -389,7 +393,8 @@ void Simulator::Record(double t, double* x, bool evaluated) {
     RefuseNonFiniteOutputs(t);
   row_[0] = t;
   const double* signals = ctx_.signals.data();
-  for (std::size_t c = 0; c < row_signals_.size(); ++c) row_[c + 1] = signals[row_signals_[c]];
+  // times 1 is exact: columns in SI keep the signal's bits
+  for (std::size_t c = 0; c < row_signals_.size(); ++c) row_[c + 1] = signals[row_signals_[c]] * row_factors_[c];
   results_.AddRow(row_.data());
   if (observer_) observer_->OnRow(t, x, ctx_);
 }

@@ -300,6 +300,7 @@ class Simulator {
   Context ctx_;
   std::vector<double> row_;
   std::vector<int> row_signals_;  // per column after time: the signal it logs
+  std::vector<double> row_factors_;  // and the factor to its column's unit (SignalRef::column_factor)
   std::vector<double> frozen_y_, frozen_before_, frozen_slope_;  // CVODE's state at the last row, scratch
   double frozen_tn_ = 0.0;                       // and its time
   bool frozen_valid_ = false;

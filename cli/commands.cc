@@ -75,8 +75,15 @@ class Progress {
 
 }  // namespace
 
+// The loader's warnings (units that disagree), each on its line; their count.
+int PrintLoadWarnings(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
+  for (const std::string& warning : loaded.warnings) out << warning << "\n";
+  return static_cast<int>(loaded.warnings.size());
+}
+
 int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
+  PrintLoadWarnings(loaded, err);
   const OutputFolder folder(args.out_dir);  // before the run: a bad --out is bad input
   blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
   sim.SetReports(loaded.reports);
@@ -164,7 +171,7 @@ int CheckCommand(const Arguments& args, std::ostream& out, std::ostream&) {
   const graphics::Scene scene = graphics::BuildScene(loaded);
   if (!scene.empty())
     out << "\ngraphics: " << scene.shapes.size() << " shapes on " << scene.bodies.size() << " moving bodies\n";
-  const int unknown = PrintUnknownGlobals(loaded, out);
+  const int unknown = PrintUnknownGlobals(loaded, out) + PrintLoadWarnings(loaded, out);
   out << "\n" << args.file << ": ok" << (unknown ? " (" + std::to_string(unknown) + " warning" + (unknown == 1 ? "" : "s") + ")" : "") << "\n";
   return 0;
 }
@@ -177,6 +184,7 @@ int GraphCommand(const Arguments& args, std::ostream& out, std::ostream&) {
 
 int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
+  PrintLoadWarnings(loaded, err);
   const blocks::Diagram& diagram = *loaded.diagram;
   if (diagram.num_states() == 0) {
     err << args.file << ": the diagram has no continuous states; nothing to analyse\n";

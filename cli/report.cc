@@ -17,6 +17,7 @@
 #include "blocks/input_file.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/suggest.h"
+#include "diagrams/units.h"
 #include "mech/mechanism.h"
 #include "scripting/global_reads.h"
 
@@ -210,6 +211,22 @@ int PrintUnknownGlobals(const diagrams::LoadedDiagram& loaded, std::ostream& out
   return count;
 }
 
+namespace {
+
+// "6 deg = 0.1047197551 rad": the value in its own unit, then in SI when
+// that unit is not SI; a value without unit as it is
+std::string IdentifierValue(const scripting::IdentifierTable& ids, int i) {
+  const double si = ids.value(i);
+  if (ids.unit(i).empty()) return Format("%.10g", si);
+  std::string text = Format("%.10g", si / ids.to_si(i)) + " " + ids.unit(i);
+  std::string error;
+  const std::optional<diagrams::Unit> unit = diagrams::ParseUnit(ids.unit(i), &error);
+  if (unit && unit->to_si != 1.0) text += " = " + Format("%.10g", si) + " " + unit->dimension.SiUnit();
+  return text;
+}
+
+}  // namespace
+
 void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
   const blocks::Diagram& d = *loaded.diagram;
   const scripting::IdentifierTable& ids = *loaded.identifiers;
@@ -219,9 +236,8 @@ void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
   if (ids.size() > 0) {
     out << "\nidentifiers:\n";
     for (int i = 0; i < ids.size(); ++i)
-      out << "  " << ids.spelling(i) << " = " << Format("%.10g", ids.value(i))
+      out << "  " << ids.spelling(i) << " = " << IdentifierValue(ids, i)
           << (ids.is_expression(i) ? "  (= " + ids.definition(i) + ")" : "")
-          << (ids.unit(i).empty() ? "" : "  [" + ids.unit(i) + "]")
           << (ids.comment(i).empty() ? "" : "  " + ids.comment(i)) << "\n";
   }
   if (!loaded.description.variants.empty()) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "diagrams/unit_check.h"
 #include "mech/errors.h"
 #include "scripting/identifiers.h"
 #include "scripting/lua_state.h"
@@ -35,7 +36,20 @@ inline std::vector<std::string> Split(const std::string& s, const char* separato
 
 class Evaluator {
  public:
-  Evaluator(scripting::LuaState* lua, const scripting::IdentifierTable* ids) : lua_(lua), ids_(ids) {}
+  // `units`: the identifiers' units, to check uses of attributes against
+  // (nullptr: no checks)
+  Evaluator(scripting::LuaState* lua, const scripting::IdentifierTable* ids, const UnitCheck* units = nullptr)
+      : lua_(lua), ids_(ids), units_(units) {}
+
+  // Checks `text` used as `attribute` of SI unit `si_unit` ("" unknown)
+  // against the units of the identifiers it names: the whole text, or each
+  // item of a list as Numbers splits it.
+  void CheckUnit(const std::string& text, bool list, const std::string& attribute, const std::string& si_unit,
+                 const std::string& what) const {
+    if (!units_ || si_unit.empty()) return;
+    if (!list) return units_->CheckAttribute(text, attribute, si_unit, what);
+    for (const auto& item : Split(text, " \t\r\n,")) units_->CheckAttribute(item, attribute, si_unit, what);
+  }
 
   double Number(const std::string& text, const std::string& what) const {
     const std::string t = Trim(text);
@@ -67,6 +81,7 @@ class Evaluator {
  private:
   scripting::LuaState* lua_;
   const scripting::IdentifierTable* ids_;
+  const UnitCheck* units_;
 };
 
 }  // namespace mechflow::diagrams

@@ -11,7 +11,10 @@
 #include "blocks/diagram_builder.h"
 #include "blocks/suggest.h"
 #include "diagrams/evaluator.h"
+#include "diagrams/attribute_units.h"
 #include "diagrams/mechanism_loader.h"
+#include "diagrams/unit_check.h"
+#include "diagrams/units.h"
 #include "diagrams/xml_reader.h"
 #include "mech/errors.h"
 #include "scripting/expression_block.h"
@@ -102,6 +105,7 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
       else throw InputError(what + " is '" + a.value + "'; expected auto, analytic or difference");
       continue;
     }
+    eval.CheckUnit(a.value, false, a.name, AttributeUnit("solver", "", a.name), what);
     const double v = eval.Number(a.value, what);
     if (a.name == "t_start") solver->t_start = v;
     else if (a.name == "t_end") solver->t_end = v;
@@ -124,6 +128,8 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
     if (!(*options.interval > 0.0) || !std::isfinite(*options.interval))
       throw InputError("--interval: expected a time > 0 s");
   } else if (const Attribute* a = FindAttribute(d.output, "interval")) {
+    eval.CheckUnit(a->value, false, "interval", AttributeUnit("output", "", "interval"),
+                   a->loc.str() + ": output setting 'interval'");
     solver->output_interval = eval.Number(a->value, a->loc.str() + ": output setting 'interval'");
     // 0 is the default's internal meaning, not a value a user writes
     if (!(solver->output_interval > 0.0) || !std::isfinite(solver->output_interval))
@@ -142,23 +148,64 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
   }
 }
 
+// The unit of a signal: the block's (a sensor's, an identifier's), else "".
+std::string SignalUnit(const LoadedDiagram& loaded, const blocks::SignalRef& s) {
+  const blocks::Diagram& diagram = *loaded.diagram;
+  for (int b = 0; b < diagram.num_blocks(); ++b)
+    for (int p = 0; p < diagram.block(b).num_outputs(); ++p) {
+      if (diagram.layout(b).output_offset[p] != s.offset) continue;
+      const auto* id = dynamic_cast<const scripting::IdentifierBlock*>(&diagram.block(b));
+      return id ? loaded.identifiers->unit(id->identifier()) : diagram.block(b).OutputUnit(p);
+    }
+  return "";
+}
+
+// SI per unit of a <report>'s figure: a figure is SI (the signal's quantity;
+// times it for an integral; a time for a crossing or period) and is shown in
+// its unit. A unit of another dimension than the figure's known one is bad input.
+double ReportUnitToSi(const blocks::ReportRequest& r, const std::string& own_unit, const Attribute& unit) {
+  std::string error;
+  const std::optional<Unit> wanted = ParseUnit(unit.value, &error);
+  if (!wanted) throw InputError(unit.loc.str() + ": <report> of '" + r.signal.name + "': " + error);
+  const Dimension second{{0, 0, 1}};
+  std::optional<Dimension> figure;
+  if (r.kind == blocks::ReportKind::kCrossing || r.kind == blocks::ReportKind::kPeriod) {
+    figure = second;
+  } else if (const std::optional<Unit> own = Trim(own_unit).empty() ? std::nullopt : ParseUnit(own_unit, &error)) {
+    figure = r.kind == blocks::ReportKind::kIntegral ? own->dimension.Times(second) : own->dimension;
+  }
+  if (figure && !figure->SameAs(wanted->dimension))
+    throw InputError(unit.loc.str() + ": <report> of '" + r.signal.name + "': its " +
+                     blocks::ReportKindName(r.kind) + " is " + figure->Describe() + " (" + figure->SiUnit() +
+                     "), which cannot be shown in " + wanted->text + " (" + wanted->dimension.Describe() + ")");
+  return wanted->to_si;
+}
+
+// SI per unit of a logged column: signals are SI, a column in `log_unit`
+// ("" none: the signal's own unit, SI unless it is an identifier's) shows
+// them converted. A <log> unit of another dimension than the signal's own
+// is bad input.
+double ColumnUnitToSi(const blocks::SignalRef& s, const std::string& log_unit, const std::string& own_unit,
+                      const SourceLoc& loc) {
+  std::string error;
+  const std::optional<Unit> own = Trim(own_unit).empty() ? std::nullopt : ParseUnit(own_unit, &error);
+  if (Trim(log_unit).empty()) return own ? own->to_si : 1.0;  // "-" and other labels: as they are
+  const std::optional<Unit> wanted = ParseUnit(log_unit, &error);
+  if (!wanted) throw InputError(loc.str() + ": <log> of '" + s.name + "': " + error);
+  if (own && !own->dimension.SameAs(wanted->dimension))
+    throw InputError(loc.str() + ": <log> of '" + s.name + "': the signal is " + own->dimension.Describe() + " (" +
+                     own->text + "), which cannot be shown in " + wanted->text + " (" + wanted->dimension.Describe() +
+                     "); give a unit of " + own->dimension.Describe() + " or none");
+  return wanted->to_si;
+}
+
 // Logged signals: <log> elements first, then the inputs of every recorder.
 void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
   std::map<std::string, int> group_index;
   std::map<std::string, std::string> column_origin;
   int column = 1;
   out->units = {"s"};
-  // the unit of a signal: the block's (a sensor's, an identifier's), else ""
-  const auto unit_of = [&](const blocks::SignalRef& s) -> std::string {
-    const blocks::Diagram& diagram = *out->diagram;
-    for (int b = 0; b < diagram.num_blocks(); ++b)
-      for (int p = 0; p < diagram.block(b).num_outputs(); ++p) {
-        if (diagram.layout(b).output_offset[p] != s.offset) continue;
-        const auto* id = dynamic_cast<const scripting::IdentifierBlock*>(&diagram.block(b));
-        return id ? out->identifiers->unit(id->identifier()) : diagram.block(b).OutputUnit(p);
-      }
-    return "";
-  };
+  const auto unit_of = [&](const blocks::SignalRef& s) { return SignalUnit(*out, s); };
   auto add = [&](blocks::SignalRef s, const std::string& group, const SourceLoc& loc, const std::string& unit) {
     if (s.name == "time")
       throw InputError(loc.str() + ": a logged column named 'time', which is the name of the first column (the "
@@ -171,9 +218,12 @@ void CollectLoggedSignals(const DiagramDescription& d, LoadedDiagram* out) {
       group_index[group] = static_cast<int>(out->groups.size());
       out->groups.push_back({group, {}, {}});
     }
+    // the column's unit: the <log>'s, else the signal's own; values in it
+    const std::string column_unit = unit.empty() ? unit_of(s) : Trim(unit);
+    s.column_factor = 1.0 / ColumnUnitToSi(s, unit, unit_of(s), loc);
     for (int i = 0; i < s.width; ++i) {
       out->groups[group_index[group]].columns.push_back(column++);
-      out->units.push_back(unit.empty() ? unit_of(s) : unit);
+      out->units.push_back(column_unit);
     }
     out->logged.push_back(std::move(s));
   };
@@ -254,7 +304,10 @@ void CollectReports(const DiagramDescription& d, const Evaluator& eval, LoadedDi
     const Attribute* label = FindAttribute(r.attributes, "label");
     request.label = label ? label->value : std::string(blocks::ReportKindName(request.kind)) + " of " +
                                                request.signal.name;
-    if (const Attribute* unit = FindAttribute(r.attributes, "unit")) request.unit = unit->value;
+    if (const Attribute* unit = FindAttribute(r.attributes, "unit")) {
+      request.unit = Trim(unit->value);
+      request.signal.column_factor = 1.0 / ReportUnitToSi(request, SignalUnit(*out, request.signal), *unit);
+    }
     out->reports.push_back(std::move(request));
   }
 }
@@ -338,6 +391,13 @@ void CollectXYPlots(const DiagramDescription& d, LoadedDiagram* out) {
   }
 }
 
+// A value for an identifier given as a number (--set, a variant) is in the
+// identifier's own unit, as the number of its definition is.
+void OverrideInOwnUnit(scripting::IdentifierTable* ids, const std::string& name, double value) {
+  const int i = ids->Find(name);
+  ids->Override(name, i >= 0 ? value * ids->to_si(i) : value);
+}
+
 // --variant NAME: the named sets of identifier values, in the order given. A
 // name is the variant's own, or "group/variant" when two groups share it.
 void ApplyVariants(const DiagramDescription& d, const std::vector<std::string>& selected,
@@ -362,7 +422,7 @@ void ApplyVariants(const DiagramDescription& d, const std::vector<std::string>& 
         throw InputError(a.loc.str() + ": variant '" + wanted + "': the value of '" + a.name +
                          "' must be a number (got '" + a.value + "')");
       try {
-        ids->Override(a.name, value);
+        OverrideInOwnUnit(ids, a.name, value);
       } catch (const InputError& e) {
         throw InputError(a.loc.str() + ": variant '" + wanted + "': " + e.what());
       }
@@ -387,12 +447,23 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
   out.identifiers = std::make_unique<scripting::IdentifierTable>();
   scripting::IdentifierTable& ids = *out.identifiers;
 
-  // identifiers: definitions, then command-line overrides, then top-to-bottom evaluation
-  for (const auto& id : d.identifiers) ids.Add(id.name, id.value, id.loc.str(), id.comment, id.unit);
+  // identifiers: definitions (numbers taken to SI from their units), then
+  // command-line overrides, then top-to-bottom evaluation
+  std::vector<std::optional<Unit>> units;
+  for (const auto& id : d.identifiers) {
+    std::optional<Unit> unit;
+    if (!Trim(id.unit).empty()) {
+      std::string error;
+      unit = ParseUnit(id.unit, &error);
+      if (!unit) throw InputError(id.loc.str() + ": identifier '" + id.name + "': " + error);
+    }
+    ids.Add(id.name, id.value, id.loc.str(), id.comment, unit ? unit->text : "", unit ? unit->to_si : 1.0);
+    units.push_back(std::move(unit));
+  }
   ApplyVariants(d, options.variants, &ids);
   for (const auto& [name, value] : options.overrides) {
     try {
-      ids.Override(name, value);
+      OverrideInOwnUnit(&ids, name, value);
     } catch (const InputError& e) {
       throw InputError("--set " + name + ": " + e.what());
     }
@@ -408,7 +479,9 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
     }
     ids.Evaluate(*out.lua);
   }
-  const Evaluator eval(out.lua.get(), out.identifiers.get());
+  const UnitCheck unit_check(out.identifiers.get(), std::move(units));
+  unit_check.CheckDefinitions();
+  const Evaluator eval(out.lua.get(), out.identifiers.get(), &unit_check);
 
   // the control script runs first: expressions may call functions it defines
   if (d.script.present()) {
@@ -499,6 +572,7 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
   if (!d.xy_plots.empty() && out.plot_file.empty())
     throw InputError(d.xy_plots.front().loc.str() + ": <xy> is a panel of the plot, and there is none: name it with "
                                                     "<output plot=\"NAME.png\">");
+  out.warnings = unit_check.warnings();
   out.description = std::move(d);
   return out;
 }

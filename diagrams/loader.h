@@ -77,7 +77,11 @@ struct LoadedDiagram {
   std::unique_ptr<scripting::ControlScript> control;
   blocks::SolverOptions solver;
   std::vector<blocks::SignalRef> logged;  // in column order; name = column label
-  std::vector<std::string> units;         // per results column, time ("s") first; "" unknown
+  // per results column, time ("s") first; "" unknown. A column's values are
+  // in its unit: the <log>'s (converted from SI), else the signal's own.
+  std::vector<std::string> units;
+  // "file:line: warning: ..." found while loading (units that disagree)
+  std::vector<std::string> warnings;
   std::vector<PlotGroup> groups;
   std::vector<blocks::ReportRequest> reports;  // <report>s, signals resolved
   std::vector<SpectrumRequest> spectra;        // <spectrum>s, columns checked

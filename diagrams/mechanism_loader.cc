@@ -10,6 +10,7 @@
 
 #include "blocks/library/mechanism_block.h"
 #include "blocks/suggest.h"
+#include "diagrams/attribute_units.h"
 #include "mech/applied_force.h"
 #include "mech/bipolar_force.h"
 #include "mech/bushing.h"
@@ -67,14 +68,22 @@ class MechanismReader {
     throw InputError(e.loc.str() + ": " + e.tag + " '" + e.Text("name") + "': " + message);
   }
   bool Has(const ElementDesc& e, const std::string& attribute) const { return e.Find(attribute) != nullptr; }
+  // The identifiers the attribute uses against its unit (attribute_units.h);
+  // "force[1]" is an element of "force".
+  void CheckUnit(const ElementDesc& e, const std::string& attribute, bool list) const {
+    const std::string base = attribute.substr(0, attribute.find('['));
+    eval_.CheckUnit(e.Text(attribute), list, base, AttributeUnit(e.tag, e.Text("type"), base), What(e, attribute));
+  }
 
   double Number(const ElementDesc& e, const std::string& attribute, double fallback) const {
     if (!Has(e, attribute)) return fallback;
     RejectInputs(e, attribute);
+    CheckUnit(e, attribute, false);
     return eval_.Number(e.Text(attribute), What(e, attribute));
   }
   std::vector<double> Numbers(const ElementDesc& e, const std::string& attribute, std::size_t count) const {
     RejectInputs(e, attribute);
+    CheckUnit(e, attribute, true);
     std::vector<double> v = eval_.Numbers(e.Text(attribute), What(e, attribute));
     if (v.size() != count)
       throw InputError(What(e, attribute) + ": expected " + std::to_string(count) + " numbers, found " +
@@ -101,6 +110,7 @@ class MechanismReader {
   mech::Parameter Param(const ElementDesc& e, const std::string& attribute, double fallback) const {
     if (!Has(e, attribute)) return fallback;
     const std::string text = e.Text(attribute);
+    CheckUnit(e, attribute, false);
     if (!MentionsInputOrTime(text)) return eval_.Number(text, What(e, attribute));
     mech::Parameter p;
     p.function = Function(text, {"t"}, What(e, attribute));
@@ -289,6 +299,7 @@ mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
           throw InputError(what + ": 'value' names an <input> of this mechanism (a signal), but a time function "
                                   "takes identifiers at their values at load and would not follow it; drive the "
                                   "motion by a signal instead (signal=\"NAME\", fed by a motion block)");
+        r.CheckUnit(et, "value", false);
         spec.function = std::make_shared<scripting::CompiledTimeFunction>(et.Text("value"), *eval.identifiers(), what);
         eval.identifiers()->NoteFixedUses(et.Text("value"), what);
       } else {
@@ -522,6 +533,7 @@ std::unique_ptr<mech::ForceElement> ReadElement(const MechanismReader& r, const 
           law);
     std::vector<Vec3> points;
     for (const auto& row : Split(e.Text("points"), ";")) {
+      r.eval().CheckUnit(row, true, "points", AttributeUnit(e.tag, type, "points"), r.What(e, "points"));
       const auto v = r.eval().Numbers(row, r.What(e, "points"));
       if (v.size() != 3) throw InputError(r.What(e, "points") + ": each point is 'x y z', separated by ';'");
       points.push_back({v[0], v[1], v[2]});

@@ -140,7 +140,7 @@ bool IsLuaName(const std::string& s) {
 }
 
 void IdentifierTable::Add(const std::string& name, const std::string& definition, const std::string& origin,
-                          const std::string& comment, const std::string& unit) {
+                          const std::string& comment, const std::string& unit, double to_si) {
   const std::string lower = ToLower(name);
   const bool keyword = Contains(kKeywords, lower);
   if (!keyword && !IsLuaName(name))
@@ -163,8 +163,15 @@ void IdentifierTable::Add(const std::string& name, const std::string& definition
   item.origin = origin;
   item.comment = comment;
   item.unit = unit;
+  item.to_si = to_si;
   if (item.definition.empty()) throw InputError(origin + ": identifier '" + name + "' has an empty value");
   item.is_expression = !ParseNumber(item.definition, &item.value);
+  if (!item.is_expression) {
+    item.value *= to_si;
+    if (!std::isfinite(item.value))
+      throw InputError(origin + ": identifier '" + name + "': " + item.definition + " " + unit +
+                       " is beyond the range of double precision in SI");
+  }
   index_.emplace(lower, size());
   items_.push_back(std::move(item));
 }

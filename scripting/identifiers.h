@@ -37,13 +37,16 @@ class IdentifierTable {
   // `origin` is "file:line" for messages. Throws InputError for a name that is
   // not a Lua name, is reserved (a Lua keyword, t, x, v, pi, a built-in
   // function or Lua library name) or is already defined (case-insensitively).
+  // Values are SI: a number is in `unit`, taken to SI by `to_si` (the
+  // loader's units, diagrams/units.h); an expression computes an SI value
+  // from SI values, and `unit` only says how to show it.
   void Add(const std::string& name, const std::string& definition, const std::string& origin,
-           const std::string& comment = "", const std::string& unit = "");
+           const std::string& comment = "", const std::string& unit = "", double to_si = 1.0);
 
-  // A value given from outside (--set): only for identifiers defined by a
-  // number, and only a finite one. Call Evaluate afterwards so derived
-  // identifiers follow. Throws InputError otherwise (unknown names get a
-  // "did you mean").
+  // A value given from outside (--set, sim:set), in SI: only for identifiers
+  // defined by a number, and only a finite one. Call Evaluate afterwards so
+  // derived identifiers follow. Throws InputError otherwise (unknown names
+  // get a "did you mean").
   void Override(const std::string& name, double value);
 
   // Evaluates every expression identifier, top to bottom, each seeing only the
@@ -100,6 +103,8 @@ class IdentifierTable {
   bool is_overridden(int i) const { return items_.at(i).overridden; }
   const std::string& comment(int i) const { return items_.at(i).comment; }
   const std::string& unit(int i) const { return items_.at(i).unit; }
+  // value in SI = value in unit(i) * to_si(i) (1 without a unit)
+  double to_si(int i) const { return items_.at(i).to_si; }
   const std::string& origin(int i) const { return items_.at(i).origin; }
 
  private:
@@ -107,7 +112,8 @@ class IdentifierTable {
     std::string name, spelling, definition, origin, comment, unit;
     bool is_expression = false;
     bool overridden = false;
-    double value = 0.0;
+    double value = 0.0;  // SI
+    double to_si = 1.0;
     mutable std::vector<std::string> fixed_uses;  // may hold repeats until fixed_uses(i) removes them
     mutable std::size_t unique_uses = 0;          // the first unique_uses entries hold none
   };

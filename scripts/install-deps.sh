@@ -9,6 +9,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake pkg-config lld
   libeigen3-dev libsundials-dev libsuitesparse-dev libtinyxml2-dev liblua5.4-dev libgtest-dev
+  libudunits2-dev libudunits2-data
   gnuplot-nox libfftw3-dev
   libopenmpi-dev openmpi-bin
   libsimbody-dev

@@ -4,3 +4,4 @@ mechflow_test(mechanism_loader_test unit tests/diagrams/mechanism_loader_test.cc
 mechflow_test(variants_test unit tests/diagrams/variants_test.cc)
 mechflow_test(bad_input_test unit tests/diagrams/bad_input_test.cc)
 mechflow_test(large_input_growth_test unit tests/diagrams/large_input_growth_test.cc)
+mechflow_test(units_test unit tests/diagrams/units_test.cc)
