@@ -28,6 +28,8 @@ AlgebraicLoop::AlgebraicLoop(std::vector<OutputNode> inner, std::vector<OutputNo
   step_.setZero(n);
   column_.setZero(n);
   newton_matrix_.setZero(n, n);
+  first_sign_.setZero(n);
+  gain_jacobian_.setZero(n, n);
   lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
 }
 
@@ -72,6 +74,38 @@ void AlgebraicLoop::UpdateJacobian(const Diagram& d, Context* ctx) const {
   lu_.compute(newton_matrix_);
   have_jacobian_ = true;
   ++stats_.jacobians;
+  // det(I - J) = (-1)^n det(J - I), from the factors at no cost
+  const double det = (num_unknowns() % 2 ? -1.0 : 1.0) * lu_.determinant();
+  if (std::isfinite(det) && (!have_gain_ || det < least_det_)) {
+    least_det_ = det;
+    gain_jacobian_ = newton_matrix_;
+    gain_jacobian_.diagonal().array() += 1.0;
+    have_gain_ = true;
+  }
+}
+
+std::string AlgebraicLoop::Diagnose(double worst, bool* no_solution) const {
+  std::ostringstream why;
+  double gain = std::numeric_limits<double>::quiet_NaN();
+  if (have_gain_) {  // the largest real eigenvalue of J: a failed solve may allocate
+    const Eigen::VectorXcd eigenvalues = gain_jacobian_.eigenvalues();
+    for (int k = 0; k < eigenvalues.size(); ++k)
+      if (std::abs(eigenvalues[k].imag()) <= 1e-12 * std::abs(eigenvalues[k]) &&
+          !(eigenvalues[k].real() <= gain))
+        gain = eigenvalues[k].real();
+  }
+  *no_solution = !sign_changed_ && gain > 1.0;
+  if (*no_solution) {
+    why << "no solution: the loop returns more than it receives. Its gain (the largest eigenvalue of dG/dz, the "
+        << "derivative of the loop map) reached " << gain << " > 1, and G(z) - z kept its sign over "
+        << kMaxIterations << " Newton iterations (largest residual " << worst << "). A self-locking wedge or brake "
+        << "does this (friction feeding its own normal force with gain mu c / b > 1): no finite force balances it; "
+        << "check the friction coefficient and the lever arms";
+  } else {
+    why << "no convergence in " << kMaxIterations << " Newton iterations (largest residual " << worst << ")";
+    if (std::isfinite(gain)) why << "; loop gain (largest eigenvalue of dG/dz) " << gain;
+  }
+  return why.str();
 }
 
 // Smallest over largest pivot of the LU factors: a cheap singularity test
@@ -92,6 +126,9 @@ void AlgebraicLoop::Solve(const Diagram& d, Context* ctx) const {
   if (!z_.allFinite()) z_.setZero();  // never evaluated yet
   Evaluate(d, ctx, z_, &g_);
   r_ = g_ - z_;
+  sign_changed_ = false;
+  have_gain_ = false;
+  for (int k = 0; k < num_unknowns(); ++k) first_sign_[k] = r_[k] > 0.0 ? 1.0 : r_[k] < 0.0 ? -1.0 : 0.0;
   for (int iteration = 0;; ++iteration) {
     double worst = 0.0;
     if (Converged(z_, r_, &worst)) {
@@ -100,9 +137,9 @@ void AlgebraicLoop::Solve(const Diagram& d, Context* ctx) const {
     }
     if (!r_.allFinite()) Fail(*ctx, "a loop signal is not finite");
     if (iteration == kMaxIterations) {
-      std::ostringstream why;
-      why << "no convergence in " << kMaxIterations << " Newton iterations (largest residual " << worst << ")";
-      Fail(*ctx, why.str());
+      bool no_solution = false;
+      const std::string why = Diagnose(worst, &no_solution);
+      Fail(*ctx, why, no_solution);
     }
     if (!have_jacobian_) UpdateJacobian(d, ctx);
     const double pivot_ratio = PivotRatio();
@@ -119,6 +156,10 @@ void AlgebraicLoop::Solve(const Diagram& d, Context* ctx) const {
     Evaluate(d, ctx, z_, &g_);
     r_ = g_ - z_;
     ++stats_.iterations;
+    for (int k = 0; k < num_unknowns(); ++k) {
+      if (first_sign_[k] == 0.0) first_sign_[k] = r_[k] > 0.0 ? 1.0 : r_[k] < 0.0 ? -1.0 : 0.0;
+      if (r_[k] * first_sign_[k] < 0.0) sign_changed_ = true;
+    }
     // A Jacobian kept from another instant may no longer fit. Broyden's
     // update makes it fit along the step just taken, for free (no extra
     // evaluations), so a slowly changing loop keeps converging in one step;
@@ -137,11 +178,12 @@ void AlgebraicLoop::Solve(const Diagram& d, Context* ctx) const {
   }
 }
 
-void AlgebraicLoop::Fail(const Context& ctx, const std::string& why) const {
+void AlgebraicLoop::Fail(const Context& ctx, const std::string& why, bool no_solution) const {
   std::ostringstream msg;
   msg << "algebraic loop" << description_ << "\ncould not be solved at t = " << ctx.time << ": " << why;
   // The next attempt (a smaller step) starts from a fresh Jacobian.
   have_jacobian_ = false;
+  if (no_solution) throw NoSolutionError(msg.str());
   throw SimulationError(msg.str());
 }
 

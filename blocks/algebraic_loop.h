@@ -18,7 +18,12 @@
 // earlier evaluation is refreshed when the residual stops shrinking fast.
 // When (J - I) is singular the loop has no unique solution (e.g. y = y + 1),
 // and a loop that does not converge in kMaxIterations ends the step with a
-// SimulationError naming its hops.
+// SimulationError naming its hops. When, over those iterations, the residual
+// kept its sign and a Jacobian showed a loop gain (largest real eigenvalue of
+// J = dG/dz; for one unknown, the derivative of the loop map) above 1, the
+// loop returns more than it receives and has no solution: a self-locking
+// wedge or brake, whose friction force feeds its own normal force with gain
+// mu c / b > 1. That is a NoSolutionError, with the gain.
 //
 // The workspace is sized when the loop is built; Solve allocates nothing.
 
@@ -29,10 +34,18 @@
 #include <Eigen/Dense>
 
 #include "blocks/block_context.h"
+#include "mech/errors.h"
 
 namespace mechflow::blocks {
 
 class Diagram;
+
+// An algebraic loop with no solution at some instant: the model's fault, not
+// the step size's, so the solver adds no hint about step sizes.
+class NoSolutionError : public SimulationError {
+ public:
+  using SimulationError::SimulationError;
+};
 
 // One output port of one block. In a diagram's schedule, `loop` >= 0 marks an
 // entry that stands for the whole algebraic loop of that index (the port is
@@ -90,7 +103,9 @@ class AlgebraicLoop {
   void UpdateJacobian(const Diagram& d, Context* ctx) const;
   double PivotRatio() const;
   bool Converged(const Eigen::VectorXd& z, const Eigen::VectorXd& r, double* worst) const;
-  [[noreturn]] void Fail(const Context& ctx, const std::string& why) const;
+  [[noreturn]] void Fail(const Context& ctx, const std::string& why, bool no_solution = false) const;
+  // After kMaxIterations: why, as words, and whether the loop has no solution.
+  std::string Diagnose(double worst, bool* no_solution) const;
 
   std::vector<OutputNode> inner_, tears_;
   std::vector<int> slot_;  // unknown k lives at signals[slot_[k]]
@@ -101,6 +116,14 @@ class AlgebraicLoop {
   mutable Eigen::MatrixXd newton_matrix_;  // J - I
   mutable Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   mutable bool have_jacobian_ = false;
+  // Over one Solve: the residual's first signs, whether one changed, and the
+  // fresh Jacobian with the smallest det(I - J) (the largest gain along some
+  // direction) -- kept for the diagnosis of a failure.
+  mutable Eigen::VectorXd first_sign_;
+  mutable bool sign_changed_ = false;
+  mutable Eigen::MatrixXd gain_jacobian_;
+  mutable double least_det_ = 0.0;
+  mutable bool have_gain_ = false;
   mutable LoopStats stats_;
 };
 

@@ -266,7 +266,7 @@ std::vector<std::string> DescribeLinearisedModes(const Diagram& diagram, const C
       }
       line << friction->name() << ": regularised near rest (v = " << v << ", v_reg = " << law.regularisation_velocity
            << "): a viscous damper of slope mu_s N / v_reg + c_visc = "
-           << law.mu_static * std::max(normal, 0.0) / law.regularisation_velocity + law.viscous
+           << law.mu_static * friction->PressingForce(normal) / law.regularisation_velocity + law.viscous
            << " per unit of v, where Coulomb friction would stick";
       lines.push_back(line.str());
     }

@@ -501,6 +501,7 @@ int Simulator::EvaluateRhs(double t, double* x, double* xdot) {
     // run stops close to the failing instant; then final, so that a model
     // that cannot go on does not creep towards it with ever smaller steps
     callback_failure_ = e.what();
+    callback_no_solution_ = dynamic_cast<const NoSolutionError*>(&e) != nullptr;
     return ++callback_failures_ > kMaxCallbackFailures ? -1 : 1;
   }
   if (d.num_states() == 0) xdot[0] = 0.0;  // the placeholder state of a stateless diagram
@@ -791,6 +792,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   stats_.newton_size = solver_->second_order ? solver_->second_order->reduced_size() : static_cast<int>(n);
   callback_failures_ = 0;
   callback_failure_.clear();
+  callback_no_solution_ = false;
   stop_requested_ = false;
   stop_reason_.clear();
   std::fill(last_fired_.begin(), last_fired_.end(), -std::numeric_limits<double>::infinity());
@@ -926,7 +928,8 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
         if (!callback_failure_.empty()) outcome.failure += ": " + callback_failure_;
         else if (!solver_message_.empty()) outcome.failure += ": " + solver_message_;
         double h = 0.0;
-        if (CVodeGetCurrentStep(mem, &h) == CV_SUCCESS && std::abs(h) <= 2.0 * MinimumStep(t0, t_end))
+        if (!(callback_no_solution_ && !callback_failure_.empty()) && CVodeGetCurrentStep(mem, &h) == CV_SUCCESS &&
+            std::abs(h) <= 2.0 * MinimumStep(t0, t_end))
           outcome.failure += " (the step size fell to the resolution of time: the solver cannot meet the tolerances "
                              "here; a singular position, a discontinuity without an event, or rtol below what the "
                              "model's round-off allows)";

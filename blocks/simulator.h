@@ -311,6 +311,7 @@ class Simulator {
   std::vector<int> roots_found_;
   std::vector<long> next_hit_;           // per periodic block: next k
   std::string callback_failure_;         // reason stored by a failed callback
+  bool callback_no_solution_ = false;    // it was an algebraic loop without a solution: no step-size hint
   int callback_failures_ = 0;
   bool linear_solver_attached_ = false;
   bool projection_attached_ = false;     // CVODE's projection counters exist only then

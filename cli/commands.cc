@@ -158,6 +158,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   PrintFigures(sim.results().figures(), outcome.ok, out);
   if (args.verbose) PrintEventLog(*loaded.diagram, sim.events(), out);
   PrintEventWarnings(*loaded.diagram, sim.events(), err);
+  PrintRunWarnings(*loaded.diagram, err);
   // 130 SIGINT, 143 SIGTERM, 129 SIGHUP, as shells report them; after the
   // run, a plot or a <spectrum> stopped by a signal ends the command alike
   const int signal = outcome.interrupted ? outcome.interrupted : plot_stopped_by ? plot_stopped_by : *InterruptFlag();

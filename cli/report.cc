@@ -15,6 +15,7 @@
 #include "blocks/csv.h"
 #include "blocks/excerpt.h"
 #include "blocks/input_file.h"
+#include "blocks/library/friction_from_normal_force.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/suggest.h"
 #include "diagrams/units.h"
@@ -175,6 +176,13 @@ void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks
           << block->name() << "." << m.element(i).name() << ": " << warning << "\n";
     }
   }
+}
+
+void PrintRunWarnings(const blocks::Diagram& diagram, std::ostream& out) {
+  for (int b = 0; b < diagram.num_blocks(); ++b)
+    if (const auto* friction = dynamic_cast<const blocks::FrictionFromNormalForceBlock*>(&diagram.block(b)))
+      if (const std::string warning = friction->PullingWarning(); !warning.empty())
+        out << "warning: " << diagram.origin(b) << ": " << warning << "\n";
 }
 
 int PrintUnknownGlobals(const diagrams::LoadedDiagram& loaded, std::ostream& out) {

@@ -37,6 +37,10 @@ void PrintEventLog(const blocks::Diagram& diagram, const std::vector<blocks::Eve
 void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks::EventRecord>& events,
                         std::ostream& out);
 
+// After a run: what blocks saw that the model may not mean (a unilateral
+// friction block fed a pulling normal force), one line per block.
+void PrintRunWarnings(const blocks::Diagram& diagram, std::ostream& out);
+
 // What the control script did: callbacks run, and per identifier it set the
 // number of changes with the first and last (time, value).
 void PrintScriptChanges(const scripting::ControlScript& script, const scripting::IdentifierTable& identifiers,

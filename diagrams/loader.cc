@@ -486,7 +486,7 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
   // the control script runs first: expressions may call functions it defines
   if (d.script.present()) {
     std::string error;
-    if (!out.lua->Run(d.script.code, d.script.chunk_name, &error))
+    if (!scripting::RunControlScript(*out.lua, ids, d.script.code, d.script.chunk_name, &error))
       throw InputError(d.script.loc.str() + ": control script: " + error);
   }
 

@@ -13,6 +13,7 @@
 #include "scripting/identifier_bindings.h"
 #include "scripting/identifier_block.h"
 #include "scripting/identifiers.h"
+#include "scripting/lua_guards.h"
 #include "scripting/lua_state.h"
 
 namespace mechflow::scripting {
@@ -30,7 +31,65 @@ std::string Number(double v) {
   return text;
 }
 
+// Lua allows a function 200 locals; the prologue's binder takes one, and the
+// script needs some of its own.
+constexpr std::size_t kMaxNamedIdentifiers = 150;
+
+constexpr const char* kBinderKey = "mechflow.control_script_binder";
+
 }  // namespace
+
+bool RunControlScript(LuaState& lua, const IdentifierTable& identifiers, const std::string& code,
+                      const std::string& chunk_name, std::string* error) {
+  const std::string script = chunk_name.substr(chunk_name[0] == '@' || chunk_name[0] == '=' ? 1 : 0);
+  if (std::string problem = CompileCostProblem(code); !problem.empty()) {
+    *error = script + ": " + problem;
+    return false;
+  }
+  const IdentifierChunk chunk = IdentifiersAsUpvalues(code, identifiers);
+  if (chunk.identifiers.size() > kMaxNamedIdentifiers) {
+    *error = script + ": the script names " + std::to_string(chunk.identifiers.size()) +
+             " identifiers; it may read at most " + std::to_string(kMaxNamedIdentifiers) +
+             " by name: read the others with sim:get('name')";
+    return false;
+  }
+  lua_State* L = lua.get();
+  const int top = lua_gettop(L);
+  if (!lua_checkstack(L, static_cast<int>(chunk.identifiers.size()) + 4)) {
+    *error = script + ": too many identifiers";
+    return false;
+  }
+  const int status = luaL_loadbufferx(L, chunk.code.data(), chunk.code.size(), chunk_name.c_str(), "t");
+  if (status != LUA_OK) {
+    *error = lua.ErrorText(status);
+    lua_settop(L, top);
+    // an assignment to an identifier: say what does change one
+    const std::string marker = "attempt to assign to const variable '";
+    if (const std::size_t at = error->find(marker); at != std::string::npos) {
+      const std::size_t start = at + marker.size(), end = error->find('\'', start);
+      const std::string name = error->substr(start, end - start);
+      if (const int id = identifiers.FindLowerCase(name); id >= 0)
+        *error += " ('" + identifiers.spelling(id) + "' is an identifier, which the script reads but cannot assign: " +
+                  "change it with sim:set('" + identifiers.spelling(id) + "', value), or declare a local of " +
+                  "another name)";
+    }
+    return false;
+  }
+  lua_newtable(L);  // the box the prologue puts the binder in
+  lua_insert(L, top + 1);
+  lua_pushvalue(L, top + 1);
+  for (const std::string& name : chunk.identifiers) lua_pushnumber(L, identifiers.Value(name));
+  if (!lua.Call(1 + static_cast<int>(chunk.identifiers.size()), 0, error)) {
+    lua_settop(L, top);
+    return false;
+  }
+  if (lua_rawgeti(L, top + 1, 1) == LUA_TFUNCTION) {
+    BindIdentifiers(L, -1);
+    lua_setfield(L, LUA_REGISTRYINDEX, kBinderKey);  // kept alive: the bindings hold it weakly
+  }
+  lua_settop(L, top);
+  return true;
+}
 
 ControlScript::ControlScript(LuaState& lua, IdentifierTable& identifiers, const blocks::Diagram& diagram,
                              std::string script_name)

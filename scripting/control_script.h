@@ -11,6 +11,10 @@
 //   sim:every(period, fn [, offset])   fn(sim) at t0 + offset + k period,
 //                                      k = 0, 1, ...; t0 is the time of the call;
 //                                      the integrator stops at exactly those times.
+// The script reads identifiers by name (any case), as Lua blocks do: `Ts` is
+// the identifier's current value, after any sim:set (RunControlScript). It
+// cannot assign one (`Ts = 1` is refused at load; sim:set changes it), but
+// a local of that name may hide it.
 // The `sim` object:
 //   sim.t               current time [s]
 //   sim:get(name [, i]) a signal "block.port" (i: 1-based element of a vector
@@ -49,6 +53,14 @@ namespace mechflow::scripting {
 class CompiledExpression;
 class IdentifierTable;
 class LuaState;
+
+// Runs a control script's code once in `lua`, as the loader does before
+// making its ControlScript: identifiers the code names are upvalues bound to
+// the identifier table (IdentifiersAsUpvalues in identifier_bindings.h), so
+// they read their current values and cost no name look-up. Returns false
+// with the message in *error on a syntax or run-time error.
+bool RunControlScript(LuaState& lua, const IdentifierTable& identifiers, const std::string& code,
+                      const std::string& chunk_name, std::string* error);
 
 class ControlScript final : public blocks::RunControl {
  public:

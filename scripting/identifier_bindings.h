@@ -11,6 +11,10 @@
 //
 // Upvalue names are the identifiers' canonical (lower-case) names, so a
 // function registered here must use no other upvalue with such a name.
+//
+// A whole chunk (a control script) is given the same reads by
+// IdentifiersAsUpvalues: its identifier names become locals of the chunk,
+// set from the chunk's arguments, which every function of the chunk shares.
 
 #include <string>
 #include <vector>
@@ -20,6 +24,24 @@ struct lua_State;
 namespace mechflow::scripting {
 
 class IdentifierTable;
+
+// A chunk that reads identifiers by name, rewritten to read them as upvalues.
+struct IdentifierChunk {
+  // Line 1 starts with the prologue
+  //   local __mechflow_binder, ts <const>, ... = ...; __mechflow_binder[1] =
+  //   function() return ts, ... end; __mechflow_binder = nil;
+  // and goes on with the code, so every line keeps its number. Identifier
+  // names (any case; not fields, table keys or labels) are lower-case.
+  // Called with a table (the box) and one value per identifier, it stores in
+  // box[1] a closure over every identifier: bind that one (BindIdentifiers).
+  std::string code;
+  std::vector<std::string> identifiers;  // lower-case, each once, by first use
+};
+
+// `<const>`: the chunk cannot assign an identifier (Lua refuses to compile
+// `Ts = 1` with "attempt to assign to const variable 'ts'"), so it cannot
+// seem to change one without sim:set; a local of the same name still may.
+IdentifierChunk IdentifiersAsUpvalues(const std::string& code, const IdentifierTable& identifiers);
 
 // Registers the function at stack index `index` (unchanged on the stack).
 void BindIdentifiers(lua_State* L, int index);

@@ -3,19 +3,33 @@
 // sliding velocity v, by the regularised Stribeck law of mech/friction_law.h:
 //
 //   mu(v) = mu_d + (mu_s - mu_d) exp(-(|v| / v_s)^2)
-//   F     = -( mu(v) max(N, 0) tanh(v / v_reg) + c_visc v )
+//   F     = -( mu(v) n(N) tanh(v / v_reg) + c_visc v )
+//   n(N)  = max(N, 0)  normal="unilateral" (default): a contact that can
+//                      only push; a pulling N < 0 means it lifted off
+//         = |N|        normal="bilateral": a guide that holds the body both
+//                      ways (a slot, a rail), pressed whichever way N acts
 //
-//   ports:   inputs N (normal force [N]; a pulling N < 0 gives no dry
-//            friction) and v (sliding velocity [m/s]); outputs F (friction
-//            force [N], opposing v; both inputs feed it directly) and
-//            sliding = mu_d max(N, 0) (the size of the sliding friction, for
-//            a friction element with stick/slip memory, whose own modes
-//            decide its direction and sticking; fed by N only); all width 1
-//   params:  mu_static mu_s, mu_dynamic mu_d (required, >= 0),
+//   ports:   inputs N (normal force [N]) and v (sliding velocity [m/s]);
+//            outputs F (friction force [N], opposing v; both inputs feed
+//            it directly) and sliding = mu_d n(N) (the size of the sliding
+//            friction, for a friction element with stick/slip memory, whose
+//            own modes decide its direction and sticking; fed by N only);
+//            all width 1
+//   params:  normal ("unilateral" or "bilateral"), mu_static mu_s,
+//            mu_dynamic mu_d (required, >= 0),
 //            stribeck_velocity v_s [m/s] (0.01, > 0), viscous c_visc [N s/m]
 //            (0, >= 0), regularisation_velocity v_reg [m/s] (1e-4, > 0)
 // The tanh regularisation makes F smooth (no events, no modes), at the price
 // of creep: a held load below mu_s N slides at about v_reg atanh(F / (mu_s N)).
+//
+// A unilateral block fed a pulling N gives no friction, which is right for a
+// contact that lifted off and wrong for a guide (a lever's pivot slot fed its
+// reaction): the block keeps the largest pull it computed with and when,
+// and PullingWarning() says so after the run, once. A pull below 1e-6 of the
+// largest |N| is rounding about a zero (an abs block switching sign within a
+// step), not a pull.
+
+#include <string>
 
 #include "blocks/block.h"
 #include "mech/friction_law.h"
@@ -24,14 +38,25 @@ namespace mechflow::blocks {
 
 class FrictionFromNormalForceBlock : public Block {
  public:
-  FrictionFromNormalForceBlock(const std::string& name, const mech::FrictionLawParams& law);
+  FrictionFromNormalForceBlock(const std::string& name, const mech::FrictionLawParams& law, bool bilateral);
   const mech::FrictionLawParams& law() const { return law_; }
+  bool bilateral() const { return bilateral_; }
+  // The normal force the friction is proportional to: max(N, 0) or |N|.
+  double PressingForce(double normal) const;
+  // After a run: "" when a unilateral block never computed with a pulling
+  // N, otherwise a sentence with the largest pull and when it was.
+  std::string PullingWarning() const;
 
  protected:
+  void DoInitialize(const BlockContext& ctx) const override;
   void DoCalcOutput(int port, const BlockContext& ctx) const override;
 
  private:
   mech::FrictionLawParams law_;
+  bool bilateral_ = false;
+  // The run's largest pull (most negative N) and when, and the largest |N|.
+  // Mutable: seen while outputs are computed; a diagram is run by one thread.
+  mutable double largest_pull_ = 0.0, largest_pull_time_ = 0.0, largest_size_ = 0.0;
 };
 
 }  // namespace mechflow::blocks

@@ -324,8 +324,12 @@ void RegisterDynamic(BlockRegistry* r) {
 
 void RegisterFriction(BlockRegistry* r) {
   Add(r, "friction_from_normal_force",
-      "F = -(mu(v) max(N, 0) tanh(v / v_reg) + c_visc v), mu(v) = mu_d + (mu_s - mu_d) exp(-(|v| / v_s)^2)",
-      {{"mu_static", K::kNumber, true, "", "static friction coefficient mu_s [-], >= 0"},
+      "F = -(mu(v) n(N) tanh(v / v_reg) + c_visc v), mu(v) = mu_d + (mu_s - mu_d) exp(-(|v| / v_s)^2), "
+      "n(N) = max(N, 0) (unilateral) or |N| (bilateral)",
+      {{"normal", K::kText, false, "unilateral",
+        "unilateral: a contact that only pushes (a pulling N gives no friction, and a warning); bilateral: a guide "
+        "holding the body both ways (friction from |N|)"},
+       {"mu_static", K::kNumber, true, "", "static friction coefficient mu_s [-], >= 0"},
        {"mu_dynamic", K::kNumber, true, "", "dynamic (sliding) friction coefficient mu_d [-], >= 0"},
        {"stribeck_velocity", K::kNumber, false, "0.01", "Stribeck velocity v_s [m/s], > 0"},
        {"viscous", K::kNumber, false, "0", "viscous coefficient c_visc [N s/m], >= 0"},
@@ -339,7 +343,11 @@ void RegisterFriction(BlockRegistry* r) {
         law.regularisation_velocity = Finite(p, "regularisation_velocity");
         const std::string problem = mech::CheckFrictionLawParams(law);
         if (!problem.empty()) throw InputError(problem);
-        return std::make_unique<FrictionFromNormalForceBlock>(n, law);
+        const std::string normal = p.Text("normal");
+        if (normal != "unilateral" && normal != "bilateral")
+          throw InputError("normal must be \"unilateral\" (a contact that only pushes: max(N, 0)) or \"bilateral\" "
+                           "(a guide holding the body both ways: |N|), not \"" + normal + "\"");
+        return std::make_unique<FrictionFromNormalForceBlock>(n, law, normal == "bilateral");
       });
 }
 

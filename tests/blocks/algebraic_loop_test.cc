@@ -135,5 +135,38 @@ TEST(AlgebraicLoopTest, DivergingLoopFailsClearly) {
   EXPECT_THAT(run.outcome.failure, AllOf(HasSubstr("algebraic loop through"), HasSubstr("could not be solved")));
 }
 
+// A brake shoe pressed by P, whose lining's friction F = mu N (sliding at
+// v = 1 m/s) pulls it further on through lever arms c / b: N = P + (c / b) mu N.
+// The loop map's derivative is mu c / b: below 1, N = P / (1 - mu c / b); above
+// (self-locking), no N balances it. P starts to grow at t = 0.5.
+testing::Run Brake(double c_over_b) {
+  return Simulate(Blocks(MakeBlock("ramp", "P", {{"slope", "100"}, {"start", "0.5"}}),
+                         MakeBlock("constant", "v", {{"value", "1"}}),
+                         MakeBlock("friction_from_normal_force", "lining", {{"mu_static", "0.5"}, {"mu_dynamic", "0.5"}}),
+                         MakeBlock("gain", "arm", {{"k", Num(-c_over_b)}}), MakeBlock("sum", "N"),
+                         MakeBlock("integrator", "work")),
+                  {{"P.y", "N.u1"}, {"arm.y", "N.u2"}, {"N.y", "lining.N"}, {"v.y", "lining.v"},
+                   {"lining.F", "arm.u"}, {"N.y", "work.u"}},
+                  {"P.y", "N.y"}, Options(1.0, 0.1));
+}
+
+TEST(AlgebraicLoopTest, ASelfLockingBrakeHasNoSolutionAndSaysItsGain) {
+  const testing::Run holds = Brake(1.0);  // gain 0.5
+  ASSERT_TRUE(holds.outcome.ok) << holds.outcome.failure;
+  const auto p = holds.Column("P.y"), n = holds.Column("N.y");
+  for (std::size_t i = 0; i < n.size(); ++i) EXPECT_NEAR(n[i], 2 * p[i], 1e-8 * (1 + p[i]));
+
+  const testing::Run locks = Brake(3.0);  // gain 1.5 from t = 0.5 on
+  ASSERT_FALSE(locks.outcome.ok);
+  EXPECT_THAT(locks.outcome.failure,
+              AllOf(HasSubstr("algebraic loop through"), HasSubstr("lining.F -> arm.u (feeds arm.y directly)"),
+                    HasSubstr("could not be solved at t = 0.5"), HasSubstr("no solution: the loop returns more"),
+                    HasSubstr("reached 1.5 > 1")));
+  EXPECT_THAT(locks.outcome.failure, ::testing::Not(HasSubstr("step size")));
+  EXPECT_THAT(locks.outcome.failure, ::testing::Not(HasSubstr("no convergence")));
+  EXPECT_EQ(locks.Column("N.y").size(), 6u);  // the rows up to t = 0.5 stand
+  EXPECT_NEAR(locks.outcome.t_reached, 0.5, 1e-6);
+}
+
 }  // namespace
 }  // namespace mechflow::blocks::testing

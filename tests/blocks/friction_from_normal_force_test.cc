@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "blocks/library/friction_from_normal_force.h"
 
 #include "tests/blocks/block_test_util.h"
 
@@ -95,6 +98,38 @@ TEST(FrictionFromNormalForceTest, SlidingForceIsMuDynamicTimesN) {
   for (std::size_t i = 0; i < n.size(); ++i) EXPECT_NEAR(s[i], 0.3 * std::max(n[i], 0.0), 1e-12);
 }
 
+// normal="bilateral": a guide pressed either way, friction from |N|; a
+// unilateral block fed a pulling N says so after the run (the largest pull and
+// when), and does not for rounding about a zero.
+TEST(FrictionFromNormalForceTest, TheNormalRuleIsAChoiceAndAPullIsReported) {
+  const auto run = [](const char* normal, const char* offset) {
+    return Simulate(Blocks(MakeBlock("friction_from_normal_force", "f",
+                                     {{"mu_static", "0.5"}, {"mu_dynamic", "0.3"}, {"normal", normal}}),
+                           MakeBlock("sine", "n", {{"amplitude", "10"}, {"frequency", "1"}, {"bias", offset}}),
+                           MakeBlock("constant", "v", {{"value", "2"}})),
+                    {{"n.y", "f.N"}, {"v.y", "f.v"}}, {"n.y", "f.sliding", "f.F"}, Options(1.0, 0.01));
+  };
+  const testing::Run bilateral = run("bilateral", "0");
+  ASSERT_TRUE(bilateral.outcome.ok) << bilateral.outcome.failure;
+  const auto n = bilateral.Column("n.y"), s = bilateral.Column("f.sliding"), f = bilateral.Column("f.F");
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    EXPECT_NEAR(s[i], 0.3 * std::abs(n[i]), 1e-12);
+    EXPECT_NEAR(f[i], -0.3 * std::abs(n[i]), 1e-9);  // v = 2 m/s: mu_d, tanh = 1
+  }
+  const auto& pressed_both_ways = dynamic_cast<const FrictionFromNormalForceBlock&>(bilateral.diagram->block(0));
+  EXPECT_EQ(pressed_both_ways.PullingWarning(), "");
+
+  const testing::Run unilateral = run("unilateral", "0");
+  const auto& pulled = dynamic_cast<const FrictionFromNormalForceBlock&>(unilateral.diagram->block(0));
+  EXPECT_EQ(pulled.PullingWarning().rfind("block 'f' (friction_from_normal_force, normal=\"unilateral\") receives a "
+                                          "pulling normal force (N = -10 N at t = 0.75 s, the largest pull)", 0), 0u)
+      << pulled.PullingWarning();
+  EXPECT_THAT(pulled.PullingWarning(), ::testing::HasSubstr("set normal=\"bilateral\""));
+  // N = 10 (1 + sin) >= 0 touches 0 at t = 0.75: at most rounding below it
+  const testing::Run touching = run("unilateral", "10");
+  EXPECT_EQ(dynamic_cast<const FrictionFromNormalForceBlock&>(touching.diagram->block(0)).PullingWarning(), "");
+}
+
 TEST(FrictionFromNormalForceTest, FactoryRejectsUnusableParameters) {
   const testing::ParamTexts ok = {{"mu_static", "0.5"}, {"mu_dynamic", "0.3"}};
   auto with = [&](const char* name, const char* value) {
@@ -108,6 +143,9 @@ TEST(FrictionFromNormalForceTest, FactoryRejectsUnusableParameters) {
   EXPECT_EQ(with("viscous", "-2"), "viscous must be >= 0");
   EXPECT_EQ(with("regularisation_velocity", "0"), "regularisation_velocity must be > 0");
   EXPECT_EQ(with("viscous", "inf"), "'viscous' must be a finite number, got inf");
+  EXPECT_EQ(with("normal", "both"),
+            "normal must be \"unilateral\" (a contact that only pushes: max(N, 0)) or \"bilateral\" (a guide "
+            "holding the body both ways: |N|), not \"both\"");
 }
 
 }  // namespace

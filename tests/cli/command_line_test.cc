@@ -182,6 +182,39 @@ TEST(CommandLineTest, CheckNamesGlobalsNothingDefines) {
   EXPECT_THAT(run.out, HasSubstr(": ok (2 warnings)"));
 }
 
+// check and run agree on what a control script reads: an identifier is read
+// by name (no warning, and the run sees it), a name nothing defines is nil
+// (a warning, and the run fails where it is read).
+TEST(CommandLineTest, CheckAndRunAgreeOnTheNamesAControlScriptReads) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "check_script_names";
+  std::filesystem::create_directories(dir);
+  const auto write = [&](const std::string& read) {
+    std::ofstream(dir / "d.xml") << "<diagram name='d'>\n"
+                                    "<identifiers><identifier name='Ts' value='0.25'/>"
+                                    "<identifier name='u' value='0'/></identifiers>\n"
+                                    "<blocks><block type='identifier' name='i' identifier='u'/></blocks>\n"
+                                    "<script>\n"
+                                    "function init(sim) sim:every(" + read + ", function(sim) sim:set('u', sim.t) end) end\n"
+                                    "</script>\n"
+                                    "<solver t_end='1'/><output interval='0.5'><log signal='i.y'/></output></diagram>\n";
+  };
+  const std::string file = (dir / "d.xml").string();
+  write("Ts");
+  const auto check = testing::RunMechflow("check " + file);
+  EXPECT_EQ(check.exit_code, 0) << check.err;
+  EXPECT_THAT(check.out, ::testing::Not(HasSubstr("warning")));
+  const auto run = testing::RunMechflow("run " + file + " --out " + (dir / "out").string());
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+
+  write("Tss");
+  const auto misspelt = testing::RunMechflow("check " + file);
+  EXPECT_THAT(misspelt.out, HasSubstr(file + ":5: warning: 'Tss' is read as a global but is no identifier"));
+  EXPECT_THAT(misspelt.out, HasSubstr(": ok (1 warning)"));
+  const auto fails = testing::RunMechflow("run " + file + " --out " + (dir / "out").string());
+  EXPECT_EQ(fails.exit_code, 1);
+  EXPECT_THAT(fails.err, HasSubstr("number expected, got nil"));
+}
+
 // --verbose names what every block's event meant, not only mechanisms'.
 TEST(CommandLineTest, VerboseNamesBlockEvents) {
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "verbose_blocks";

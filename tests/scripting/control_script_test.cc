@@ -279,5 +279,50 @@ TEST(ControlScriptTest, ASetThatBreaksTheModelFailsTheCallback) {
   EXPECT_EQ(run.sim->results().num_rows(), 5);
 }
 
+TEST(ControlScriptTest, IdentifiersAreReadByNameWithTheirCurrentValues) {
+  // the period of sim:every is an identifier read by name (any case); after a
+  // set of u, and of a (b = 2 a follows), the script sees the new values
+  std::string xml = Diagram(R"(<![CDATA[
+    seen_at_load = B
+    function init(sim)
+      assert(u == 0 and b == 2, "the loaded values: " .. tostring(u) .. ", " .. tostring(b))
+      samples = 0
+      sim:every(Ts, function(sim) samples = samples + 1 end)
+      sim:set("u", 4)
+      assert(U == 4 and ts == 0.25, "u after sim:set: " .. tostring(U))
+      sim:set("a", 5)
+      assert(b == 10 and A == 5, "b follows a: " .. tostring(b))
+    end
+    function finish(sim)
+      assert(seen_at_load == 2, "b at load")
+      assert(samples == 5, "samples: " .. tostring(samples))  -- 0, 0.25, ..., 1
+    end]]>)");
+  xml.replace(xml.find("<identifier name=\"k\""), 0, "<identifier name=\"Ts\" value=\"0.25\"/>");
+  auto run = RunXml(xml);
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  EXPECT_NEAR(run.Column("x").back(), 4.0, 1e-9);  // x' = u = 4
+  // a second run starts from the loaded values, in the script too
+  run.outcome = run.sim->Run();
+  EXPECT_TRUE(run.outcome.ok) << run.outcome.failure;
+}
+
+TEST(ControlScriptTest, AnIdentifierCannotBeAssignedButALocalMayHideIt) {
+  const std::string xml = Diagram("\n    function step(sim) K = 4 end");
+  const int line = 1 + static_cast<int>(std::count(xml.begin(), xml.begin() + xml.find("K = 4"), '\n'));
+  const std::string error = InputErrorOf([&] { LoadXml(xml); });
+  EXPECT_THAT(error, HasSubstr("test.xml:" + std::to_string(line) + ": attempt to assign to const variable 'k'"));
+  EXPECT_THAT(error, HasSubstr("change it with sim:set('k', value)"));
+  // a local of the name, a field and a table key are not the identifier
+  auto run = RunXml(Diagram(R"(
+    local k = 7
+    function init(sim)
+      local t = { a = 1 }
+      t.b = 2
+      assert(k == 7 and t.a == 1 and t.b == 2 and b == 2)
+      k = 8
+    end)"));
+  EXPECT_TRUE(run.outcome.ok) << run.outcome.failure;
+}
+
 }  // namespace
 }  // namespace mechflow::scripting
