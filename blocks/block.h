@@ -149,6 +149,11 @@ class Block {
   // trigger). Returns true when a mode or state changed, so outputs must be
   // recomputed.
   bool UpdateModes(const BlockContext& ctx) const { return DoUpdateModes(ctx); }
+  // A static equilibrium search (blocks/linearization.h) at a candidate
+  // state at rest, inputs valid: make modes agree with it as a state at rest
+  // has them (a sliding friction element sticks). Returns true when a mode or
+  // state changed. By default UpdateModes.
+  bool UpdateModesAtRest(const BlockContext& ctx) const { return DoUpdateModesAtRest(ctx); }
   // Blocks whose states live on a manifold (closed loops, unit quaternions)
   // declare a projection (DeclareProjection). After every step it takes, the
   // solver asks each of them for `correction`: this block's slice of the
@@ -219,6 +224,7 @@ class Block {
   virtual void DoZeroCrossing(int, int, const BlockContext&) const {}
   virtual void DoSampleHit(const BlockContext&) const {}
   virtual bool DoUpdateModes(const BlockContext&) const { return false; }
+  virtual bool DoUpdateModesAtRest(const BlockContext& ctx) const { return DoUpdateModes(ctx); }
   virtual void DoProject(const BlockContext&, std::span<double>, std::span<double>) const {}
 
  private:

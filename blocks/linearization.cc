@@ -1,11 +1,5 @@
 #include "blocks/linearization.h"
 
-#include "mech/mechanism.h"
-
-#include "blocks/library/friction_from_normal_force.h"
-
-#include "blocks/library/mechanism_block.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -108,8 +102,26 @@ Eigen::MatrixXd StateJacobian(const Diagram& diagram, Context* ctx, const std::v
   return A;
 }
 
-EquilibriumResult FindEquilibrium(const Diagram& diagram, Context* ctx, std::vector<double>* x, double tolerance,
-                                  int max_iterations) {
+namespace {
+
+// The Newton step: s with A s = f, taken in the range of A. Where A is
+// singular the part of x that x' cannot change (an invariant, such as a stick
+// spring's deflection less its coordinate's travel) stays as it is, as a
+// damped transient keeps it; where range and null space overlap (a free,
+// undamped coordinate) the least-norm choice leaves that direction alone.
+Eigen::VectorXd NewtonStep(const Eigen::MatrixXd& A, const std::vector<double>& f) {
+  const Eigen::Map<const Eigen::VectorXd> rates(f.data(), A.rows());
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
+  if (cod.rank() == A.cols()) return cod.solve(rates);
+  if (cod.rank() == 0) return Eigen::VectorXd::Zero(A.cols());  // x' depends on no state: nothing to step
+  const Eigen::MatrixXd range = Eigen::MatrixXd(cod.householderQ()).leftCols(cod.rank());
+  return range * Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A * range).solve(rates);
+}
+
+// Damped Newton on x'(x) = 0 in the current modes (see FindEquilibrium);
+// adds its steps to *steps. `context` ends the failure messages.
+double SolveInModes(const Diagram& diagram, Context* ctx, std::vector<double>* x, double tolerance,
+                    int max_iterations, int* steps, const std::string& context) {
   const int n = diagram.num_states();
   constexpr int kMaxHalvings = 10;
   std::vector<double> f, trial, f_trial;
@@ -117,14 +129,15 @@ EquilibriumResult FindEquilibrium(const Diagram& diagram, Context* ctx, std::vec
   if (const int bad = FirstNonFinite(f, n); bad >= 0) {
     EvaluateAt(diagram, ctx, *x);
     throw SimulationError("no static equilibrium found: the rate of state '" + StateName(diagram, bad) +
-                          "' is not finite at the initial state");
+                          "' is not finite at the " + (context.empty() ? "initial state" : "state reached") +
+                          context);
   }
-  auto failure = [&](const std::string& what, int steps) {
+  auto failure = [&](const std::string& what, int taken) {
     const int worst = LargestEntry(f, n);
     std::ostringstream out;
-    out << "no static equilibrium found: " << what << " after " << steps << " Newton step"
-        << (steps == 1 ? "" : "s") << "; the largest rate is " << f[worst] << " (state '"
-        << StateName(diagram, worst) << "'). Is the diagram driven, or free to drift at a constant rate?";
+    out << "no static equilibrium found: " << what << " after " << taken << " Newton step"
+        << (taken == 1 ? "" : "s") << "; the largest rate is " << f[worst] << " (state '"
+        << StateName(diagram, worst) << "'). Is the diagram driven, or free to drift at a constant rate?" << context;
     return SimulationError(out.str());
   };
   for (int it = 0;; ++it) {
@@ -136,12 +149,13 @@ EquilibriumResult FindEquilibrium(const Diagram& diagram, Context* ctx, std::vec
       for (int j = 0; j < n; ++j) terms += std::abs(A(i, j)) * std::abs((*x)[j]);
       converged = std::abs(f[i]) <= tolerance * terms;
     }
-    if (converged) return {it, std::abs(f[LargestEntry(f, n)])};
+    if (converged) {
+      *steps += it;
+      return std::abs(f[LargestEntry(f, n)]);
+    }
     if (it == max_iterations) throw failure("not converged", it);  // the context is at x
 
-    // least-norm Newton step: neutral directions (free coordinates) stay put
-    const Eigen::VectorXd step =
-        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A).solve(Eigen::Map<Eigen::VectorXd>(f.data(), n));
+    const Eigen::VectorXd step = NewtonStep(A, f);
     // damping: halve the step until |f| decreases enough
     const double norm = Norm2(f, n);
     double alpha = 1.0;
@@ -160,6 +174,91 @@ EquilibriumResult FindEquilibrium(const Diagram& diagram, Context* ctx, std::vec
     std::swap(f, f_trial);
     ctx->x = x->data();
   }
+}
+
+// "block.element" for a mechanism element's mode, the block's name for any
+// other discrete state; what its modes are taken as, when it says.
+struct SwitchingElement {
+  std::string name;
+  std::string taken_as;
+};
+SwitchingElement OwnerOfDiscrete(const Diagram& diagram, const Context& ctx, int index) {
+  for (int b = 0; b < diagram.num_blocks(); ++b) {
+    const BlockLayout& layout = diagram.layout(b);
+    if (index < layout.first_discrete || index >= layout.first_discrete + layout.num_discrete) continue;
+    const auto* block = dynamic_cast<const MechanismBlock*>(&diagram.block(b));
+    if (!block) return {diagram.block(b).name(), ""};
+    const mech::Mechanism& m = block->mechanism();
+    for (int e = 0; e < m.num_elements(); ++e) {
+      const int first = layout.first_discrete + m.mode_offset(e), count = m.element(e).num_modes();
+      if (index < first || index >= first + count) continue;
+      const std::span<const double> modes(ctx.discrete.data() + first, count);
+      return {block->name() + "." + m.element(e).name(), m.element(e).LinearisedAs(modes)};
+    }
+    return {block->name(), ""};
+  }
+  return {"?", ""};
+}
+
+// The elements whose discrete states differ between `before` and the context's.
+std::vector<SwitchingElement> Switched(const Diagram& diagram, const Context& ctx, const std::vector<double>& before) {
+  std::vector<SwitchingElement> elements;
+  for (int i = 0; i < static_cast<int>(before.size()); ++i) {
+    if (before[i] == ctx.discrete[i]) continue;
+    SwitchingElement e = OwnerOfDiscrete(diagram, ctx, i);
+    if (elements.empty() || elements.back().name != e.name) elements.push_back(std::move(e));
+  }
+  return elements;
+}
+
+std::string Describe(const std::vector<SwitchingElement>& elements) {
+  std::string text;
+  for (const SwitchingElement& e : elements)
+    text += (text.empty() ? "'" : ", '") + e.name + "'" + (e.taken_as.empty() ? "" : " (now " + e.taken_as + ")");
+  return text;
+}
+
+// Makes the modes agree with the candidate x as a state at rest has them:
+// one at-rest pass (Block::UpdateModesAtRest), then the modes settled as
+// after an event. Leaves the context evaluated at x.
+void SelectModesAtRest(const Diagram& diagram, Context* ctx, std::vector<double>* x) {
+  ctx->x = x->data();
+  ctx->xdot = nullptr;
+  ++ctx->evaluation;
+  EvaluateOutputs(diagram, ctx);
+  for (int b = 0; b < diagram.num_blocks(); ++b)
+    diagram.block(b).UpdateModesAtRest(BlockContext(ctx, &diagram.layout(b)));
+  SettleModes(diagram, ctx);
+  EvaluateAt(diagram, ctx, *x);
+}
+
+}  // namespace
+
+EquilibriumResult FindEquilibrium(const Diagram& diagram, Context* ctx, std::vector<double>* x, double tolerance,
+                                  int max_iterations) {
+  constexpr int kMaxRounds = 20;
+  const std::vector<double> initial_modes = ctx->discrete;
+  EquilibriumResult result;
+  std::string context;  // what the failure messages add after a switch
+  for (result.rounds = 1;; ++result.rounds) {
+    result.residual = SolveInModes(diagram, ctx, x, tolerance, max_iterations, &result.iterations, context);
+    const std::vector<double> modes = ctx->discrete, candidate = *x;
+    SelectModesAtRest(diagram, ctx, x);
+    if (ctx->discrete == modes && *x == candidate) break;
+    const std::vector<SwitchingElement> switched = Switched(diagram, *ctx, modes);
+    if (result.rounds == kMaxRounds) {
+      EvaluateAt(diagram, ctx, *x);
+      std::ostringstream out;
+      out << "no static equilibrium found: the modes of " << (switched.empty() ? "a block's state" : Describe(switched))
+          << " do not settle: after " << kMaxRounds
+          << " rounds each rest state found in its modes still puts it in others. Run the diagram (mechflow run) "
+             "to see where it goes, or start it nearer its rest state";
+      throw SimulationError(out.str());
+    }
+    context = "; the search had switched " + Describe(switched) + " at the rest state found in the modes before";
+  }
+  for (const SwitchingElement& e : Switched(diagram, *ctx, initial_modes)) result.switched.push_back(e.name);
+  return result;
 }
 
 std::vector<Mode> ModalAnalysis(const Eigen::MatrixXd& A, const std::vector<bool>& normalise_on) {

@@ -7,12 +7,13 @@
 // mechanism's (q, v) and any block states are analysed together. Time stays
 // at Context::time, so sources give their values at that time; every other
 // signal is recomputed from the state through EvaluateOutputs at each
-// evaluation. Modes of nonsmooth blocks (stick/slip, limits) stay as they
-// were settled at the initial state.
+// evaluation. Modes of nonsmooth blocks (stick/slip, contact, limits) are
+// those settled at the initial state, or with FindEquilibrium those of the
+// equilibrium found.
 //
 // One analysis, as pseudocode (what `mechflow modes` runs):
 //   PrepareContext                   initial states, modes settled, time t_start
-//   FindEquilibrium (optional)       damped Newton on x'(x) = 0
+//   FindEquilibrium (optional)       damped Newton on x'(x) = 0, modes re-selected until they agree
 //   A = StateJacobian                central differences, one column per state
 //   ModalAnalysis(A)                 eigenvalues -> f, zeta; eigenvectors -> shapes
 
@@ -45,25 +46,41 @@ void StateDerivative(const Diagram& diagram, Context* ctx, std::vector<double>* 
 Eigen::MatrixXd StateJacobian(const Diagram& diagram, Context* ctx, const std::vector<double>& x);
 
 struct EquilibriumResult {
-  int iterations = 0;    // Newton steps taken
+  int iterations = 0;    // Newton steps taken, over all rounds
   double residual = 0.0; // max |x'_i| at the equilibrium [state units / s]
+  int rounds = 1;        // Newton solves: the first, and one after each change of modes
+  std::vector<std::string> switched;  // "block.element" (or block) whose modes differ from the initial state's
 };
 
-// Finds a static equilibrium x'(x) = 0 by damped Newton from `x` (in place):
+// Finds a static equilibrium x'(x) = 0 from `x` (in place), in rounds:
+//   repeat (at most 20 rounds)
+//     solve x'(x) = 0 by damped Newton in the current modes
+//     select the modes at x as a state at rest has them
+//       (Block::UpdateModesAtRest, then SettleModes): a contact touches when
+//       it penetrates, a sliding friction element sticks (with no stick
+//       deflection yet), a stuck one holding more than its static limit
+//       breaks away
+//   until the modes (and the states they reset) are those x was found in.
+// So the equilibrium returned carries the modes that agree with it, and the
+// context is left in them. Each Newton solve:
 //   loop
 //     f = x'(x); A = StateJacobian(x)
 //     done when |f_i| <= tolerance (1 + sum_j |A_ij| |x_j|) for every i,
 //       i.e. x' is zero relative to the terms that balance in it
-//     s = least-norm solution of A s = f (complete orthogonal decomposition,
-//       so a neutral direction such as a free coordinate is left alone)
+//     s = solution of A s = f in the range of A (A singular: what x' cannot
+//       change, e.g. a stuck friction element's deflection less its travel,
+//       stays, as in a damped transient; a direction both in the range and
+//       the null space, a free undamped coordinate, is left alone)
 //     alpha = 1, halved (at most 10 times) until |f(x - alpha s)|_2 <
 //       (1 - 1e-4 alpha) |f(x)|_2; x -= alpha s
 // For a mechanism, x = (q, v): the equilibrium has v = 0 and v' = 0, which
 // this finds without knowing the split. Throws SimulationError with the
-// residual and the steps taken when it does not converge within
+// residual and the steps taken when a solve does not converge within
 // `max_iterations` steps, when no step along s decreases |f| (Newton stalled,
-// e.g. the diagram is driven or drifts at a constant rate), or when x' is not
-// finite. Either way the context is left as StateJacobian leaves it, at `x`.
+// e.g. the diagram is driven or drifts at a constant rate; after a change of
+// modes the message names the elements switched), when x' is not finite, or
+// when the modes do not settle within the rounds (naming the elements that
+// still switch). Either way the context is left at `x`.
 EquilibriumResult FindEquilibrium(const Diagram& diagram, Context* ctx, std::vector<double>* x,
                                   double tolerance = 1e-10, int max_iterations = 50);
 

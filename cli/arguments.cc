@@ -168,7 +168,9 @@ std::string HelpText(const std::string& command) {
            "                      [--out DIR] [--unsafe-lua]\n"
            "\n"
            "Linearises the diagram at its initial state (or, with --equilibrium, at the\n"
-           "static equilibrium found first by damped Newton on x' = 0) and prints its\n"
+           "static equilibrium found first by damped Newton on x' = 0, the modes of\n"
+           "contacts and friction chosen again at each rest state found until they agree\n"
+           "with it) and prints its\n"
            "natural frequencies: damped f = |Im lambda| / 2 pi and undamped |lambda| / 2 pi\n"
            "[Hz], damping ratios -Re lambda / |lambda|, eigenvalues lambda [rad/s] and the\n"
            "mode shapes per state (coordinates and rates marked). Real eigenvalues\n"
@@ -187,8 +189,8 @@ std::string HelpText(const std::string& command) {
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
            "  --allow-read DIR  as for mechflow run\n"
            "\n"
-           "Exit codes: 0 done, 1 no equilibrium found (or the rates are not finite),\n"
-           "2 bad input.\n";
+           "Exit codes: 0 done, 1 no equilibrium found (modes that do not settle, or rates\n"
+           "that are not finite), 2 bad input.\n";
   if (command == "force-analysis") return ForceAnalysisHelp();
   if (command == "psd") return PsdHelp();
   if (command == "sweep")

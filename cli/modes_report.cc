@@ -57,6 +57,14 @@ void PrintModes(const ModesReport& r, std::ostream& out) {
     out << " (found in " << r.equilibrium->iterations << " Newton step" << (r.equilibrium->iterations == 1 ? "" : "s")
         << ", largest rate " << r.equilibrium->residual << ")";
   out << "\n";
+  if (r.equilibrium && r.equilibrium->rounds > 1) {
+    // the modes below are the equilibrium's, not the initial state's
+    out << "modes selected again at each rest state found (" << r.equilibrium->rounds << " rounds)";
+    std::string names;
+    for (const std::string& s : r.equilibrium->switched) names += (names.empty() ? "" : ", ") + s;
+    out << (names.empty() ? "; none differs from the initial state's" : "; switched from the initial state's: " + names)
+        << "\n";
+  }
   std::snprintf(line, sizeof line, "  %-*s %16s  %s\n", static_cast<int>(width), "state", "value", "role");
   out << line;
   for (std::size_t i = 0; i < r.states.size(); ++i) {

@@ -62,6 +62,12 @@ void CirclePlaneContact::Initialize(const ElementContext& ctx, std::span<double>
   modes[0] = Geometry(ctx, &q, &n) > 0 ? 1.0 : 0.0;
 }
 
+bool CirclePlaneContact::ModesAtRest(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+  const double before = modes[0];
+  Initialize(ctx, {}, modes);
+  return modes[0] != before;
+}
+
 void CirclePlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
                                   std::span<double> sensors) const {
   Vec3 q, n;

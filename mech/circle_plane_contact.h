@@ -29,6 +29,8 @@ class CirclePlaneContact final : public ForceElement {
   std::string LinearisedAs(std::span<const double> modes) const override;
   void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
                   std::span<double> modes) const override;
+  // At rest, touching exactly when it penetrates.
+  bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
 
  private:
   // Penetration, deepest point Q and the plane normal (global).

@@ -155,6 +155,11 @@ bool ElasticFriction2Force::UpdateModes(const ElementContext& ctx, std::span<dou
   return true;
 }
 
+bool ElasticFriction2Force::ModesAtRest(const ElementContext& ctx, std::span<double> state,
+                                  std::span<double> modes) const {
+  return FrictionModesAtRest(*this, ctx, state, modes, kSlipPlusStops, kBreaksForward, kBreaksBackward);
+}
+
 ElementCoordinate ElasticFriction2Force::Coordinate(const std::string& component) const {
   return component.empty() ? ElementCoordinate::Line(body1_, point1_, body2_, point2_) : ElementCoordinate{};
 }

@@ -53,6 +53,7 @@ class ElasticFriction2Force final : public ForceElement {
   void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
   void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
                   std::span<double> modes) const override;
+  bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
   // A slip against the velocity (a break-away found where the slider force
   // only grazes its limit at a turning point, as in a stuck oscillation that
   // started at the limit) sticks again, holding x2.

@@ -127,6 +127,11 @@ double ElasticFrictionForce::SlidingDeflection(const ElementContext& ctx, double
   return mode * p_.friction.Get(ctx) / c;
 }
 
+bool ElasticFrictionForce::ModesAtRest(const ElementContext& ctx, std::span<double> state,
+                                  std::span<double> modes) const {
+  return FrictionModesAtRest(*this, ctx, state, modes, kSlipPlusStops, kBreaksForward, kBreaksBackward);
+}
+
 ElementCoordinate ElasticFrictionForce::Coordinate(const std::string& component) const {
   return component.empty() ? ElementCoordinate::Line(body1_, point1_, body2_, point2_) : ElementCoordinate{};
 }

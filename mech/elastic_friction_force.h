@@ -38,6 +38,7 @@ class ElasticFrictionForce final : public ForceElement {
   void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
   void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
                   std::span<double> modes) const override;
+  bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
   DerivativeSupport derivative_support() const override { return DerivativeSupport::kAlongCoordinate; }
   void Derivatives(const ElementContext& ctx, double x, double v, ElementDerivatives* d) const override;
 

@@ -175,6 +175,14 @@ class ForceElement {
   virtual bool UpdateModes(const ElementContext&, std::span<double> /*state*/, std::span<double> /*modes*/) const {
     return false;
   }
+  // A static equilibrium search (blocks/linearization.h) at a candidate state
+  // at rest: set the modes that element takes there -- a contact's from its
+  // penetration, a sliding friction element sticks, a stuck one beyond its
+  // static limit breaks away. Returns true when a mode (or a state it resets)
+  // changed. By default UpdateModes, right for modes the state decides.
+  virtual bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
+    return UpdateModes(ctx, state, modes);
+  }
   // Exact stick (issue 12, item 3). An element that declared it
   // (DeclareExactStick) and reports StuckExactly holds its relative motion
   // by a constraint force: the mechanism finds the force f that keeps the

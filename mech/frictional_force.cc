@@ -1,5 +1,6 @@
 #include "mech/frictional_force.h"
 
+#include <array>
 #include <cmath>
 
 #include "mech/dynamics.h"
@@ -154,6 +155,24 @@ bool FrictionalForce::UpdateModes(const ElementContext& ctx, std::span<double>, 
   if (std::abs(holding) <= limit) return false;
   modes[0] = holding > 0 ? kSlipPlus : kSlipMinus;
   return true;
+}
+
+bool FrictionModesAtRest(const ForceElement& element, const ElementContext& ctx, std::span<double> state,
+                         std::span<double> modes, int slip_ends, int breaks_forward, int breaks_backward) {
+  if (modes[0] != kStick) {
+    element.OnCrossing(slip_ends, -1, ctx, state, modes);
+    return true;
+  }
+  std::array<double, 4> values{};
+  element.ZeroCrossings(ctx, values);
+  const int breaks = values[breaks_forward] > 0 ? breaks_forward : values[breaks_backward] > 0 ? breaks_backward : -1;
+  if (breaks < 0) return false;
+  element.OnCrossing(breaks, 1, ctx, state, modes);
+  return true;
+}
+
+bool FrictionalForce::ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
+  return FrictionModesAtRest(*this, ctx, state, modes, kSlipPlusStops, kBreaksForward, kBreaksBackward);
 }
 
 void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {

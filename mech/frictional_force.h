@@ -39,6 +39,14 @@ namespace mechflow::mech {
 // starts at zero is not reported.
 inline double BreakawayLimit(double limit) { return limit > 1e-9 ? limit : 1e-9; }
 
+// ForceElement::ModesAtRest of a friction element, from its own crossings
+// (four, like every friction element's): at rest a sliding element sticks as
+// when its slip ends (crossing `slip_ends` applied); a stuck one whose
+// break-away function `breaks_forward` or `breaks_backward` is positive
+// breaks away as at that crossing.
+bool FrictionModesAtRest(const ForceElement& element, const ElementContext& ctx, std::span<double> state,
+                         std::span<double> modes, int slip_ends, int breaks_forward, int breaks_backward);
+
 struct FrictionalParameters {
   Parameter friction;     // sliding force F [N], >= 0
   Parameter ratio = 1.2;  // static / dynamic
@@ -58,6 +66,7 @@ class FrictionalForce final : public ForceElement {
   ElementCoordinate Coordinate(const std::string& component) const override;
   std::string CrossingName(int index, int direction) const override;
   std::string LinearisedAs(std::span<const double> modes) const override;
+  bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
   void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
   void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
                   std::span<double> modes) const override;

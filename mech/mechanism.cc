@@ -425,6 +425,27 @@ bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> 
   return changed;
 }
 
+bool ElementModesAtRest(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
+                        std::span<double> modes, MechanismWorkspace* ws) {
+  // holding forces of exact-stick elements come from a full evaluation
+  if (!mechanism.exact_stick_elements().empty()) {
+    EvaluateMechanism(mechanism, t, x, inputs, modes, ws, {});
+  } else {
+    EvaluatePositions(mechanism, t, x, ws);
+    SetParameterArgs(t, inputs, ws);
+  }
+  bool changed = false;
+  for (int e = 0; e < mechanism.num_elements(); ++e) {
+    const ForceElement& element = mechanism.element(e);
+    if (element.num_modes() == 0) continue;
+    const ElementContext ctx = MakeElementContext(mechanism, t, x, modes, *ws, e);
+    changed |= element.ModesAtRest(ctx, x.subspan(mechanism.state_offset(e), element.num_states()),
+                                   modes.subspan(mechanism.mode_offset(e), element.num_modes()));
+  }
+  ws->accelerations_valid = false;
+  return changed;
+}
+
 Wrench JointReaction(const Mechanism& mechanism, const MechanismWorkspace& ws, int j) {
   const Model& model = mechanism.model();
   const Joint& joint = model.joints()[j];

@@ -172,6 +172,12 @@ void ApplyCrossing(const Mechanism& mechanism, int crossing, int direction, std:
 // agree.
 bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
                         std::span<double> modes, MechanismWorkspace* ws);
+// The same at a candidate rest state of a static equilibrium search: one
+// pass of ForceElement::ModesAtRest (the search repeats its rounds itself,
+// so that a friction element at rest sticking and breaking away again is a
+// cycle it sees rather than a loop here).
+bool ElementModesAtRest(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
+                        std::span<double> modes, MechanismWorkspace* ws);
 
 // Reaction of joint j after EvaluateMechanism: the force and moment (global
 // components, moment about the joint's attachment point on body 2) that body

@@ -272,6 +272,14 @@ bool MechanismBlock::DoUpdateModes(const BlockContext& ctx) const {
   return changed;
 }
 
+bool MechanismBlock::DoUpdateModesAtRest(const BlockContext& ctx) const {
+  if (initial_state_pending_ || mechanism_->num_modes() == 0) return DoUpdateModes(ctx);
+  const bool changed =
+      mech::ElementModesAtRest(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_);
+  ForgetEvaluations();
+  return changed;
+}
+
 void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double>) const {
   const mech::Model& model = mechanism_->model();
   const std::span<const double> x = ctx.state();

@@ -77,6 +77,7 @@ class MechanismBlock final : public Block {
   void DoCalcZeroCrossings(const BlockContext& ctx) const override;
   void DoZeroCrossing(int index, int direction, const BlockContext& ctx) const override;
   bool DoUpdateModes(const BlockContext& ctx) const override;
+  bool DoUpdateModesAtRest(const BlockContext& ctx) const override;
   void DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const override;
 
   // The scalar inputs; also copies the driving signals into the kinematics.

@@ -31,3 +31,5 @@ mechflow_test(second_order_solver_test unit tests/blocks/second_order_solver_tes
 mechflow_test(analytic_jacobian_test unit tests/blocks/analytic_jacobian_test.cc)
 target_link_libraries(analytic_jacobian_test PRIVATE mechflow_bench_friction)
 mechflow_test(compiled_ops_test unit tests/blocks/compiled_ops_test.cc)
+# the static equilibrium with contacts and friction against long transients
+mechflow_test(equilibrium_modes_test unit tests/blocks/equilibrium_modes_test.cc)
