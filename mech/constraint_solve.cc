@@ -94,6 +94,13 @@ void CompactRows(ConstraintWorkspace* ws) {
 // Least-norm dv with J dv = e (ws->J given), through G = J J^T.
 void LeastNormStep(const Eigen::VectorXd& e, ConstraintWorkspace* ws) {
   CompactRows(ws);
+  if (ws->rows.empty()) {  // loops that move nothing: no step (and no products over empty matrices)
+    ws->rank = 0;
+    ws->weakest_row = -1;
+    ws->weakest_pivot = 0.0;
+    ws->step.setZero();
+    return;
+  }
   ws->G.setZero();
   ws->G.selfadjointView<Eigen::Lower>().rankUpdate(ws->Jc);  // the solve reads the lower half
   for (std::size_t k = 0; k < ws->rows.size(); ++k) ws->rhs(k) = e(ws->rows[k]);
@@ -156,23 +163,29 @@ void SolveConstrainedAccelerations(std::span<const double> f, std::span<double> 
   // With M~ = L L^T and X = L^-1 J^T: G = X^T X, J M~^-1 f = X^T y with
   // y = L^-1 f, and v' = L^-T (y + X lambda~). Lower halves only.
   CompactRows(ws);
-  const double jj = n > 0 ? ws->Jc.colwise().squaredNorm().maxCoeff() : 0.0;  // (no freedom at all: welds)
+  const double jj = ws->rows.empty() ? 0.0 : ws->Jc.colwise().squaredNorm().maxCoeff();
   const double alpha = jj > 0.0 ? ws->M.diagonal().maxCoeff() / jj : 0.0;
-  ws->M.selfadjointView<Eigen::Lower>().rankUpdate(ws->Jc.transpose(), alpha);
+  if (alpha > 0.0) ws->M.selfadjointView<Eigen::Lower>().rankUpdate(ws->Jc.transpose(), alpha);
   ws->M_llt.compute(ws->M);
   if (ws->M_llt.info() != Eigen::Success)
     throw SimulationError("the mass matrix is singular in a direction the loop constraints leave free");
   const auto L = ws->M_llt.matrixL();
   for (int i = 0; i < n; ++i) ws->vfree(i) = f[i];
   L.solveInPlace(ws->vfree);  // y
-  ws->X = ws->Jc.transpose();
-  L.solveInPlace(ws->X);
-  ws->G.setZero();
-  ws->G.selfadjointView<Eigen::Lower>().rankUpdate(ws->X.transpose());
-  ws->rhs.noalias() = ws->X.transpose() * ws->vfree;
-  for (std::size_t k = 0; k < ws->rows.size(); ++k) ws->rhs(k) = -ws->rhs(k) - ws->bias(ws->rows[k]);
-  DampedGramSolve(ws);
-  ws->vfree.noalias() += ws->X * ws->rhs;
+  // (loops that move nothing leave no row: no products over empty matrices)
+  if (!ws->rows.empty()) {
+    ws->X = ws->Jc.transpose();
+    L.solveInPlace(ws->X);
+    ws->G.setZero();
+    ws->G.selfadjointView<Eigen::Lower>().rankUpdate(ws->X.transpose());
+    ws->rhs.noalias() = ws->X.transpose() * ws->vfree;
+    for (std::size_t k = 0; k < ws->rows.size(); ++k) ws->rhs(k) = -ws->rhs(k) - ws->bias(ws->rows[k]);
+    DampedGramSolve(ws);
+    ws->vfree.noalias() += ws->X * ws->rhs;
+  } else {
+    ws->rank = 0;
+    ws->weakest_row = -1;
+  }
   ws->M_llt.matrixU().solveInPlace(ws->vfree);
   ws->lambda = alpha * ws->bias;
   for (std::size_t k = 0; k < ws->rows.size(); ++k) ws->lambda(ws->rows[k]) += ws->rhs(k);
