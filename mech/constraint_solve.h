@@ -25,6 +25,10 @@
 // which must stay constant, then changed by up to 1600% in runs that
 // finished. A clear failure is better than that; undamped, none of the 70
 // gave a wrong answer, 48 finished, 22 failed with the position named.
+// The run-time projections are another matter (ProjectPositions'
+// velocity_tolerance): near a dead centre they cannot fix the weak direction
+// within a tight tolerance, and enforcing it there anyway is what stopped
+// those runs; they damp it by the tolerance and the accelerations keep it.
 // Why not select the independent rows once, at the start: a row set that is
 // independent there can become dependent later while J keeps its rank. In
 // Bricard's linkage at t = 0.894 s the rows chosen at t = 0 had a least
