@@ -167,6 +167,11 @@ class Block {
   //     manifold's tangent space too, or leave it alone: on a unit circle,
   //     projecting it made CVODE fall back to order 1 and take 40 times the
   //     steps, so leave it unless a measurement says otherwise;
+  //   - `weights` is the block's slice of the solver's error weights,
+  //     1 / (rtol |x| + atol), empty when there are none: a correction c
+  //     passes the solver's error test when the RMS of c * weights is below
+  //     1, so a block whose correction carries round-off that can exceed
+  //     the tolerance (a loop near a singular position) sizes it by them;
   //   - it must not allocate; it throws SimulationError when it cannot
   //     project, and the solver retries the step with a smaller one, failing
   //     the run with the block's message if that keeps happening.
@@ -175,8 +180,9 @@ class Block {
   // The solver projects only after steps, never at the start or after an
   // event: Initialize must put the states on the manifold, and so must any
   // event, sample-hit or UpdateModes handler that changes them.
-  void Project(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const {
-    DoProject(ctx, correction, error);
+  void Project(const BlockContext& ctx, std::span<double> correction, std::span<double> error,
+               std::span<const double> weights) const {
+    DoProject(ctx, correction, error, weights);
   }
   // Analytic Jacobian (issue 17): empty when the block gives the exact
   // derivatives of its state derivatives with respect to its own states, its
@@ -225,7 +231,7 @@ class Block {
   virtual void DoSampleHit(const BlockContext&) const {}
   virtual bool DoUpdateModes(const BlockContext&) const { return false; }
   virtual bool DoUpdateModesAtRest(const BlockContext& ctx) const { return DoUpdateModes(ctx); }
-  virtual void DoProject(const BlockContext&, std::span<double>, std::span<double>) const {}
+  virtual void DoProject(const BlockContext&, std::span<double>, std::span<double>, std::span<const double>) const {}
 
  private:
   std::string type_;

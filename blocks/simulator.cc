@@ -623,6 +623,11 @@ int Simulator::Project(double t, N_Vector y, N_Vector correction, double, N_Vect
   double* corr = N_VGetArrayPointer(correction);
   double* err = error ? N_VGetArrayPointer(error) : nullptr;
   for (int i = 0; i < d.num_states(); ++i) corr[i] = 0.0;
+  // the weights of the step being completed (CVODE sets them at its start)
+  void* mem = self->solver_->cvode.get();
+  const double* weights = CVodeGetErrWeights(mem, self->solver_->weights.get()) == CV_SUCCESS
+                              ? self->solver_->weights.data()
+                              : nullptr;
   try {
     Context& ctx = self->ctx_;
     ctx.time = t;
@@ -633,7 +638,9 @@ int Simulator::Project(double t, N_Vector y, N_Vector correction, double, N_Vect
       const BlockLayout& layout = d.layout(b);
       const auto n = static_cast<std::size_t>(layout.num_states);
       d.block(b).Project(BlockContext(&ctx, &layout), std::span<double>(corr + layout.first_state, n),
-                         err ? std::span<double>(err + layout.first_state, n) : std::span<double>());
+                         err ? std::span<double>(err + layout.first_state, n) : std::span<double>(),
+                         weights ? std::span<const double>(weights + layout.first_state, n)
+                                 : std::span<const double>());
     }
   } catch (const std::exception& e) {
     self->callback_failure_ = e.what();

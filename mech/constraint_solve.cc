@@ -22,8 +22,9 @@ constexpr double kQuadraticRegime = 1e-8;
 constexpr double kRank = 1e-8;
 
 // Factors ws->G and solves G x = b (b in ws->rhs, x written there) with the
-// damped pivots; records the rank and the weakest counted pivot's row.
-void DampedGramSolve(ConstraintWorkspace* ws) {
+// damped pivots, damped by at least `min_damping` (pivot units); records the
+// rank and the weakest counted pivot's row.
+void DampedGramSolve(ConstraintWorkspace* ws, double min_damping = 0.0) {
   const int m = static_cast<int>(ws->G.rows());
   ws->G_ldlt.compute(ws->G);
   const auto d = ws->G_ldlt.vectorD();
@@ -31,7 +32,7 @@ void DampedGramSolve(ConstraintWorkspace* ws) {
   const int generic = std::min(ws->generic_rank, m);
   ws->pivoted.noalias() = ws->G_ldlt.transpositionsP() * ws->rhs;
   ws->G_ldlt.matrixL().solveInPlace(ws->pivoted);
-  const double mu = kDamping * largest;
+  const double mu = std::max(kDamping * largest, min_damping);
   ws->rank = 0;
   for (int i = 0; i < m; ++i) {
     const double di = d(i);
@@ -91,8 +92,9 @@ void CompactRows(ConstraintWorkspace* ws) {
   for (int k = 0; k < count; ++k) ws->Jc.row(k) = ws->J.row(ws->rows[k]);
 }
 
-// Least-norm dv with J dv = e (ws->J given), through G = J J^T.
-void LeastNormStep(const Eigen::VectorXd& e, ConstraintWorkspace* ws) {
+// Least-norm dv with J dv = e (ws->J given), through G = J J^T, its pivots
+// damped by at least `min_damping`.
+void LeastNormStep(const Eigen::VectorXd& e, ConstraintWorkspace* ws, double min_damping = 0.0) {
   CompactRows(ws);
   if (ws->rows.empty()) {  // loops that move nothing: no step (and no products over empty matrices)
     ws->rank = 0;
@@ -104,7 +106,7 @@ void LeastNormStep(const Eigen::VectorXd& e, ConstraintWorkspace* ws) {
   ws->G.setZero();
   ws->G.selfadjointView<Eigen::Lower>().rankUpdate(ws->Jc);  // the solve reads the lower half
   for (std::size_t k = 0; k < ws->rows.size(); ++k) ws->rhs(k) = e(ws->rows[k]);
-  DampedGramSolve(ws);
+  DampedGramSolve(ws, min_damping);
   const int weakest = std::min(ws->generic_rank, static_cast<int>(ws->rows.size())) - 1;
   ws->weakest_pivot = weakest >= 0 ? std::abs(ws->G_ldlt.vectorD()(weakest)) : 0.0;
   ws->step.noalias() = ws->Jc.transpose() * ws->rhs;
@@ -128,6 +130,24 @@ void AddVelocityStep(const Model& model, std::span<double> q, const Eigen::Vecto
     q[iq + 5] = quat.y();
     q[iq + 6] = quat.z();
   }
+}
+
+// The damping (pivot units, sigma^2) below which a projection's change is
+// round-off that the tolerance cannot absorb. The position residual is known
+// to about one ulp of the largest coordinate, eps L; along a direction of
+// singular value sigma that moves q by eps L / sigma, which turns the
+// velocity constraint's rows (|dJ/dq| ~ |J|) and so moves v by
+// eps L |J| |v| / sigma^2. Pivots sigma^2 below eps L |J| |v| / tol_v are
+// therefore damped: their directions are left to the dynamics (which keep
+// J v' = -bias exactly) until the mechanism leaves the singular position.
+double ToleranceDamping(const Model& model, const Kinematics& kin, std::span<const double> v,
+                        double velocity_tolerance, const ConstraintWorkspace& ws) {
+  if (!(velocity_tolerance > 0.0) || ws.J.size() == 0) return 0.0;
+  double length = 1.0, speed = 0.0;
+  for (const Pose& pose : kin.pose) length = std::max(length, pose.p.lpNorm<Eigen::Infinity>());
+  for (int i = 0; i < model.nv(); ++i) speed = std::max(speed, std::abs(v[i]));
+  const double slope = ws.J.cwiseAbs().maxCoeff();
+  return std::numeric_limits<double>::epsilon() * length * slope * speed / velocity_tolerance;
 }
 
 }  // namespace
@@ -195,7 +215,7 @@ void SolveConstrainedAccelerations(std::span<const double> f, std::span<double> 
 
 double ProjectPositions(const Model& model, const Constraints& constraints, double t, std::span<double> q,
                         std::span<const double> v, double tolerance, int max_iterations, Kinematics* kin,
-                        ConstraintWorkspace* ws) {
+                        ConstraintWorkspace* ws, double velocity_tolerance) {
   double norm = 0.0, previous = std::numeric_limits<double>::infinity();
   for (int it = 0;; ++it) {
     UpdateKinematics(model, t, q, v, kin);
@@ -208,7 +228,7 @@ double ProjectPositions(const Model& model, const Constraints& constraints, doub
     if (norm <= tolerance || it >= max_iterations || !std::isfinite(norm) || stalled) break;
     previous = norm;
     constraints.Jacobian(model, *kin, &ws->J);
-    LeastNormStep(ws->phi, ws);
+    LeastNormStep(ws->phi, ws, ToleranceDamping(model, *kin, v, velocity_tolerance, *ws));
     ws->step = -ws->step;
     AddVelocityStep(model, q, ws->step);
   }
@@ -264,11 +284,11 @@ void AssembleCutVelocities(const Model& model, const Constraints& constraints, s
 }
 
 void ProjectVelocities(const Model& model, const Constraints& constraints, double t, std::span<const double> q,
-                       std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws) {
+                       std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws, double velocity_tolerance) {
   UpdateKinematics(model, t, q, v, kin);
   constraints.VelocityResidual(model, *kin, &ws->psi);
   constraints.Jacobian(model, *kin, &ws->J);
-  LeastNormStep(ws->psi, ws);
+  LeastNormStep(ws->psi, ws, ToleranceDamping(model, *kin, v, velocity_tolerance, *ws));
   for (int i = 0; i < model.nv(); ++i) v[i] -= ws->step(i);
 }
 

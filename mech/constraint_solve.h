@@ -25,6 +25,10 @@
 // which must stay constant, then changed by up to 1600% in runs that
 // finished. A clear failure is better than that; undamped, none of the 70
 // gave a wrong answer, 48 finished, 22 failed with the position named.
+// The run-time projections are another matter (ProjectPositions'
+// velocity_tolerance): near a dead centre they cannot fix the weak direction
+// within a tight tolerance, and enforcing it there anyway is what stopped
+// those runs; they damp it by the tolerance and the accelerations keep it.
 // Why not select the independent rows once, at the start: a row set that is
 // independent there can become dependent later while J keeps its rank. In
 // Bricard's linkage at t = 0.894 s the rows chosen at t = 0 had a least
@@ -79,9 +83,14 @@ void SolveConstrainedAccelerations(std::span<const double> f, std::span<double> 
 // Moves q (and then v) onto the constraint manifold by Gauss-Newton with
 // least-norm steps; returns the final position residual norm. Quaternion
 // coordinates are updated through their rotation vector.
+// `velocity_tolerance` > 0 (the integrator's, for v) makes the projections
+// tolerance-aware near a singular position: directions so weak that the
+// round-off of the residuals would move v by more than it (at a dead centre,
+// eps L |J| |v| / sigma^2) are damped rather than enforced; 0 enforces
+// every direction down to round-off (assembly).
 double ProjectPositions(const Model& model, const Constraints& constraints, double t, std::span<double> q,
                         std::span<const double> v, double tolerance, int max_iterations, Kinematics* kin,
-                        ConstraintWorkspace* ws);
+                        ConstraintWorkspace* ws, double velocity_tolerance = 0.0);
 // Assembly, first phase: closes the loops by moving only the coordinates of
 // the loop-closing joints themselves (their ghost segments), so consistent
 // user coordinates are kept exactly. Returns the residual norm reached.
@@ -94,7 +103,8 @@ void AssembleCutVelocities(const Model& model, const Constraints& constraints, s
                            std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws);
 
 void ProjectVelocities(const Model& model, const Constraints& constraints, double t, std::span<const double> q,
-                       std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws);
+                       std::span<double> v, Kinematics* kin, ConstraintWorkspace* ws,
+                       double velocity_tolerance = 0.0);
 
 // Records the rank of the loops at the current (assembled) position as their
 // generic rank; later solves compare against it.

@@ -280,7 +280,8 @@ bool MechanismBlock::DoUpdateModesAtRest(const BlockContext& ctx) const {
   return changed;
 }
 
-void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double>) const {
+void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double>,
+                               std::span<const double> weights) const {
   const mech::Model& model = mechanism_->model();
   const std::span<const double> x = ctx.state();
   std::copy(x.begin(), x.end(), scratch_.begin());
@@ -305,12 +306,22 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
     // To round-off, always: a projection that skipped small residuals would
     // move the state by jumps of its tolerance, which CVODE adds to its
     // history (at rtol 1e-12 that stalled the step size).
-    const double after =
-        mech::ProjectPositions(model, mechanism_->constraints(), ctx.time(), q, v, 1e-16, 5, &ws_.kin, &ws_.constraint);
+    // The velocities' tolerance as the error test weighs them (RMS): near a
+    // dead centre the projections leave alone what round-off cannot resolve
+    // within it (mech/constraint_solve.h).
+    double velocity_tolerance = 0.0;
+    if (!weights.empty() && model.nv() > 0) {
+      double sum = 0.0;
+      for (int i = 0; i < model.nv(); ++i) sum += weights[model.nq() + i] * weights[model.nq() + i];
+      if (sum > 0.0) velocity_tolerance = std::sqrt(model.nv() / sum);
+    }
+    const double after = mech::ProjectPositions(model, mechanism_->constraints(), ctx.time(), q, v, 1e-16, 5,
+                                                &ws_.kin, &ws_.constraint, velocity_tolerance);
     if (!std::isfinite(after))
       throw SimulationError("mechanism '" + name() + "': projection onto the loop constraints failed at t = " +
                             std::to_string(ctx.time()));
-    mech::ProjectVelocities(model, mechanism_->constraints(), ctx.time(), q, v, &ws_.kin, &ws_.constraint);
+    mech::ProjectVelocities(model, mechanism_->constraints(), ctx.time(), q, v, &ws_.kin, &ws_.constraint,
+                            velocity_tolerance);
   }
   for (std::size_t i = 0; i < x.size(); ++i) {
     correction[i] = scratch_[i] - x[i];

@@ -78,7 +78,8 @@ class MechanismBlock final : public Block {
   void DoZeroCrossing(int index, int direction, const BlockContext& ctx) const override;
   bool DoUpdateModes(const BlockContext& ctx) const override;
   bool DoUpdateModesAtRest(const BlockContext& ctx) const override;
-  void DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const override;
+  void DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double> error,
+                 std::span<const double> weights) const override;
 
   // The scalar inputs; also copies the driving signals into the kinematics.
   std::span<const double> Inputs(const BlockContext& ctx) const;

@@ -765,7 +765,7 @@ TEST(MechanismBlockTest, RunTimeMethodsDoNotAllocate) {
       // a state off the manifold: projection corrects it
       for (std::size_t k = 0; k < x.size(); ++k) x[k] = x0[k] + 1e-6 * std::sin(1.0 + i + 3.0 * k);
       ++ctx.evaluation;
-      block.Project(bctx, correction, {});
+      block.Project(bctx, correction, {}, {});
       for (std::size_t k = 0; k < x.size(); ++k) {
         largest_correction = std::max(largest_correction, std::abs(correction[k]));
         x[k] += correction[k];

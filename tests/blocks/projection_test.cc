@@ -53,7 +53,8 @@ class UnstableCircle : public Block {
     ctx.derivative()[0] = -w_ * s[1] + radial * s[0];
     ctx.derivative()[1] = w_ * s[0] + radial * s[1];
   }
-  void DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double> error) const override {
+  void DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double> error,
+                 std::span<const double>) const override {
     error_width_seen_ = static_cast<int>(error.size());
     if (ctx.time() > fail_after_) throw SimulationError("unstable_circle: cannot project at this time");
     const auto s = ctx.state();

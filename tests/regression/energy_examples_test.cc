@@ -52,7 +52,7 @@ TEST_P(ConservativeExample, KineticPlusPotentialEnergyStaysConstant) {
 INSTANTIATE_TEST_SUITE_P(Examples, ConservativeExample,
                          ::testing::Values("pendulum.xml", "pendulum_inclined.xml", "pendulum_chain.xml",
                                            "four_bar.xml", "four_bar_train.xml", "bricard.xml",
-                                           "coupling_rods.xml", "slider_crank.xml"));
+                                           "coupling_rods.xml", "slider_crank.xml", "bricard_iftomm.xml"));
 
 }  // namespace
 }  // namespace mechflow
