@@ -496,7 +496,8 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
   const std::string folder = std::filesystem::path(d.file).parent_path().string();
   out.reads.emplace(d.file, options.allow_read);
   blocks::DiagramBuilder builder;
-  for (const auto& m : d.mechanisms) builder.AddBlock(BuildMechanismBlock(m, eval), m.loc.str());
+  std::vector<std::string> mechanism_warnings;
+  for (const auto& m : d.mechanisms) builder.AddBlock(BuildMechanismBlock(m, eval, &mechanism_warnings), m.loc.str());
   for (const auto& b : d.blocks) {
     const blocks::BlockType* type = registry.Find(b.type);
     if (!type)
@@ -573,6 +574,7 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
     throw InputError(d.xy_plots.front().loc.str() + ": <xy> is a panel of the plot, and there is none: name it with "
                                                     "<output plot=\"NAME.png\">");
   out.warnings = unit_check.warnings();
+  out.warnings.insert(out.warnings.end(), mechanism_warnings.begin(), mechanism_warnings.end());
   out.description = std::move(d);
   return out;
 }

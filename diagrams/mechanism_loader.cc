@@ -633,7 +633,8 @@ mech::SensorSpec ReadSensor(const MechanismReader& r, const ElementDesc& e, cons
 
 }  // namespace
 
-std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const Evaluator& eval) {
+std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const Evaluator& eval,
+                                                   std::vector<std::string>* warnings) {
   const MechanismReader r(m, eval);
   mech::ModelBuilder builder;
   builder.SetGravity(r.Vector(m, "gravity", Vec3(0, 0, -9.81)));
@@ -697,6 +698,13 @@ std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const E
     std::vector<double> x(mechanism->num_states()), modes(mechanism->num_modes());
     std::vector<double> inputs(mechanism->num_inputs(), 0.0);
     mech::InitialState(*mechanism, inputs, x, modes, &ws);
+    // what the start says to check (a contact already beyond its bound
+    // never crosses it, so the run would not warn)
+    for (int e = 0; e < mechanism->num_elements(); ++e) {
+      const mech::ForceElement& element = mechanism->element(e);
+      const std::string warning = element.StartWarning(mech::MakeElementContext(*mechanism, 0.0, x, modes, ws, e));
+      if (!warning.empty()) warnings->push_back(element.origin() + ": warning: " + warning);
+    }
   }
   return std::make_unique<blocks::MechanismBlock>(m.Text("name"), mechanism, std::move(sensors));
 }

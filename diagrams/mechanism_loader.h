@@ -4,6 +4,8 @@
 // sensors -- with every error naming file:line.
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "blocks/block.h"
 #include "diagrams/description.h"
@@ -11,6 +13,9 @@
 
 namespace mechflow::diagrams {
 
-std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& mechanism, const Evaluator& eval);
+// Appends to `warnings` what the assembled initial state says the user should
+// check ("file:line: warning: contact 'floor' starts ... inside its plane").
+std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& mechanism, const Evaluator& eval,
+                                                   std::vector<std::string>* warnings);
 
 }  // namespace mechflow::diagrams

@@ -54,7 +54,12 @@ double CirclePlaneContact::Geometry(const ElementContext& ctx, Vec3* q, Vec3* n)
     throw SimulationError(out.str());
   }
   *q = c - radius_ * in_plane / size;
-  return radius_ * size - (c - plane * plane_point_).dot(*n);
+  return radius_ * size + PlaneDepth(kin, body2_, plane_point_, normal_, c);
+}
+
+std::string CirclePlaneContact::StartWarning(const ElementContext& ctx) const {
+  Vec3 q, n;
+  return StartPenetrationWarning(ctx, name(), law_, Geometry(ctx, &q, &n), body1_, body2_, plane_point_, normal_);
 }
 
 void CirclePlaneContact::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {

@@ -26,6 +26,8 @@ class CirclePlaneContact final : public ForceElement {
   void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
   // Crossing 1 is the penetration passing max_penetration.
   std::string CrossingWarning(int index, int direction) const override;
+  // The deepest rim point starts beyond max_penetration.
+  std::string StartWarning(const ElementContext& ctx) const override;
   std::string LinearisedAs(std::span<const double> modes) const override;
   void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
                   std::span<double> modes) const override;

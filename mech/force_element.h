@@ -247,6 +247,12 @@ class ForceElement {
   // bound), else empty. Called after a run, not at run time.
   virtual std::string CrossingWarning(int /*index*/, int /*direction*/) const { return ""; }
 
+  // At the assembled initial state: a warning for the user when the element
+  // starts where a CrossingWarning would have fired had it got there (a
+  // contact already deeper than its bound never crosses it), else empty.
+  // The loader prints it with the element's origin.
+  virtual std::string StartWarning(const ElementContext&) const { return ""; }
+
  protected:
   // "energy" is the stored elastic energy (see TrackWork).
   void DeclareSensor(std::string sensor) {

@@ -53,6 +53,27 @@ std::string PenetrationWarning(const ContactLaw& law) {
          " m (is the contact too soft, or is a body passing through the plane?)";
 }
 
+double PlaneDepth(const Kinematics& kin, int body2, const Vec3& plane_point, const Vec3& normal, const Vec3& p) {
+  const Pose& plane = kin.body_pose[body2];
+  return -(p - plane * plane_point).dot(plane.R * normal);
+}
+
+std::string StartPenetrationWarning(const ElementContext& ctx, const std::string& name, const ContactLaw& law,
+                                    double depth, int body1, int body2, const Vec3& plane_point, const Vec3& normal) {
+  if (!(depth > law.max_penetration)) return "";
+  // m, with mm alongside: contacts are set in m, their depths read in mm
+  auto length = [](double m) { return FormatNumber(m) + " m (" + FormatNumber(m * 1e3) + " mm)"; };
+  const std::string start = "contact '" + name + "' starts " + length(depth) +
+                            " inside its plane, beyond its max_penetration " + length(law.max_penetration);
+  const Body& body = ctx.model->bodies()[body1];
+  const bool fixed = body.segment == kGround;
+  if (!fixed && PlaneDepth(*ctx.kin, body2, plane_point, normal, PointPosition(*ctx.kin, body1, body.com)) > 0)
+    return start + ", with the centre of mass of body '" + body.name + "' inside too: the plane's normal likely " +
+           "points into '" + body.name + "'; it must point out of body2 '" + ctx.model->bodies()[body2].name +
+           "' toward body1 (else check the bodies' initial positions)";
+  return start + ": check the bodies' initial positions and the plane's point and normal";
+}
+
 std::string ContactLinearisedAs(std::span<const double> modes) {
   int touching = 0;
   for (const double m : modes) touching += m != 0.0;
@@ -106,10 +127,16 @@ std::string PointsPlaneContact::CrossingWarning(int index, int direction) const 
   return index == static_cast<int>(points_.size()) && direction > 0 ? PenetrationWarning(law_) : "";
 }
 
+std::string PointsPlaneContact::StartWarning(const ElementContext& ctx) const {
+  Vec3 p;
+  double deepest = -1e300;
+  for (std::size_t i = 0; i < points_.size(); ++i) deepest = std::max(deepest, Penetration(ctx, static_cast<int>(i), &p));
+  return StartPenetrationWarning(ctx, name(), law_, deepest, body1_, body2_, plane_point_, normal_);
+}
+
 double PointsPlaneContact::Penetration(const ElementContext& ctx, int i, Vec3* p) const {
   *p = PointPosition(*ctx.kin, body1_, points_[i]);
-  const Pose& plane = ctx.kin->body_pose[body2_];
-  return -(*p - plane * plane_point_).dot(plane.R * normal_);
+  return PlaneDepth(*ctx.kin, body2_, plane_point_, normal_, *p);
 }
 
 void PointsPlaneContact::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {

@@ -59,6 +59,17 @@ double ContactEnergy(const ContactLaw& law, double delta);
 void CheckContactLaw(const ContactLaw& law, const std::string& where);
 // The warning of a contact whose penetration crossed its bound (rising).
 std::string PenetrationWarning(const ContactLaw& law);
+// How deep the global point p lies beyond the plane of body 2 through
+// plane_point with unit external normal `normal` (both in body 2's frame).
+double PlaneDepth(const Kinematics& kin, int body2, const Vec3& plane_point, const Vec3& normal, const Vec3& p);
+// The load warning of contact `name` whose body 1 starts `depth` into the
+// plane of body 2; empty within law.max_penetration (a preloaded rest state).
+// When body 1's centre of mass lies beyond the plane too, more of the body is
+// inside than out: the normal most likely points into the body it should
+// hold, and the warning says so (not for a body 1 fixed to the ground, whose
+// centre of mass says nothing).
+std::string StartPenetrationWarning(const ElementContext& ctx, const std::string& name, const ContactLaw& law,
+                                    double depth, int body1, int body2, const Vec3& plane_point, const Vec3& normal);
 // What `mechflow modes` says of a contact linearised with these point modes
 // (nonzero: touching).
 std::string ContactLinearisedAs(std::span<const double> modes);
@@ -79,6 +90,8 @@ class PointsPlaneContact final : public ForceElement {
   bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
   // The last crossing is the deepest point passing max_penetration.
   std::string CrossingWarning(int index, int direction) const override;
+  // The deepest point starts beyond max_penetration.
+  std::string StartWarning(const ElementContext& ctx) const override;
   std::string LinearisedAs(std::span<const double> modes) const override;
 
 

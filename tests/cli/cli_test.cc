@@ -14,6 +14,7 @@ namespace mechflow::cli {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::StartsWith;
 namespace fs = std::filesystem;
 
@@ -63,6 +64,8 @@ TEST(CliTest, CheckAndGraphEveryExample) {
     EXPECT_EQ(check.exit_code, 0) << name << check.err;
     EXPECT_THAT(check.out, HasSubstr("evaluation order (output ports):"));
     EXPECT_THAT(check.out, HasSubstr("continuous states:"));
+    // no load warning (units, contacts that start beyond their bound): an example shows a sound model
+    EXPECT_THAT(check.out, Not(HasSubstr("warning"))) << name;
     const Outcome graph = Mechflow("graph " + Example(name));
     EXPECT_EQ(graph.exit_code, 0) << name;
     EXPECT_THAT(graph.out, StartsWith("digraph"));
