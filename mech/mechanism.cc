@@ -397,6 +397,22 @@ void InitialState(const Mechanism& mechanism, std::span<const double> inputs, st
   }
 }
 
+namespace {
+
+// What the elements' mode updates read: the kinematics and parameters, and
+// with exact-stick elements the holding forces of a full evaluation.
+void EvaluateForModes(const Mechanism& mechanism, double t, std::span<const double> x,
+                      std::span<const double> inputs, std::span<const double> modes, MechanismWorkspace* ws) {
+  if (!mechanism.exact_stick_elements().empty()) {
+    EvaluateMechanism(mechanism, t, x, inputs, modes, ws, {});
+  } else {
+    EvaluatePositions(mechanism, t, x, ws);
+    SetParameterArgs(t, inputs, ws);
+  }
+}
+
+}  // namespace
+
 bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
                         std::span<double> modes, MechanismWorkspace* ws) {
   const bool holds = !mechanism.exact_stick_elements().empty();
@@ -404,12 +420,7 @@ bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> 
   // Every pass that changes something releases a hold or settles a slip, so
   // the passes are bounded; the cap is a guard.
   for (int pass = 0; pass <= 2 * mechanism.num_elements(); ++pass) {
-    if (holds) {
-      EvaluateMechanism(mechanism, t, x, inputs, modes, ws, {});
-    } else {
-      EvaluatePositions(mechanism, t, x, ws);
-      SetParameterArgs(t, inputs, ws);
-    }
+    EvaluateForModes(mechanism, t, x, inputs, modes, ws);
     bool changed_now = false;
     for (int e = 0; e < mechanism.num_elements(); ++e) {
       const ForceElement& element = mechanism.element(e);
@@ -427,13 +438,7 @@ bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> 
 
 bool ElementModesAtRest(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
                         std::span<double> modes, MechanismWorkspace* ws) {
-  // holding forces of exact-stick elements come from a full evaluation
-  if (!mechanism.exact_stick_elements().empty()) {
-    EvaluateMechanism(mechanism, t, x, inputs, modes, ws, {});
-  } else {
-    EvaluatePositions(mechanism, t, x, ws);
-    SetParameterArgs(t, inputs, ws);
-  }
+  EvaluateForModes(mechanism, t, x, inputs, modes, ws);
   bool changed = false;
   for (int e = 0; e < mechanism.num_elements(); ++e) {
     const ForceElement& element = mechanism.element(e);
