@@ -1,6 +1,6 @@
 #pragma once
-// The one table of the SI units that attributes of a diagram are in, where
-// the attribute alone decides it: a body's mass is in kg, a rotational
+// The SI units that attributes of a diagram are in, where the attribute
+// alone decides it (read from the element table, diagrams/element_table.h): a body's mass is in kg, a rotational
 // joint's q0 in rad, a linear force law's c in N/m, the solver's t_end in s.
 // An identifier used as such an attribute must have that dimension
 // (diagrams/unit_check.h); attributes whose unit depends on more (a

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <stdexcept>
 #include <vector>
 
 #include <tinyxml2.h>
@@ -9,6 +10,7 @@
 #include "blocks/excerpt.h"
 #include "blocks/input_file.h"
 #include "blocks/suggest.h"
+#include "diagrams/element_table.h"
 #include "diagrams/xml_text_check.h"
 #include "mech/errors.h"
 
@@ -22,80 +24,6 @@ using blocks::ReadPolicy;
 using tinyxml2::XMLAttribute;
 using tinyxml2::XMLElement;
 
-// What one element may contain. `open_attributes`: any further attribute is
-// accepted here and checked later (block parameters depend on the type).
-struct ElementSchema {
-  const char* name;
-  std::vector<std::string> required;
-  std::vector<std::string> optional;
-  std::vector<std::string> children;
-  bool open_attributes = false;
-};
-
-const std::vector<ElementSchema>& Schema() {
-  static const std::vector<ElementSchema> schema = {
-      {"diagram", {}, {"name", "comment"},
-       {"identifiers", "variants", "mechanism", "blocks", "connections", "solver", "output", "script"}},
-      {"script", {}, {"src"}, {}},
-      {"variants", {"name"}, {"comment"}, {"variant"}},
-      {"variant", {"name"}, {"comment"}, {"set"}},
-      {"set", {"identifier", "value"}, {}, {}},
-      {"mechanism", {"name"}, {"src", "gravity", "comment"},
-       {"input", "body", "joint", "force", "joint_force", "bushing", "applied_force", "contact", "gearing", "sensor",
-        "shape"}},
-      // graphics only (graphics/scene.h): no mass, no effect on the motion
-      {"shape", {"type"},
-       {"name", "body", "position", "rotation", "size", "radius", "length", "axis", "points", "body2", "point1",
-        "point2", "coils", "color", "opacity", "radius2", "teeth", "tooth_height", "width", "taper",
-        "x", "y", "z", "u", "v", "samples"},
-       {}},
-      {"gearing", {"name", "body1", "body2"},
-       {"centre1", "axis1", "centre2", "axis2", "ratio", "clearance", "stiffness", "damping"}, {}},
-      {"contact", {"name", "type", "body1", "body2"},
-       {"points", "centre", "circle_normal", "radius", "plane_point", "normal", "stiffness", "exponent", "damping",
-        "damping_depth", "mu", "mu_static", "stribeck_velocity", "v_eps", "max_penetration"},
-       {}},
-      {"input", {"name"}, {}, {}},
-      {"body", {"name", "mass", "inertia"}, {"com", "products", "comment"}, {"point"}},
-      {"point", {"name", "at"}, {}, {}},
-      {"joint", {"name", "type", "body1", "body2"},
-       {"point1", "point2", "rotation1", "rotation2", "axis", "q0", "v0", "locked", "position", "angles", "velocity",
-        "angular_velocity", "axis1", "axis2", "reference1", "reference2"},
-       {"et"}},
-      {"et", {"type"}, {"axis", "value", "signal", "vector", "q0", "v0", "locked", "name"}, {}},
-      {"force", {"name", "type", "body1", "body2"},
-       {"point1", "point2", "c", "x0", "d", "f0", "points", "interpolation", "extrapolation", "expression",
-        "friction", "ratio", "stick", "c1", "c2", "mu", "mu0", "l0", "limit", "normal_force"},
-       {}},
-      {"joint_force", {"name", "type", "dof"},
-       {"c", "x0", "d", "f0", "points", "interpolation", "extrapolation", "expression", "friction", "ratio", "stick"},
-       {}},
-      {"bushing", {"name", "body1", "body2"}, {"point1", "point2", "c", "d", "ca", "da", "preload", "preload_moment"}, {}},
-      {"applied_force", {"name", "body"}, {"point", "force", "torque", "axes"}, {}},
-      {"sensor", {"name", "kind"}, {"dof", "joint", "element", "quantity", "body", "point", "component"}, {}},
-      {"identifiers", {}, {}, {"identifier"}},
-      {"identifier", {"name", "value"}, {"comment", "unit"}, {}},
-      {"blocks", {}, {}, {"block"}},
-      {"block", {"type", "name"}, {}, {}, true},
-      {"connections", {}, {}, {"connect"}},
-      {"connect", {"from", "to"}, {}, {}},
-      {"solver", {}, {"t_start", "t_end", "rtol", "atol", "max_step", "initial_step", "max_steps", "linear_solver", "jacobian"}, {}},
-      {"output", {}, {"interval", "csv", "plot", "animation", "gltf"}, {"log", "report", "spectrum", "xy"}},
-      {"xy", {"curves"}, {"title", "x_label", "y_label"}, {}},
-      {"spectrum", {"signal"}, {"segment", "overlap", "window", "from", "peaks", "max_frequency"}, {}},
-      {"report", {}, {"peak", "min", "peak_abs", "mean", "rms", "integral", "final", "crossing", "period", "level",
-                      "label", "unit", "index"}, {}},
-      {"log", {"signal"}, {"group", "label", "unit"}, {}},
-  };
-  return schema;
-}
-
-const ElementSchema& SchemaOf(const std::string& element) {
-  for (const auto& s : Schema())
-    if (element == s.name) return s;
-  throw std::logic_error("no schema for element " + element);
-}
-
 class Reader {
  public:
   Reader(std::string file, const ReadPolicy& reads) : file_(std::move(file)), reads_(reads) {}
@@ -106,29 +34,21 @@ class Reader {
     throw InputError(Loc(e).str() + ": " + what);
   }
 
-  // Checks the attributes and children of `e` against the schema.
+  // Checks the attributes and children of `e` against the element table
+  // (diagrams/element_table.h): for a typed element, its type's attributes.
   void CheckShape(const XMLElement* e) const {
-    const ElementSchema& s = SchemaOf(e->Name());
-    std::vector<std::string> allowed = s.required;
-    allowed.insert(allowed.end(), s.optional.begin(), s.optional.end());
-    for (const XMLAttribute* a = e->FirstAttribute(); a; a = a->Next()) {
-      const std::string name = a->Name();
-      CheckNameText(e, name, a->Value());
-      if (s.open_attributes || std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
-      Fail(e, "<" + std::string(e->Name()) + "> has no attribute '" + blocks::Excerpt(name) + "'" +
-                  blocks::DidYouMean(name, allowed) +
-                  (allowed.empty() ? "; it takes no attributes" : "; valid attributes: " + blocks::JoinNames(allowed)));
-    }
-    for (const auto& r : s.required)
-      if (!e->Attribute(r.c_str()))
-        Fail(e, "<" + std::string(e->Name()) + "> needs the attribute '" + r + "'");
+    const ElementSpec* spec = FindElementSpec(e->Name());
+    if (!spec) throw std::logic_error(std::string("no table entry for element ") + e->Name());
+    for (const XMLAttribute* a = e->FirstAttribute(); a; a = a->Next()) CheckNameText(e, a->Name(), a->Value());
+    CheckAttributes(e->Name(), Attributes(e), Loc(e));
+    const std::vector<std::string> children = spec->AllChildren();
     for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
       const std::string name = c->Name();
-      if (std::find(s.children.begin(), s.children.end(), name) != s.children.end()) continue;
+      if (std::find(children.begin(), children.end(), name) != children.end()) continue;
       Fail(c, "unknown element <" + blocks::Excerpt(name) + "> inside <" + e->Name() + ">" +
-                  blocks::DidYouMean(name, s.children) +
-                  (s.children.empty() ? "; <" + std::string(e->Name()) + "> has no child elements"
-                                      : "; expected one of: " + blocks::JoinNames(s.children)));
+                  blocks::DidYouMean(name, children) +
+                  (children.empty() ? "; <" + std::string(e->Name()) + "> has no child elements"
+                                    : "; expected one of: " + blocks::JoinNames(children)));
     }
   }
 

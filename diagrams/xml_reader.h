@@ -2,7 +2,7 @@
 // Reads a diagram XML file into a DiagramDescription.
 //
 // Shape first, values later (as MuJoCo's schema check): every element and
-// attribute is checked against the format (diagrams/FORMAT.md) before any value
+// attribute is checked against the element table (diagrams/element_table.h) before any value
 // is kept; an unknown name is an error with the nearest valid name suggested.
 // Block parameters are kept as text here: which ones a block accepts depends
 // on its type, which the loader checks against the block registry.
