@@ -12,6 +12,7 @@
 #include "blocks/excerpt.h"
 #include "blocks/suggest.h"
 #include "cli/force_analysis_command.h"
+#include "cli/help_topics.h"
 #include "cli/output_budget.h"
 #include "cli/psd_command.h"
 #include "mech/errors.h"
@@ -192,6 +193,7 @@ std::string HelpText(const std::string& command) {
            "Exit codes: 0 done, 1 no equilibrium found (modes that do not settle, or rates\n"
            "that are not finite), 2 bad input.\n";
   if (command == "force-analysis") return ForceAnalysisHelp();
+  if (!command.empty() && IsTypeTopic(command)) return TypeHelp(command);
   if (command == "psd") return PsdHelp();
   if (command == "sweep")
     return "usage: mechflow sweep FILE --vary NAME=V1,V2,... [--vary ...] [--variant NAME]...\n"
@@ -242,9 +244,11 @@ std::string HelpText(const std::string& command) {
          "  sweep   run every combination of identifier values, in parallel\n"
          "  force-analysis  dynamic stiffness, phase and loops of one force element\n"
          "  psd     power spectral density of logged signals in a results file\n"
-         "  help    help on a command: mechflow help run\n"
+         "  help    help on a command, block type or diagram element: mechflow help run,\n"
+         "          mechflow help integrator, mechflow help force\n"
          "\n"
-         "Options: --help (also after a command), --version.\n";
+         "Options: --help (also after a command), --version.\n" +
+         TopicsText();
 }
 
 void ReadSetFile(const std::string& text, const std::string& path, Arguments* a) {
@@ -275,6 +279,13 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
   if (first == "help") {
     a.help = true;
     if (args.size() > 1) a.command = args[1];
+    if (!a.command.empty() && std::find(kCommands.begin(), kCommands.end(), a.command) == kCommands.end() &&
+        !IsTypeTopic(a.command)) {
+      std::vector<std::string> topics = kCommands;
+      for (const std::string& t : TypeTopics()) topics.push_back(t);
+      throw UsageError("no help topic '" + blocks::Excerpt(a.command) + "'" + blocks::DidYouMean(a.command, topics) +
+                       "; `mechflow help` lists the commands, block types and diagram elements");
+    }
     return a;
   }
   if (std::find(kCommands.begin(), kCommands.end(), first) == kCommands.end())

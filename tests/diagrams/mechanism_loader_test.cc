@@ -135,16 +135,49 @@ TEST(MechanismLoaderTest, StickModels) {
   EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge +
                               "<force name=\"f\" type=\"elastic_friction\" body1=\"Base0\" point1=\"0 0 1\" "
                               "body2=\"Box\" friction=\"1\" c=\"100\" stick=\"exact\"/>")),
-              AllOf(StartsWith("test.xml:6: force 'f' attribute 'stick': only type=\"frictional\""),
+              AllOf(StartsWith("test.xml:6: force 'f' attribute 'stick': an elastic_friction force has no 'stick' "
+                               "(only type=\"frictional\" takes it)"),
                     HasSubstr("already sticks exactly")));
   EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge + "<joint_force name=\"f\" dof=\"j\" type=\"linear\" c=\"1\" "
                                               "stick=\"exact\"/>")),
-              StartsWith("test.xml:6: joint_force 'f' attribute 'stick': only type=\"frictional\""));
+              StartsWith("test.xml:6: joint_force 'f' attribute 'stick': a linear joint_force has no 'stick' "
+                         "(only type=\"frictional\" takes it)"));
   // and it has no deflection to sense
   EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge +
                               "<joint_force name=\"f\" dof=\"j\" type=\"frictional\" friction=\"1\" stick=\"exact\"/>"
                               "<sensor name=\"s\" kind=\"element\" element=\"f\" quantity=\"deflection\"/>")),
               AllOf(HasSubstr("deflection"), HasSubstr("force")));
+}
+
+// Attributes a type takes but whose part of the law is absent would change
+// nothing: refused, saying what to give instead.
+TEST(MechanismLoaderTest, AttributesThatCannotTakeEffectAreRefused) {
+  const std::string contact = "<contact name=\"k\" type=\"points_plane\" body1=\"Box\" body2=\"Base0\" "
+                              "points=\"0 0 0\" stiffness=\"1e5\"";
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge + contact + " v_eps=\"1e-3\"/>")),
+              AllOf(StartsWith("test.xml:6: contact 'k' attribute 'v_eps': shapes the friction, but mu and mu_static "
+                               "are 0"),
+                    HasSubstr("give mu, or remove v_eps")));
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge + contact + " stribeck_velocity=\"1e-2\"/>")),
+              HasSubstr("attribute 'stribeck_velocity': shapes the friction"));
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge + contact + " damping_depth=\"1e-3\"/>")),
+              AllOf(StartsWith("test.xml:6: contact 'k' attribute 'damping_depth'"), HasSubstr("damping is 0")));
+  // with friction and damping they take effect
+  EXPECT_EQ(ErrorOf(Diagram(kBox + kHinge + contact +
+                            " mu=\"0.3\" v_eps=\"1e-3\" damping=\"10\" damping_depth=\"1e-3\"/>")),
+            "");
+  const std::string ef2 = "<force name=\"f\" type=\"elastic_friction2\" body1=\"Base0\" point1=\"0 0 1\" "
+                          "body2=\"Box\" c1=\"100\" mu=\"0.2\" normal_force=\"10\"";
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge + ef2 + "/>")),
+              AllOf(StartsWith("test.xml:6: force 'f' attribute 'normal_force': is the normal force of "
+                               "limit=\"constant\" only"),
+                    HasSubstr("with limit=\"transmitted\" it would change nothing")));
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge + ef2 + " limit=\"spring\"/>")),
+              HasSubstr("with limit=\"spring\" it would change nothing"));
+  EXPECT_EQ(ErrorOf(Diagram(kBox + kHinge + ef2 + " limit=\"constant\"/>")), "");
+  // a scalar sensor has no component to pick, a constant transformation no name
+  EXPECT_THAT(ErrorOf(Diagram(kBox + kHinge + "<sensor name=\"s\" kind=\"coordinate\" dof=\"j\" component=\"x\"/>")),
+              StartsWith("test.xml:6: sensor 's' attribute 'component': a coordinate sensor has no 'component'"));
 }
 
 TEST(MechanismLoaderTest, MechanismFromItsOwnFileAndAnInputDrivenForce) {
