@@ -117,11 +117,22 @@ std::vector<std::string> ElementTags() {
   return tags;
 }
 
+// `title` then the names, comma-separated, in lines of at most 80 columns.
+std::string Wrapped(const std::string& title, const std::vector<std::string>& names) {
+  std::string out = title + "\n ", line;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string item = " " + names[i] + (i + 1 < names.size() ? "," : "");
+    if (line.size() + item.size() > 78) out += line + "\n ", line.clear();
+    line += item;
+  }
+  return out + line + "\n";
+}
+
 }  // namespace
 
 std::string TopicsText() {
-  return "\nBlock types (mechflow help TYPE): " + blocks::JoinNames(Blocks().types.Names()) +
-         "\n\nDiagram elements (mechflow help TAG): " + blocks::JoinNames(ElementTags()) + "\n";
+  return "\n" + Wrapped("Block types (mechflow help TYPE):", Blocks().types.Names()) + "\n" +
+         Wrapped("Diagram elements (mechflow help TAG):", ElementTags());
 }
 
 bool IsTypeTopic(const std::string& topic) {

@@ -1,5 +1,6 @@
 // Bodies and joints of a <mechanism> (diagrams/FORMAT.md, "Joints").
 
+#include "diagrams/element_table.h"
 #include "diagrams/mechanism_reader.h"
 #include "scripting/time_function.h"
 
@@ -19,8 +20,6 @@ mech::TransformSpec Dof(mech::TransformType type, const Vec3& axis, double q0, d
   return et;
 }
 
-const std::vector<std::string> kJointTypes = {"rotational", "translational", "fixed",      "cardan6",
-                                              "quaternion", "generalized",   "convel"};
 const std::vector<std::string> kEtTypes = {"tc", "tt", "tv", "rc", "rt", "rv"};
 
 }  // namespace
@@ -136,8 +135,9 @@ mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
       j.chain.push_back(spec);
     }
   } else {
+    const std::vector<std::string> types = FindElementSpec("joint")->VariantNames();  // the table's
     throw InputError(e.loc.str() + ": joint '" + j.name + "': unknown type '" + type + "'" +
-                     blocks::DidYouMean(type, kJointTypes) + "; expected one of " + blocks::JoinNames(kJointTypes));
+                     blocks::DidYouMean(type, types) + "; expected one of " + blocks::JoinNames(types));
   }
   if (type != "generalized" && !e.children.empty())
     throw InputError(e.children[0].loc.str() + ": <et> belongs only in joints of type 'generalized'");

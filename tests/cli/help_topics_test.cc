@@ -36,8 +36,8 @@ TEST(HelpTopicsTest, AnElementShowsEveryTypesAttributesWithUnitsAndDefaults) {
 TEST(HelpTopicsTest, HelpListsTheTopicsAndRefusesAnUnknownOne) {
   const auto list = RunMechflow("help");
   EXPECT_EQ(list.exit_code, 0);
-  EXPECT_THAT(list.out, AllOf(HasSubstr("Block types (mechflow help TYPE): "), HasSubstr("first_order_lag"),
-                              HasSubstr("Diagram elements (mechflow help TAG): "), HasSubstr("joint_force")));
+  EXPECT_THAT(list.out, AllOf(HasSubstr("Block types (mechflow help TYPE):\n"), HasSubstr("first_order_lag"),
+                              HasSubstr("Diagram elements (mechflow help TAG):\n"), HasSubstr("joint_force")));
   const auto bad = RunMechflow("help forse");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_THAT(bad.err, HasSubstr("no help topic 'forse' (did you mean 'force'?)"));

@@ -74,7 +74,7 @@ TEST(SceneTest, BadGeometryIsRefusedAtItsLine) {
   EXPECT_THAT(error("<shape type='box' color='red'/>"), HasSubstr("expected \"#rrggbb\""));
   EXPECT_THAT(error("<shape type='polyline' points='0 0 0'/>"), HasSubstr("at least two points"));
   EXPECT_THAT(error("<shape type='box' opacity='2'/>"), HasSubstr("must lie in [0, 1]"));
-  EXPECT_THAT(error("<shape type='box' radius2='1'/>"), HasSubstr("a box has no 'radius2'; it takes size and"));
+  EXPECT_THAT(error("<shape type='box' radius2='1'/>"), HasSubstr("a box has no 'radius2' (only type=\"cone\" takes it); it takes size and"));
   EXPECT_THAT(error("<shape type='gear' teeth='2.5'/>"), HasSubstr("'teeth': a whole number from 3 to 1000"));
   EXPECT_THAT(error("<shape type='gear' radius='0.1' tooth_height='0.3'/>"), HasSubstr("below twice the radius"));
   EXPECT_THAT(error("<shape type='plane' size='1'/>"), HasSubstr("expected two edges > 0"));
