@@ -14,20 +14,16 @@
 
 namespace mechflow::cli {
 
-std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded, blocks::Simulator* sim,
-                                           const OutputFolder& folder, std::uint64_t max_bytes,
-                                           PlotEnvelope* envelope) {
+std::unique_ptr<ResultsFile> OpenResults(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim,
+                                         const OutputFolder& folder, std::uint64_t max_bytes, PlotEnvelope* envelope) {
   std::unique_ptr<ResultsFile> file;
   try {
-    file = std::make_unique<ResultsFile>(folder, loaded.csv_file, sim->results().columns());
+    file = std::make_unique<ResultsFile>(folder, loaded.csv_file, sim.results().columns());
   } catch (const WriteError& e) {
     throw InputError(e.what());
   }
-  std::vector<int> keep;
-  for (const diagrams::SpectrumRequest& s : loaded.spectra) keep.push_back(sim->results().FindColumn(s.column));
   file->SetByteLimit(max_bytes);
   if (envelope) envelope->set_next(file.get());
-  sim->StreamRows(envelope ? static_cast<blocks::RowSink*>(envelope) : file.get(), keep);
   return file;
 }
 

@@ -15,13 +15,12 @@
 
 namespace mechflow::cli {
 
-// Streams the run's rows into its results file (through `envelope`, the
-// plot's, when not nullptr), keeping in memory only the columns its
-// <spectrum>s need. The file stops at `max_bytes` (ResultsFile::stopped).
-// Throws InputError when the file cannot be made (before the run).
-std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded, blocks::Simulator* sim,
-                                           const OutputFolder& folder, std::uint64_t max_bytes,
-                                           PlotEnvelope* envelope);
+// The run's results file, made before the run (its rows go to `envelope`,
+// the plot's, when not nullptr, which passes them on to the file). The file
+// stops at `max_bytes` (ResultsFile::stopped). Throws InputError when it
+// cannot be made.
+std::unique_ptr<ResultsFile> OpenResults(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim,
+                                         const OutputFolder& folder, std::uint64_t max_bytes, PlotEnvelope* envelope);
 
 // Closes the results file and writes every other file the run has
 // something for, saying each one on `out`.
