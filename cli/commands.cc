@@ -85,13 +85,12 @@ int PrintLoadWarnings(const diagrams::LoadedDiagram& loaded, std::ostream& out) 
 
 int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   run::Model model(args.file, ToLoadOptions(args));
-  const diagrams::LoadedDiagram& loaded = model.Loaded();
-  PrintLoadWarnings(loaded, err);
+  PrintLoadWarnings(model.Loaded(), err);
   const OutputFolder folder(args.out_dir);  // before the run: a bad --out is bad input
   // the rows go to the results file; the columns of the <spectrum>s stay in memory too
   std::unique_ptr<ResultsFile> results_file;
   run::RunOptions options;
-  for (const diagrams::SpectrumRequest& s : loaded.spectra) options.keep.push_back(s.column);
+  for (const diagrams::SpectrumRequest& s : model.Loaded().spectra) options.keep.push_back(s.column);
   options.interrupt = InterruptFlag();
   std::optional<Progress> progress;
   options.progress = [&](double t) {
@@ -100,6 +99,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     if (!results_file->stopped().empty()) throw SimulationError(results_file->stopped());
   };
   run::PreparedRun prepared = model.Prepare(options);
+  const diagrams::LoadedDiagram& loaded = prepared.loaded();
   blocks::Simulator& sim = prepared.simulator();
   const AnimationOutput animation(loaded, args, &sim);  // shapes checked now: bad geometry is bad input
   // every file estimated before any is made: past its budget is bad input
@@ -158,8 +158,8 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
 
   // results are written whether or not the run finished
   int plot_stopped_by = 0;  // a signal while gnuplot drew
-  bool all_written =
-      WriteRunOutputs(loaded, sim, folder, results_file.get(), out, err, &plot_stopped_by, envelope.get());
+  bool all_written = WriteRunOutputs(loaded, sim, prepared.columns(), folder, results_file.get(), out, err,
+                                     &plot_stopped_by, envelope.get());
   all_written = animation.Write(folder, out, err) && all_written;
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);

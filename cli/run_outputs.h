@@ -12,6 +12,7 @@
 #include "cli/plot_envelope.h"
 #include "cli/results_file.h"
 #include "diagrams/loader.h"
+#include "run/columns.h"
 
 namespace mechflow::cli {
 
@@ -30,8 +31,9 @@ std::unique_ptr<ResultsFile> OpenResults(const diagrams::LoadedDiagram& loaded, 
 // code 1). A signal while gnuplot draws stops the plots (the other files are
 // still written) and sets `*stopped_by` to it.
 // A long run's plot is drawn from `envelope` (written beside it) when given.
-bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim, const OutputFolder& folder,
-                     ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by,
+// `columns` are the run's (run::PreparedRun::columns), named with their units.
+bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim,
+                     const std::vector<run::Column>& columns, const OutputFolder& folder, ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by,
                      const PlotEnvelope* envelope = nullptr);
 
 }  // namespace mechflow::cli

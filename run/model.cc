@@ -10,6 +10,7 @@
 namespace mechflow::run {
 namespace {
 
+// Every field of diagrams::LoadOptions (a field added there belongs here too).
 bool Same(const LoadOptions& a, const LoadOptions& b) {
   return a.variants == b.variants && a.overrides == b.overrides && a.expression_overrides == b.expression_overrides &&
          a.t_end == b.t_end && a.rtol == b.rtol && a.atol == b.atol && a.interval == b.interval &&
