@@ -2,6 +2,7 @@
 
 #include "run/model.h"
 
+#include <csignal>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -120,6 +121,20 @@ TEST(RunModel, RunWithoutSinkGivesOutcomeAndFigures) {
   ASSERT_EQ(r.columns.size(), 3u);
   EXPECT_EQ(r.columns[0].unit, "s");
   EXPECT_EQ(r.columns[1].unit, "m");
+}
+
+TEST(RunModel, InterruptAndProgress) {
+  run::Model model(Example("damping_ratio.xml"));
+  run::RunOptions o = Short(1);
+  int calls = 0;
+  o.progress = [&](double) { ++calls; };
+  EXPECT_EQ(model.Run(o).rows, calls);  // after every row
+  volatile std::sig_atomic_t flag = SIGINT;  // as a handler leaves it
+  o.interrupt = &flag;
+  const run::RunResult r = model.Run(o);
+  EXPECT_EQ(r.status, run::Status::kInterrupted);
+  EXPECT_EQ(r.signal, SIGINT);
+  EXPECT_LT(r.t_reached, 1.0);
 }
 
 TEST(RunModel, LogsTheSignalsAsked) {
