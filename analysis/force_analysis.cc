@@ -11,6 +11,7 @@
 #include "blocks/simulator.h"
 #include "blocks/suggest.h"
 #include "mech/errors.h"
+#include "run/model.h"
 
 namespace mechflow::analysis {
 namespace {
@@ -135,11 +136,11 @@ ForceAnalysisCase RunCase(const diagrams::LoadedDiagram& loaded, const FoundElem
 
 void RunCases(const ForceAnalysisRequest& request, const std::vector<std::vector<double>>& combinations,
               ForceAnalysis* analysis) {
+  run::Model model(request.file, request.options);  // read once; rebuilt with each combination's values
   for (const auto& values : combinations) {
-    diagrams::LoadOptions options = request.options;
     for (std::size_t i = 0; i < values.size(); ++i)
-      for (const std::string& name : request.vary[i].first) options.overrides.emplace_back(name, values[i]);
-    const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(request.file, options);
+      for (const std::string& name : request.vary[i].first) model.Set(name, values[i]);
+    const diagrams::LoadedDiagram& loaded = model.Loaded();
     const FoundElement found = FindElement(loaded, request.element);
     analysis->diagram = loaded.description.name;
     analysis->element_what = "element '" + request.element + "'" +

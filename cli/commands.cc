@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <csignal>
 #include <cstdio>
 #include <sstream>
@@ -23,6 +24,7 @@
 #include "blocks/library/mechanism_block.h"
 #include "blocks/linearization.h"
 #include "diagrams/loader.h"
+#include "run/model.h"
 #include "cli/animation_output.h"
 #include "graphics/scene.h"
 #include "mech/errors.h"
@@ -82,13 +84,23 @@ int PrintLoadWarnings(const diagrams::LoadedDiagram& loaded, std::ostream& out) 
 }
 
 int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
-  diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
-  PrintLoadWarnings(loaded, err);
+  run::Model model(args.file, ToLoadOptions(args));
+  PrintLoadWarnings(model.Loaded(), err);
   const OutputFolder folder(args.out_dir);  // before the run: a bad --out is bad input
-  blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
-  sim.SetReports(loaded.reports);
-  sim.SetControl(loaded.control.get());
-  sim.SetInterruptFlag(InterruptFlag());
+  // the rows go to the results file; the columns of the <spectrum>s stay in memory too
+  std::unique_ptr<ResultsFile> results_file;
+  run::RunOptions options;
+  for (const diagrams::SpectrumRequest& s : model.Loaded().spectra) options.keep.push_back(s.column);
+  options.interrupt = InterruptFlag();
+  std::optional<Progress> progress;
+  options.progress = [&](double t) {
+    (*progress)(t);
+    // past the budget (more rows than estimated): the run ends, its rows kept
+    if (!results_file->stopped().empty()) throw SimulationError(results_file->stopped());
+  };
+  run::PreparedRun prepared = model.Prepare(options);
+  const diagrams::LoadedDiagram& loaded = prepared.loaded();
+  blocks::Simulator& sim = prepared.simulator();
   const AnimationOutput animation(loaded, args, &sim);  // shapes checked now: bad geometry is bad input
   // every file estimated before any is made: past its budget is bad input
   const std::uint64_t budget = args.max_output_bytes.value_or(kDefaultMaxOutputBytes);
@@ -108,19 +120,14 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     envelope = std::make_unique<PlotEnvelope>(PlottedColumns(loaded.groups), xy_columns,
                                               loaded.solver.t_end - loaded.solver.t_start, nullptr);
   }
-  const std::unique_ptr<ResultsFile> results_file = StreamResults(loaded, &sim, folder, budget, envelope.get());
+  results_file = OpenResults(loaded, sim, folder, budget, envelope.get());
   const InterruptHandlers handlers;  // Ctrl-C, SIGTERM, SIGHUP: cli/interrupt.h
 
   const auto wall_start = std::chrono::steady_clock::now();
-  blocks::RunOutcome outcome;
-  {
-    Progress progress(loaded.solver.t_start, loaded.solver.t_end);
-    outcome = sim.Run([&](double t) {
-      progress(t);
-      // past the budget (more rows than estimated): the run ends, its rows kept
-      if (!results_file->stopped().empty()) throw SimulationError(results_file->stopped());
-    });
-  }
+  progress.emplace(loaded.solver.t_start, loaded.solver.t_end);
+  const blocks::RunOutcome outcome =
+      prepared.Run(envelope ? static_cast<blocks::RowSink*>(envelope.get()) : results_file.get()).outcome;
+  progress.reset();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
   out << "mechflow run " << args.file << ": t = " << loaded.solver.t_start << " .. " << loaded.solver.t_end << " s\n";
@@ -151,8 +158,8 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
 
   // results are written whether or not the run finished
   int plot_stopped_by = 0;  // a signal while gnuplot drew
-  bool all_written =
-      WriteRunOutputs(loaded, sim, folder, results_file.get(), out, err, &plot_stopped_by, envelope.get());
+  bool all_written = WriteRunOutputs(loaded, sim, prepared.columns(), folder, results_file.get(), out, err,
+                                     &plot_stopped_by, envelope.get());
   all_written = animation.Write(folder, out, err) && all_written;
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);
@@ -184,7 +191,8 @@ int GraphCommand(const Arguments& args, std::ostream& out, std::ostream&) {
 }
 
 int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
-  const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(args.file, ToLoadOptions(args));
+  run::Model model(args.file, ToLoadOptions(args));
+  const diagrams::LoadedDiagram& loaded = model.Loaded();
   PrintLoadWarnings(loaded, err);
   const blocks::Diagram& diagram = *loaded.diagram;
   if (diagram.num_states() == 0) {

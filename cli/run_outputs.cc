@@ -14,25 +14,21 @@
 
 namespace mechflow::cli {
 
-std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded, blocks::Simulator* sim,
-                                           const OutputFolder& folder, std::uint64_t max_bytes,
-                                           PlotEnvelope* envelope) {
+std::unique_ptr<ResultsFile> OpenResults(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim,
+                                         const OutputFolder& folder, std::uint64_t max_bytes, PlotEnvelope* envelope) {
   std::unique_ptr<ResultsFile> file;
   try {
-    file = std::make_unique<ResultsFile>(folder, loaded.csv_file, sim->results().columns());
+    file = std::make_unique<ResultsFile>(folder, loaded.csv_file, sim.results().columns());
   } catch (const WriteError& e) {
     throw InputError(e.what());
   }
-  std::vector<int> keep;
-  for (const diagrams::SpectrumRequest& s : loaded.spectra) keep.push_back(sim->results().FindColumn(s.column));
   file->SetByteLimit(max_bytes);
   if (envelope) envelope->set_next(file.get());
-  sim->StreamRows(envelope ? static_cast<blocks::RowSink*>(envelope) : file.get(), keep);
   return file;
 }
 
-bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim, const OutputFolder& folder,
-                     ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by,
+bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim,
+                     const std::vector<run::Column>& columns, const OutputFolder& folder, ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by,
                      const PlotEnvelope* envelope) {
   std::vector<std::string> written, failed, cut;
   const auto write = [&](const std::string& name, const std::string& bytes, const std::string& note) {
@@ -69,8 +65,7 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
   // the unit of every column (STEM.units.csv: column,unit), where known
   write(stem + ".units.csv", text([&](std::ostream& s) {
           s << "column,unit\n";
-          for (int c = 0; c < sim.results().num_columns(); ++c)
-            s << blocks::CsvField(sim.results().columns()[c]) << ',' << blocks::CsvField(loaded.units[c]) << '\n';
+          for (const run::Column& c : columns) s << blocks::CsvField(c.name) << ',' << blocks::CsvField(c.unit) << '\n';
         }),
         "");
   if (!sim.results().figures().empty())

@@ -12,16 +12,16 @@
 #include "cli/plot_envelope.h"
 #include "cli/results_file.h"
 #include "diagrams/loader.h"
+#include "run/columns.h"
 
 namespace mechflow::cli {
 
-// Streams the run's rows into its results file (through `envelope`, the
-// plot's, when not nullptr), keeping in memory only the columns its
-// <spectrum>s need. The file stops at `max_bytes` (ResultsFile::stopped).
-// Throws InputError when the file cannot be made (before the run).
-std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded, blocks::Simulator* sim,
-                                           const OutputFolder& folder, std::uint64_t max_bytes,
-                                           PlotEnvelope* envelope);
+// The run's results file, made before the run (its rows go to `envelope`,
+// the plot's, when not nullptr, which passes them on to the file). The file
+// stops at `max_bytes` (ResultsFile::stopped). Throws InputError when it
+// cannot be made.
+std::unique_ptr<ResultsFile> OpenResults(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim,
+                                         const OutputFolder& folder, std::uint64_t max_bytes, PlotEnvelope* envelope);
 
 // Closes the results file and writes every other file the run has
 // something for, saying each one on `out`.
@@ -31,8 +31,9 @@ std::unique_ptr<ResultsFile> StreamResults(const diagrams::LoadedDiagram& loaded
 // code 1). A signal while gnuplot draws stops the plots (the other files are
 // still written) and sets `*stopped_by` to it.
 // A long run's plot is drawn from `envelope` (written beside it) when given.
-bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim, const OutputFolder& folder,
-                     ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by,
+// `columns` are the run's (run::PreparedRun::columns), named with their units.
+bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim,
+                     const std::vector<run::Column>& columns, const OutputFolder& folder, ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by,
                      const PlotEnvelope* envelope = nullptr);
 
 }  // namespace mechflow::cli

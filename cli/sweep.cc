@@ -32,6 +32,8 @@
 #include "cli/ranks.h"
 #include "cli/report.h"
 #include "diagrams/loader.h"
+#include "run/columns.h"
+#include "run/model.h"
 #include "mech/errors.h"
 
 namespace mechflow::cli {
@@ -70,6 +72,7 @@ std::string OneLine(const std::string& text) {
 // Everything a run needs besides its index; read-only while the runs go.
 struct Plan {
   std::string file;
+  diagrams::DiagramDescription description;  // read once; every worker builds its own model from it
   diagrams::LoadOptions common;            // variants, --set, t_end, unsafe_lua
   std::vector<std::string> names;          // varied identifiers (lower-case)
   std::vector<std::vector<double>> values; // per varied identifier
@@ -138,7 +141,9 @@ struct RunRow {
   std::string message;  // "run 2/3 (beta=0.1): ok, t = 10 s"
 };
 
-RunRow RunOne(const Plan& plan, int index) {
+// Run `index` on `model`, this worker's (made at its first run, from the
+// description read once; each run rebuilds it with its values: run/model.h).
+RunRow RunOne(const Plan& plan, int index, std::unique_ptr<run::Model>* model) {
   const std::vector<double> values = Combination(plan, index);
   if (const int signal = *InterruptFlag()) {  // Ctrl-C before this run began: not run
     RunRow row;
@@ -150,38 +155,38 @@ RunRow RunOne(const Plan& plan, int index) {
                   Assignments(plan, values, ", ") + "): not run (" + SignalName(signal) + ")";
     return row;
   }
-  diagrams::LoadOptions options = plan.common;
-  for (std::size_t k = 0; k < values.size(); ++k) options.overrides.push_back({plan.names[k], values[k]});
-
   bool ran = false, ok = false, stopped = false;
   double t_reached = 0.0;
   std::string error, results_file;
   std::vector<blocks::ReportFigure> figures;
   try {
-    const diagrams::LoadedDiagram loaded = diagrams::LoadDiagram(plan.file, options);
-    blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
-    sim.SetReports(loaded.reports);
-    sim.SetControl(loaded.control.get());
-    sim.SetInterruptFlag(InterruptFlag());
+    if (!*model) *model = std::make_unique<run::Model>(plan.description, plan.common);
+    for (std::size_t k = 0; k < values.size(); ++k) (*model)->Set(plan.names[k], values[k]);
+    std::unique_ptr<ResultsFile> file;
+    run::RunOptions options;
+    options.interrupt = InterruptFlag();
+    options.progress = [&](double) {
+      if (!file->stopped().empty()) throw SimulationError(file->stopped());  // past the budget: rows kept
+    };
+    run::PreparedRun prepared = (*model)->Prepare(options);
+    const diagrams::LoadedDiagram& loaded = prepared.loaded();
+    const blocks::Simulator& sim = prepared.simulator();
     // rows streamed as computed, as `run` does; written whether or not the run finishes
     const std::string name = RunFileName(plan, loaded.csv_file, index, values);
     // its values may lengthen the run: each run is estimated before it starts
     RefuseOverBudget(EstimateResultsCsv(sim.options(), sim.results().num_columns(), name), plan.max_output);
-    ResultsFile file(*plan.folder, name, sim.results().columns());
-    file.SetByteLimit(plan.max_output);
-    PlotEnvelope envelope(plan.plotted, {}, loaded.solver.t_end - loaded.solver.t_start, &file);
-    sim.StreamRows(&envelope, {});
-    const blocks::RunOutcome outcome = sim.Run([&](double) {
-      if (!file.stopped().empty()) throw SimulationError(file.stopped());  // past the budget: rows kept
-    });
+    file = std::make_unique<ResultsFile>(*plan.folder, name, sim.results().columns());
+    file->SetByteLimit(plan.max_output);
+    PlotEnvelope envelope(plan.plotted, {}, loaded.solver.t_end - loaded.solver.t_start, file.get());
+    const run::RunResult result = prepared.Run(&envelope);
     ran = true;
-    ok = outcome.ok;
-    stopped = outcome.stopped;
-    t_reached = outcome.t_reached;
-    if (!ok) error = outcome.failure;
-    if (stopped) error = outcome.stop_reason;
-    figures = sim.results().figures();
-    if (const std::string problem = file.Close(); !problem.empty()) throw WriteError(problem);
+    ok = result.outcome.ok;
+    stopped = result.outcome.stopped;
+    t_reached = result.t_reached;
+    if (!ok) error = result.outcome.failure;
+    if (stopped) error = result.outcome.stop_reason;
+    figures = result.figures;
+    if (const std::string problem = file->Close(); !problem.empty()) throw WriteError(problem);
     results_file = name;
     // a long run's curves in the overlay come from its envelope (and no
     // envelope of an earlier sweep stays to be drawn)
@@ -190,7 +195,7 @@ RunRow RunOne(const Plan& plan, int index) {
     else plan.folder->Clear(EnvelopeName(name));
     if (plan.event_logs) {
       std::ostringstream log;
-      PrintEventLog(*loaded.diagram, sim.events(), log);
+      PrintEventLog(*loaded.diagram, result.events, log);
       plan.folder->Write(fs::path(name).replace_extension(".events.txt").string(), log.str());
     }
   } catch (const std::exception& e) {
@@ -240,7 +245,9 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.common.allow_read = args.allow_read;
 
   // the diagram must load as given; its identifiers judge the --vary names
-  const diagrams::LoadedDiagram base = diagrams::LoadDiagram(args.file, plan.common);
+  run::Model model(args.file, plan.common);
+  const diagrams::LoadedDiagram& base = model.Loaded();
+  plan.description = model.description();
   const scripting::IdentifierTable& ids = *base.identifiers;
   for (const auto& [name, values] : args.vary) {
     const int i = ids.Find(name);
@@ -269,10 +276,7 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.animated = !base.animation_file.empty() || !base.gltf_file.empty();
   plan.groups = base.groups;
   plan.plotted = PlottedColumns(base.groups);
-  plan.columns = {"time"};
-  for (const blocks::SignalRef& s : base.logged)
-    for (int i = 0; i < s.width; ++i)
-      plan.columns.push_back(s.width == 1 ? s.name : s.name + "[" + std::to_string(i) + "]");
+  plan.columns = run::ColumnNames(base.logged);
   *header = SummaryHeader(plan, base);
   // each run's results, at the diagram's own values, within the budget
   // (runs whose values lengthen them are checked again as they start)
@@ -289,8 +293,8 @@ std::string SummaryHeader(const Plan& plan, const diagrams::LoadedDiagram& base)
   for (const std::string& name : plan.names) h += "," + CsvField(name);
   h += ",status,t_reached,error,results";
   for (const blocks::ReportRequest& r : base.reports) {
-    h += "," + CsvField(r.label + (r.unit.empty() ? "" : " [" + r.unit + "]"));
-    h += "," + CsvField(r.label + " time [s]");
+    h += "," + CsvField(run::WithUnit(r.label, r.unit));
+    h += "," + CsvField(run::WithUnit(r.label + " time", "s"));
   }
   return h;
 }
@@ -400,8 +404,9 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     SweepProgress progress(static_cast<int>(mine.size()), ranks->root());
     std::atomic<std::size_t> next{0};
     auto worker = [&] {
+      std::unique_ptr<run::Model> model;  // this thread's
       for (std::size_t k = next++; k < mine.size(); k = next++) {
-        rows[k] = RunOne(plan, mine[k]);
+        rows[k] = RunOne(plan, mine[k], &model);
         progress.Done(!rows[k].ok);
       }
     };

@@ -3,8 +3,9 @@
 // identifiers' values (the cartesian product, last --vary fastest), several
 // runs at a time.
 //
-// Each run loads the diagram afresh (LoadDiagram with the values as --set
-// overrides after the common ones), so it owns its Lua state, identifiers,
+// The file is read once; each worker thread keeps a run::Model of it, and
+// each run builds that model afresh with its values as --set overrides after
+// the common ones (run/model.h), so it owns its Lua state, identifiers,
 // blocks and solver: runs share nothing that changes, and a run gives the
 // same numbers whether it runs alone, on a worker thread or on another MPI
 // rank. Threads take the runs in index order from a shared counter; results

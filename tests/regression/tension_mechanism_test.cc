@@ -13,12 +13,13 @@
 #include <cstdio>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "blocks/simulator.h"
-#include "diagrams/loader.h"
+#include "run/model.h"
+#include "run/sinks.h"
 
 namespace mechflow {
 namespace {
@@ -105,23 +106,26 @@ struct TensionRun {
 
 // window: the law's factors k_MT1..3, k_FT (0, the paper's: exact Coulomb)
 TensionRun RunDiagram(bool friction, double window = 0.0) {
-  diagrams::LoadOptions options;
-  options.overrides = {{"Friction", friction ? 1.0 : 0.0}, {"k_MT1", window}, {"k_MT2", window},
-                       {"k_MT3", window}, {"k_FT", window}};
+  run::Model model(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/tension_mechanism.xml");
+  model.Set("Friction", friction ? 1.0 : 0.0);
+  for (const char* factor : {"k_MT1", "k_MT2", "k_MT3", "k_FT"}) model.Set(factor, window);
+  run::RunOptions options;
   options.t_end = 0.15;
-  const auto loaded = diagrams::LoadDiagram(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/tension_mechanism.xml",
-                                            options);
-  blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
-  sim.SetReports(loaded.reports);
-  const auto outcome = sim.Run();
-  EXPECT_TRUE(outcome.ok) << outcome.failure;
-  const auto& r = sim.results();
-  EXPECT_EQ(r.figures().size(), 1u);
+  run::MemorySink rows;
+  const run::RunResult r = model.Run(options, &rows);
+  EXPECT_EQ(r.status, run::Status::kOk) << r.reason;
+  EXPECT_EQ(r.figures.size(), 1u);
   TensionRun run;
-  if (r.figures().empty()) return run;
-  EXPECT_EQ(r.figures()[0].label, "peak contact force");
-  run.located = {r.figures()[0].value, r.figures()[0].time};
-  const auto force = r.Column(r.FindColumn("contact force")), t = r.Column(0);
+  if (r.figures.empty()) return run;
+  EXPECT_EQ(r.figures[0].label, "peak contact force");
+  run.located = {r.figures[0].value, r.figures[0].time};
+  const auto named = [&](const std::string& name) {
+    for (std::size_t c = 0; c < r.columns.size(); ++c)
+      if (r.columns[c].name == name) return rows.columns()[c];
+    ADD_FAILURE() << "no column " << name;
+    return std::vector<double>(1);
+  };
+  const std::vector<double> force = named("contact force"), t = named("time");
   const auto top = std::max_element(force.begin(), force.end());
   run.grid = {*top, t[top - force.begin()]};
   return run;
@@ -183,17 +187,16 @@ TEST(TensionMechanismTest, FrictionWithThePapersSmoothLaw) {
 TEST(TensionMechanismTest, AZeroFactorNeverDividesByZero) {
   // k = 0 for one joint and 1e-3 for the others: no NaN anywhere, the run
   // reaches its end
-  diagrams::LoadOptions options;
-  options.overrides = {{"Friction", 1.0}, {"k_MT1", 0.0}, {"k_MT2", 1e-3}, {"k_MT3", 1e-3}, {"k_FT", 0.0}};
-  const auto loaded = diagrams::LoadDiagram(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/tension_mechanism.xml",
-                                            options);
-  blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
-  const auto outcome = sim.Run();
-  ASSERT_TRUE(outcome.ok) << outcome.failure;
-  const auto& r = sim.results();
-  EXPECT_NEAR(r.Column(0).back(), 1.0, 1e-12);
-  for (int c = 0; c < r.num_columns(); ++c)
-    for (double v : r.Column(c)) ASSERT_TRUE(std::isfinite(v)) << "column " << c;
+  run::Model model(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/tension_mechanism.xml");
+  for (const auto& [name, value] : {std::pair<const char*, double>{"Friction", 1.0}, {"k_MT1", 0.0}, {"k_MT2", 1e-3},
+                                    {"k_MT3", 1e-3}, {"k_FT", 0.0}})
+    model.Set(name, value);
+  run::MemorySink rows;
+  const run::RunResult r = model.Run({}, &rows);
+  ASSERT_EQ(r.status, run::Status::kOk) << r.reason;
+  EXPECT_NEAR(rows.columns()[0].back(), 1.0, 1e-12);
+  for (std::size_t c = 0; c < rows.columns().size(); ++c)
+    for (double v : rows.columns()[c]) ASSERT_TRUE(std::isfinite(v)) << "column " << c;
 }
 
 }  // namespace

@@ -1,0 +1,175 @@
+#include "run/model.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "blocks/suggest.h"
+#include "diagrams/xml_reader.h"
+#include "mech/errors.h"
+
+namespace mechflow::run {
+namespace {
+
+// Every field of diagrams::LoadOptions (a field added there belongs here too).
+bool Same(const LoadOptions& a, const LoadOptions& b) {
+  return a.variants == b.variants && a.overrides == b.overrides && a.expression_overrides == b.expression_overrides &&
+         a.t_end == b.t_end && a.rtol == b.rtol && a.atol == b.atol && a.interval == b.interval &&
+         a.results == b.results && a.unsafe_lua == b.unsafe_lua && a.allow_read == b.allow_read;
+}
+
+}  // namespace
+
+Model::Model(const std::string& path, LoadOptions options)
+    : Model(diagrams::ReadDiagramFile(path, options.allow_read), std::move(options)) {}
+
+Model::Model(diagrams::DiagramDescription description, LoadOptions options)
+    : description_(std::move(description)), options_(std::move(options)) {
+  Build(options_);
+}
+
+void Model::Build(const LoadOptions& options) {
+  // the old build stays when the new one is refused (a Set value its model refuses)
+  loaded_ = std::make_unique<diagrams::LoadedDiagram>(diagrams::LoadDiagramDescription(description_, options));
+  built_with_ = options;
+  used_ = false;
+  dirty_ = false;
+}
+
+const diagrams::LoadedDiagram& Model::Loaded() {
+  if (dirty_) Build(options_);
+  return *loaded_;
+}
+
+std::vector<Identifier> Model::Identifiers() {
+  const scripting::IdentifierTable& ids = *Loaded().identifiers;
+  std::vector<Identifier> out;
+  for (int i = 0; i < ids.size(); ++i)
+    out.push_back({ids.spelling(i), ids.value(i), ids.unit(i), ids.comment(i), ids.is_expression(i)});
+  return out;
+}
+
+std::vector<std::string> Model::LoggableSignals() {
+  const blocks::Diagram& diagram = *Loaded().diagram;
+  std::vector<std::string> out;
+  for (int b = 0; b < diagram.num_blocks(); ++b)
+    for (int p = 0; p < diagram.block(b).num_outputs(); ++p)
+      out.push_back(diagram.block(b).name() + "." + diagram.block(b).output_port(p).name);
+  return out;
+}
+
+// Refused as --set refuses them (the same words), before any rebuild.
+int Model::FindIdentifier(const std::string& name) {
+  const scripting::IdentifierTable& ids = *loaded_->identifiers;  // names do not change with values
+  const int i = ids.Find(name);
+  if (i < 0) {
+    std::string lower = name;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    throw InputError("--set " + name + ": no identifier named '" + name + "'" + blocks::DidYouMean(lower, ids.Names()) +
+                     (ids.size() == 0 ? "; the diagram defines none" : "; identifiers: " + blocks::JoinNames(ids.Names())));
+  }
+  if (ids.is_expression(i))
+    throw InputError("--set " + name + ": identifier '" + ids.name(i) + "' is defined by an expression (" + ids.name(i) +
+                     " = " + ids.definition(i) + ", at " + ids.origin(i) + "); set the identifiers it depends on instead");
+  return i;
+}
+
+void Model::Set(const std::string& name, double value) {
+  const int i = FindIdentifier(name);
+  const scripting::IdentifierTable& ids = *loaded_->identifiers;
+  // a later Set of the same identifier replaces the earlier (number or expression)
+  std::erase_if(options_.expression_overrides, [&](const auto& o) { return ids.Find(o.first) == i; });
+  const auto same = std::find_if(options_.overrides.begin(), options_.overrides.end(),
+                                 [&](const auto& o) { return ids.Find(o.first) == i; });
+  if (same != options_.overrides.end()) same->second = value;
+  else options_.overrides.emplace_back(name, value);
+  dirty_ = true;
+}
+
+void Model::SetExpression(const std::string& name, const std::string& expression) {
+  const int i = FindIdentifier(name);
+  const scripting::IdentifierTable& ids = *loaded_->identifiers;
+  std::erase_if(options_.overrides, [&](const auto& o) { return ids.Find(o.first) == i; });
+  const auto same = std::find_if(options_.expression_overrides.begin(), options_.expression_overrides.end(),
+                                 [&](const auto& o) { return ids.Find(o.first) == i; });
+  if (same != options_.expression_overrides.end()) same->second = expression;
+  else options_.expression_overrides.emplace_back(name, expression);
+  dirty_ = true;
+}
+
+LoadOptions Model::Effective(const RunOptions& options) const {
+  LoadOptions o = options_;
+  if (options.t_end) o.t_end = options.t_end;
+  if (options.rtol) o.rtol = options.rtol;
+  if (options.atol) o.atol = options.atol;
+  if (options.interval) o.interval = options.interval;
+  return o;
+}
+
+PreparedRun Model::Prepare(const RunOptions& options) {
+  if (!options.times.empty())
+    throw InputError("run: output at given times is not supported yet (the output grid is uniform); set the "
+                     "interval instead and interpolate the rows");
+  const LoadOptions effective = Effective(options);
+  if (used_ || dirty_ || !Same(effective, built_with_)) Build(effective);
+  used_ = true;
+  return PreparedRun(*loaded_, options);
+}
+
+RunResult Model::Run(const RunOptions& options, blocks::RowSink* sink) { return Prepare(options).Run(sink); }
+
+PreparedRun::PreparedRun(const diagrams::LoadedDiagram& loaded, const RunOptions& options)
+    : loaded_(&loaded), options_(options) {
+  std::vector<blocks::SignalRef> logged = loaded.logged;
+  std::vector<std::string> units = loaded.units;
+  if (options.log) {
+    logged.clear();
+    units = {"s"};
+    for (const std::string& name : *options.log) {
+      try {
+        logged.push_back(loaded.diagram->ResolveSignal(name));
+      } catch (const InputError& e) {
+        throw InputError("log " + name + ": " + e.what());
+      }
+      units.resize(units.size() + logged.back().width);  // the unit of a signal not in a <log>: unknown
+    }
+  }
+  sim_ = std::make_unique<blocks::Simulator>(*loaded.diagram, loaded.solver, logged);
+  sim_->SetReports(loaded.reports);
+  sim_->SetControl(loaded.control.get());
+  sim_->SetInterruptFlag(options.interrupt);
+  const std::vector<std::string> names = ColumnNames(logged);
+  for (std::size_t c = 0; c < names.size(); ++c) columns_.push_back({names[c], units[c]});
+}
+
+RunResult PreparedRun::Run(blocks::RowSink* sink) {
+  if (ran_) throw std::logic_error("run::PreparedRun::Run: a prepared run runs once");
+  ran_ = true;
+  std::vector<int> keep;
+  for (const std::string& name : options_.keep) {
+    const int c = sim_->results().FindColumn(name);
+    if (c < 0)
+      throw InputError("keep " + name + ": not a column of the run" +
+                       blocks::DidYouMean(name, sim_->results().columns()));
+    keep.push_back(c);
+  }
+  sim_->StreamRows(sink, keep);
+  RunResult r;
+  r.outcome = sim_->Run(options_.progress);
+  r.t_reached = r.outcome.t_reached;
+  r.signal = r.outcome.interrupted;
+  if (r.outcome.stopped) {
+    r.status = Status::kStopped;
+    r.reason = r.outcome.stop_reason;
+  } else if (!r.outcome.ok) {
+    r.status = r.signal ? Status::kInterrupted : Status::kFailed;
+    r.reason = r.outcome.failure;
+  }
+  r.stats = sim_->stats();
+  r.events = sim_->events();
+  r.figures = sim_->results().figures();
+  r.columns = columns_;
+  r.rows = sim_->results().num_rows();
+  return r;
+}
+
+}  // namespace mechflow::run

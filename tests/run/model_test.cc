@@ -1,0 +1,178 @@
+// run::Model: one load, many runs, each the same as a fresh load would give.
+
+#include "run/model.h"
+
+#include <csignal>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "blocks/csv.h"
+#include "tests/cli/mechflow_command.h"
+#include "mech/errors.h"
+#include "run/sinks.h"
+#include "diagrams/xml_reader.h"
+
+namespace mechflow {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string Example(const std::string& name) { return std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + name; }
+
+// Short runs: the tests compare numbers, not long stretches of them.
+run::RunOptions Short(double t_end) {
+  run::RunOptions o;
+  o.t_end = t_end;
+  return o;
+}
+
+std::vector<std::vector<double>> Rows(run::Model& model, const run::RunOptions& options) {
+  run::MemorySink sink;
+  const run::RunResult r = model.Run(options, &sink);
+  EXPECT_EQ(r.status, run::Status::kOk) << r.reason;
+  return sink.columns();
+}
+
+// The control script changes an identifier (sim:set torque) and the
+// controller keeps its last output: a second run on the same built diagram
+// would start from what the first left; the model rebuilds, so it does not.
+TEST(RunModel, SecondRunIsTheFirstAgain) {
+  run::Model model(Example("pendulum_pd_control.xml"));
+  const auto first = Rows(model, Short(2.5));
+  const auto second = Rows(model, Short(2.5));
+  ASSERT_GT(first.front().size(), 100u);
+  EXPECT_EQ(first, second);
+}
+
+// A script that keeps a count of its runs in a local of its chunk, and sets
+// an identifier from it: a second run on the diagram the first ran would see
+// count 2; rebuilt from the description, it sees 1 again.
+TEST(RunModel, SecondRunForgetsWhatTheScriptKept) {
+  const std::string xml = R"(<diagram name="count">
+  <identifiers><identifier name="gain" value="0"/></identifiers>
+  <blocks>
+    <block type="identifier" name="g" identifier="gain"/>
+    <block type="integrator" name="x" initial="0"/>
+  </blocks>
+  <connections><connect from="g.y" to="x.u"/></connections>
+  <script>
+    local runs = 0
+    function init(sim) runs = runs + 1; sim:set("gain", runs) end
+  </script>
+  <solver t_end="1"/>
+  <output interval="0.5"><log signal="x.y"/></output>
+</diagram>)";
+  run::Model model(diagrams::ReadDiagramText(xml, "count.xml"));
+  const auto first = Rows(model, {});
+  ASSERT_EQ(first.size(), 2u);
+  EXPECT_NEAR(first[1].back(), 1.0, 1e-12);  // gain 1 for 1 s
+  EXPECT_EQ(Rows(model, {}), first);
+}
+
+TEST(RunModel, SetThenRunIsALoadWithSet) {
+  run::Model model(Example("damping_ratio.xml"));
+  const auto before = Rows(model, Short(1));
+  model.Set("Beta", 0.3);  // any case, as --set
+  const auto after = Rows(model, Short(1));
+  diagrams::LoadOptions with_set;
+  with_set.overrides = {{"beta", 0.3}};
+  run::Model loaded_so(Example("damping_ratio.xml"), with_set);
+  EXPECT_EQ(after, Rows(loaded_so, Short(1)));
+  EXPECT_NE(after, before);  // the value took effect
+  // a second Set of the same name replaces the first
+  model.Set("beta", 0.1);
+  EXPECT_EQ(Rows(model, Short(1)), before);
+}
+
+TEST(RunModel, MemoryColumnsAreTheCsvFile) {
+  const std::string path = ::testing::TempDir() + "run_model_test_" + std::to_string(getpid()) + ".csv";
+  run::Model model(Example("damping_ratio.xml"));
+  std::vector<std::string> names;
+  {
+    run::CsvFileSink file(path, {"time", "position", "force"});  // header as given
+    const run::RunResult r = model.Run(Short(1), &file);
+    EXPECT_EQ(file.Close(), "");
+    EXPECT_EQ(file.rows(), r.rows);
+    for (const run::Column& c : r.columns) names.push_back(c.name);
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"time", "m.z", "m.force"}));
+  const auto columns = Rows(model, Short(1));
+  std::string text = blocks::CsvHeader({"time", "position", "force"});
+  std::vector<double> row(columns.size());
+  for (std::size_t r = 0; r < columns.front().size(); ++r) {
+    for (std::size_t c = 0; c < columns.size(); ++c) row[c] = columns[c][r];
+    blocks::AppendCsvRow(row.data(), static_cast<int>(row.size()), &text);
+  }
+  EXPECT_EQ(testing::ReadFile(path), text);
+  std::filesystem::remove(path);
+}
+
+TEST(RunModel, RunWithoutSinkGivesOutcomeAndFigures) {
+  run::Model model(Example("damping_ratio.xml"));
+  const run::RunResult r = model.Run(Short(1), nullptr);
+  EXPECT_EQ(r.status, run::Status::kOk);
+  EXPECT_DOUBLE_EQ(r.t_reached, 1.0);
+  EXPECT_EQ(r.rows, 201);  // 0 .. 1 s every 0.005 s
+  EXPECT_GT(r.stats.steps, 0);
+  ASSERT_EQ(r.columns.size(), 3u);
+  EXPECT_EQ(r.columns[0].unit, "s");
+  EXPECT_EQ(r.columns[1].unit, "m");
+}
+
+TEST(RunModel, InterruptAndProgress) {
+  run::Model model(Example("damping_ratio.xml"));
+  run::RunOptions o = Short(1);
+  int calls = 0;
+  o.progress = [&](double) { ++calls; };
+  EXPECT_EQ(model.Run(o).rows, calls);  // after every row
+  volatile std::sig_atomic_t flag = SIGINT;  // as a handler leaves it
+  o.interrupt = &flag;
+  const run::RunResult r = model.Run(o);
+  EXPECT_EQ(r.status, run::Status::kInterrupted);
+  EXPECT_EQ(r.signal, SIGINT);
+  EXPECT_LT(r.t_reached, 1.0);
+}
+
+TEST(RunModel, LogsTheSignalsAsked) {
+  run::Model model(Example("damping_ratio.xml"));
+  run::RunOptions o = Short(0.5);
+  o.log = std::vector<std::string>{"m.force"};
+  run::MemorySink rows;
+  const run::RunResult r = model.Run(o, &rows);
+  ASSERT_EQ(r.columns.size(), 2u);
+  EXPECT_EQ(r.columns[1].name, "m.force");
+  EXPECT_EQ(rows.columns().size(), 2u);
+  o.log = std::vector<std::string>{"m.forse"};
+  EXPECT_THROW(model.Run(o), InputError);
+}
+
+TEST(RunModel, RefusesWhatItCannotDo) {
+  run::Model model(Example("damping_ratio.xml"));
+  try {
+    model.Set("betta", 0.2);
+    FAIL() << "an unknown name was taken";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("no identifier named 'betta' (did you mean 'beta'?)"));
+  }
+  try {
+    model.Set("cdiss", 1.0);
+    FAIL() << "a derived identifier was set";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("set the identifiers it depends on instead"));
+  }
+  run::RunOptions at_times;
+  at_times.times = {0.1, 0.2};
+  EXPECT_THROW(model.Run(at_times), InputError);
+  // a refused value leaves the model as it was
+  model.Set("mass", -1.0);
+  EXPECT_THROW(model.Run(Short(0.1)), InputError);
+  model.Set("mass", 1000.0);
+  EXPECT_EQ(model.Run(Short(0.1)).status, run::Status::kOk);
+}
+
+}  // namespace
+}  // namespace mechflow
