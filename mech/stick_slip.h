@@ -18,7 +18,8 @@
 // springs, its law) and keeps its own states; this module turns the hold into
 // the crossing values, names the crossings, and decides the modes at events,
 // at the start and at rest. An inactive crossing sits at a constant on the
-// side that cannot trigger.
+// side its function starts on when its mode begins, so entering a mode is no
+// crossing.
 //
 // A contact point that holds in its tangent plane would have a two-component
 // hold: H and the slip rate become vectors, the two break-away functions one
