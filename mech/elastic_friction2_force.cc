@@ -3,15 +3,11 @@
 #include <cmath>
 #include <string>
 
-#include "mech/errors.h"
 #include "mech/elastic_friction_force.h"
-#include "mech/frictional_force.h"
+#include "mech/errors.h"
 
 namespace mechflow::mech {
 namespace {
-
-enum Crossing { kBreaksForward, kBreaksBackward, kSlipPlusStops, kSlipMinusStops };
-constexpr double kStick = 0.0, kSlipPlus = 1.0, kSlipMinus = -1.0;
 
 double Sign(double x) { return x < 0 ? -1.0 : 1.0; }
 
@@ -19,7 +15,7 @@ double Sign(double x) { return x < 0 ? -1.0 : 1.0; }
 
 ElasticFriction2Force::ElasticFriction2Force(std::string name, std::string origin, int body1, Vec3 point1, int body2,
                                              Vec3 point2, ElasticFriction2Parameters parameters)
-    : ForceElement(std::move(name), std::move(origin)),
+    : StickSlipElement(std::move(name), std::move(origin), kSliderOrder, kSliderWording),
       body1_(body1),
       body2_(body2),
       point1_(point1),
@@ -51,11 +47,7 @@ ElasticFriction2Force::ElasticFriction2Force(std::string name, std::string origi
   for (const char* s : {"force", "length", "rate", "mode", "deflection"}) DeclareSensor(s);
   if (c1.is_constant() && c2.is_constant()) DeclareSensor("energy");  // of both springs
   DeclareStates(1);  // x2
-  DeclareModes(1);
-  DeclareCrossing(mech::Crossing::kRising);   // kBreaksForward: T_s - mu0 N
-  DeclareCrossing(mech::Crossing::kRising);   // kBreaksBackward: -T_s - mu0 N
-  DeclareCrossing(mech::Crossing::kFalling);  // kSlipPlusStops: v
-  DeclareCrossing(mech::Crossing::kRising);   // kSlipMinusStops: v
+  DeclareStickSlip();
 }
 
 ElasticFriction2Force::Values ElasticFriction2Force::Compute(const ElementContext& ctx, double mode) const {
@@ -105,7 +97,7 @@ void ElasticFriction2Force::Initialize(const ElementContext& ctx, std::span<doub
                                        std::span<double> modes) const {
   state[0] = 0.0;
   const Values r = Compute(ctx, kStick);
-  modes[0] = r.v > 0 ? kSlipPlus : r.v < 0 ? kSlipMinus : kStick;
+  modes[0] = StickSlip::InitialMode(r.v);
   if (modes[0] != kStick) state[0] = Compute(ctx, modes[0]).x2;
 }
 
@@ -126,49 +118,30 @@ void ElasticFriction2Force::Evaluate(const ElementContext& ctx, Loads* loads, st
   }
 }
 
-void ElasticFriction2Force::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
-  const double mode = ctx.modes[0];
+StickSlipHold ElasticFriction2Force::Hold(const ElementContext& ctx, double mode) const {
   const Values r = Compute(ctx, mode);
-  const double limit = BreakawayLimit(p_.mu0.Get(ctx) * r.limit_force);
-  values[kBreaksForward] = mode == kStick ? r.slider_force - limit : -1.0;
-  values[kBreaksBackward] = mode == kStick ? -r.slider_force - limit : -1.0;
-  values[kSlipPlusStops] = mode == kSlipPlus ? r.v : 1.0;
-  values[kSlipMinusStops] = mode == kSlipMinus ? r.v : -1.0;
+  return {.slip_rate = r.v, .holding = r.slider_force, .static_limit = p_.mu0.Get(ctx) * r.limit_force};
 }
 
-void ElasticFriction2Force::OnCrossing(int index, int, const ElementContext& ctx, std::span<double> state,
-                                       std::span<double> modes) const {
-  const double mode = index == kBreaksForward ? kSlipPlus : index == kBreaksBackward ? kSlipMinus : kStick;
+void ElasticFriction2Force::OnSwitch(const ElementContext& ctx, double from, double to,
+                                     std::span<double> state) const {
   // Sticking holds the sliding solution reached; breaking away jumps to the
   // sliding solution of the new direction (a jump when mu0 > mu).
-  state[0] = Compute(ctx, mode == kStick ? modes[0] : mode).x2;
-  modes[0] = mode;
+  state[0] = Compute(ctx, to == kStick ? from : to).x2;
 }
 
 bool ElasticFriction2Force::UpdateModes(const ElementContext& ctx, std::span<double> state,
                                         std::span<double> modes) const {
-  if (modes[0] == kStick) return false;
-  const Values r = Compute(ctx, modes[0]);
-  if (modes[0] * r.v >= 0.0) return false;
-  state[0] = r.x2;
-  modes[0] = kStick;
-  return true;
-}
-
-bool ElasticFriction2Force::ModesAtRest(const ElementContext& ctx, std::span<double> state,
-                                  std::span<double> modes) const {
-  return FrictionModesAtRest(*this, ctx, state, modes, kSlipPlusStops, kBreaksForward, kBreaksBackward);
+  return StickWhereSlipReverses(ctx, state, modes);
 }
 
 ElementCoordinate ElasticFriction2Force::Coordinate(const std::string& component) const {
   return component.empty() ? ElementCoordinate::Line(body1_, point1_, body2_, point2_) : ElementCoordinate{};
 }
 
-std::string ElasticFriction2Force::CrossingName(int index, int) const { return SliderCrossingName(index); }
-
 std::string ElasticFriction2Force::LinearisedAs(std::span<const double> modes) const {
   if (modes[0] == 0.0) return "stuck: c1 in series with c2 enters the modes (the slider held)";
-  return std::string("sliding ") + (modes[0] > 0 ? "forward" : "backward") +
+  return StickSlip::Sliding(modes[0]) +
          ": the slider moves on its sliding solution, so the stiffness seen is not that of c1 with c2 held";
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Elastic-friction-2 element (ELEMENTS.md 3.8): a spring c1 in series with a
+// Elastic-friction-2 element (docs/ELEMENTS.md 3.8): a spring c1 in series with a
 // block made of a Coulomb slider in parallel with a spring c2, between point
 // A on body 1 and point B on body 2 along the line between them. It has no
 // dashpot, so its hysteresis loops do not depend on the rate.
@@ -13,16 +13,16 @@
 //   modes: STICK (0): x2 held (x2' = 0)
 //          SLIP s = +-1: x2 is the algebraic solution of T_s = s mu N, which
 //          moves with the sign of v (mu < 1 for the default law)
-//   events: STICK -> SLIP s when s T_s - mu0 N rises through 0; x2 jumps to
-//           the sliding solution there when mu0 > mu (a reset map);
-//           SLIP s -> STICK when s v falls through 0 (x2 reset to the
-//           sliding solution, so what the state drifted is dropped).
+//   switches (mech/stick_slip.h): the holding force is T_s, the static
+//           limit mu0 N, the slip rate v. Breaking away, x2 jumps to the
+//           sliding solution when mu0 > mu (a reset map); sticking, x2 is
+//           reset to the sliding solution, so what the state drifted is dropped.
 // While sliding the state follows the sliding solution through its rate
 // (x2' = dx2/dx' v; law c ignores a time-varying F_N there) but the forces
 // use the algebraic value. Sensors: force, length, rate, mode, deflection.
 
 #include "mech/bipolar_force.h"
-#include "mech/force_element.h"
+#include "mech/stick_slip_element.h"
 
 namespace mechflow::mech {
 
@@ -38,7 +38,7 @@ struct ElasticFriction2Parameters {
   Parameter normal_force;  // F_N [N] of the constant limit
 };
 
-class ElasticFriction2Force final : public ForceElement {
+class ElasticFriction2Force final : public StickSlipElement {
  public:
   // Throws InputError for constants out of range: a negative stiffness or
   // coefficient, mu0 < mu, or a mu for which sliding has no solution.
@@ -48,18 +48,16 @@ class ElasticFriction2Force final : public ForceElement {
   void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                 std::span<double> sensors) const override;
   ElementCoordinate Coordinate(const std::string& component) const override;
-  std::string CrossingName(int index, int direction) const override;
   std::string LinearisedAs(std::span<const double> modes) const override;
-  void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
-  void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
-                  std::span<double> modes) const override;
-  bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
   // A slip against the velocity (a break-away found where the slider force
   // only grazes its limit at a turning point, as in a stuck oscillation that
   // started at the limit) sticks again, holding x2.
   bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
 
  private:
+  StickSlipHold Hold(const ElementContext& ctx, double mode) const override;
+  void OnSwitch(const ElementContext& ctx, double from, double to, std::span<double> state) const override;
+
   struct Values : BipolarGeometry {
     double x2, x2_rate, tension, slider_force, limit_force;  // limit_force = N
   };

@@ -3,15 +3,10 @@
 #include "mech/errors.h"
 
 namespace mechflow::mech {
-namespace {
-
-enum Crossing { kBreaksForward, kBreaksBackward, kSlipPlusStops, kSlipMinusStops };
-
-}  // namespace
 
 ElasticFrictionForce::ElasticFrictionForce(std::string name, std::string origin, int body1, Vec3 point1, int body2,
                                            Vec3 point2, FrictionalParameters parameters)
-    : ForceElement(std::move(name), std::move(origin)),
+    : StickSlipElement(std::move(name), std::move(origin), kSliderOrder, kSliderWording),
       body1_(body1),
       body2_(body2),
       point1_(point1),
@@ -34,11 +29,7 @@ ElasticFrictionForce::ElasticFrictionForce(std::string name, std::string origin,
   for (const char* s : {"force", "length", "rate", "mode", "deflection"}) DeclareSensor(s);
   if (p_.stiffness.is_constant()) DeclareSensor("energy");  // of the elastic link
   DeclareStates(1);
-  DeclareModes(1);
-  DeclareCrossing(mech::Crossing::kRising);   // kBreaksForward: T - ratio F
-  DeclareCrossing(mech::Crossing::kRising);   // kBreaksBackward: -T - ratio F
-  DeclareCrossing(mech::Crossing::kFalling);  // kSlipPlusStops: u
-  DeclareCrossing(mech::Crossing::kRising);   // kSlipMinusStops: u
+  DeclareStickSlip();
 }
 
 ElasticFrictionForce::Values ElasticFrictionForce::Compute(const ElementContext& ctx, double mode) const {
@@ -66,7 +57,7 @@ void ElasticFrictionForce::Initialize(const ElementContext& ctx, std::span<doubl
                                       std::span<double> modes) const {
   state[0] = 0.0;
   const double v = Compute(ctx, 0.0).v;
-  modes[0] = v > 0 ? 1.0 : v < 0 ? -1.0 : 0.0;
+  modes[0] = StickSlip::InitialMode(v);
   state[0] = SlidingDeflection(ctx, modes[0]);
 }
 
@@ -97,28 +88,19 @@ void ElasticFrictionForce::Derivatives(const ElementContext& ctx, double, double
   }
 }
 
-void ElasticFrictionForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
-  const double mode = ctx.modes[0];
-  const bool active = p_.damping.Get(ctx) > 0.0 || p_.stiffness.Get(ctx) > 0.0;
-  if (!active) {  // switched off: every function on the side that cannot trigger, nothing measured
-    values[kBreaksForward] = values[kBreaksBackward] = values[kSlipMinusStops] = -1.0;
-    values[kSlipPlusStops] = 1.0;
-    return;
-  }
+StickSlipHold ElasticFrictionForce::Hold(const ElementContext& ctx, double mode) const {
+  // switched off: nothing measured, no crossing can trigger
+  if (!(p_.damping.Get(ctx) > 0.0 || p_.stiffness.Get(ctx) > 0.0)) return {.active = false};
   const Values r = Compute(ctx, mode);
-  const double limit = BreakawayLimit(p_.ratio.Get(ctx) * p_.friction.Get(ctx));
-  values[kBreaksForward] = mode == 0.0 ? r.tension - limit : -1.0;
-  values[kBreaksBackward] = mode == 0.0 ? -r.tension - limit : -1.0;
-  values[kSlipPlusStops] = mode == 1.0 ? r.v - r.delta_rate : 1.0;
-  values[kSlipMinusStops] = mode == -1.0 ? r.v - r.delta_rate : -1.0;
+  return {.slip_rate = r.v - r.delta_rate,
+          .holding = r.tension,
+          .static_limit = p_.ratio.Get(ctx) * p_.friction.Get(ctx)};
 }
 
-void ElasticFrictionForce::OnCrossing(int index, int, const ElementContext& ctx, std::span<double> state,
-                                      std::span<double> modes) const {
-  modes[0] = index == kBreaksForward ? 1.0 : index == kBreaksBackward ? -1.0 : 0.0;
+void ElasticFrictionForce::OnSwitch(const ElementContext& ctx, double, double to, std::span<double> state) const {
   // d = 0: the link jumps from k_s F / c to F / c when the slider lets go
-  // (the reset map of 3.7); with d > 0 delta is continuous.
-  if (modes[0] != 0.0 && p_.damping.Get(ctx) <= 0.0) state[0] = SlidingDeflection(ctx, modes[0]);
+  // (the reset map of docs/ELEMENTS.md 3.7); with d > 0 delta is continuous.
+  if (to != kStick && p_.damping.Get(ctx) <= 0.0) state[0] = SlidingDeflection(ctx, to);
 }
 
 double ElasticFrictionForce::SlidingDeflection(const ElementContext& ctx, double mode) const {
@@ -127,30 +109,13 @@ double ElasticFrictionForce::SlidingDeflection(const ElementContext& ctx, double
   return mode * p_.friction.Get(ctx) / c;
 }
 
-bool ElasticFrictionForce::ModesAtRest(const ElementContext& ctx, std::span<double> state,
-                                  std::span<double> modes) const {
-  return FrictionModesAtRest(*this, ctx, state, modes, kSlipPlusStops, kBreaksForward, kBreaksBackward);
-}
-
 ElementCoordinate ElasticFrictionForce::Coordinate(const std::string& component) const {
   return component.empty() ? ElementCoordinate::Line(body1_, point1_, body2_, point2_) : ElementCoordinate{};
 }
 
-std::string SliderCrossingName(int index) {
-  switch (index) {
-    case kBreaksForward: return "slider breaks away: slip+";
-    case kBreaksBackward: return "slider breaks away: slip-";
-    case kSlipPlusStops: return "slip+ ends: the slider sticks";
-    case kSlipMinusStops: return "slip- ends: the slider sticks";
-  }
-  return "crossing " + std::to_string(index);
-}
-
-std::string ElasticFrictionForce::CrossingName(int index, int) const { return SliderCrossingName(index); }
-
 std::string ElasticFrictionForce::LinearisedAs(std::span<const double> modes) const {
   if (modes[0] == 0.0) return "stuck: its elastic link (spring c with damper d in series) enters the modes";
-  return std::string("sliding ") + (modes[0] > 0 ? "forward" : "backward") +
+  return StickSlip::Sliding(modes[0]) +
          ": a constant force across it; its link relaxes through the slider (a real mode, time constant d/c)";
 }
 

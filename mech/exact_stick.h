@@ -1,6 +1,8 @@
 #pragma once
-// Exact stick (issue 12, item 3): the holding forces of the friction
-// elements that stick exactly (ForceElement::StuckExactly).
+// Exact stick: the holding forces of the friction elements that stick
+// exactly (ForceElement::StuckExactly; the Frictional element's
+// `exact_stick`, docs/ELEMENTS.md 3.6), instead of a stick spring that must
+// first deflect to carry a load.
 //
 // While k elements stick, their relative accelerations a are affine in their
 // holding forces f: a = a0 + S f, where S is the inverse mass the elements

@@ -14,7 +14,8 @@
 //   F_t < mu_s N slides at about v_reg * atanh(F_t / (mu_s N)).
 // * the largest force reachable at small |v| is close to mu_s N when
 //   v_reg << v_s, so breakaway happens at the static friction level.
-// Used by the friction-from-normal-force block and by contact friction.
+// Used by the friction-from-normal-force block (the contacts write their own
+// Stribeck curve, regularised by |w_t| rather than tanh).
 
 namespace mechflow::mech {
 

@@ -1,21 +1,17 @@
 #include "mech/frictional_force.h"
 
-#include <array>
-#include <cmath>
-
 #include "mech/dynamics.h"
 
 namespace mechflow::mech {
 namespace {
 
-enum Crossing { kSlipPlusStops, kSlipMinusStops, kBreaksForward, kBreaksBackward };
-constexpr double kStick = 0.0, kSlipPlus = 1.0, kSlipMinus = -1.0;
+constexpr StickSlip::Wording kWording{"breaks away", "sticks (or turns, when the hold is beyond the limit)"};
 
 }  // namespace
 
 FrictionalForce::FrictionalForce(std::string name, std::string origin, int body1, Vec3 point1, int body2,
                                  Vec3 point2, FrictionalParameters parameters)
-    : ForceElement(std::move(name), std::move(origin)),
+    : StickSlipElement(std::move(name), std::move(origin), StickSlip::Order::kSlipEndsFirst, kWording),
       body1_(body1),
       body2_(body2),
       point1_(point1),
@@ -27,7 +23,10 @@ FrictionalForce::FrictionalForce(std::string name, std::string origin, int body1
 
 FrictionalForce::FrictionalForce(std::string name, std::string origin, const Dof& dof,
                                  FrictionalParameters parameters)
-    : ForceElement(std::move(name), std::move(origin)), q_index_(dof.q_index), v_index_(dof.v_index), p_(parameters) {
+    : StickSlipElement(std::move(name), std::move(origin), StickSlip::Order::kSlipEndsFirst, kWording),
+      q_index_(dof.q_index),
+      v_index_(dof.v_index),
+      p_(parameters) {
   DeclareCoordinates({v_index_});
   DeclareInterface();
 }
@@ -39,7 +38,7 @@ void FrictionalForce::DeclareInterface() {
   DeclareSensor("length");
   DeclareSensor("rate");
   DeclareSensor("mode");
-  DeclareModes(1);
+  DeclareStickSlip();
   // stored energy: none when the hold is exact, the stick spring's otherwise
   if (p_.exact_stick || p_.stiffness.is_constant()) DeclareSensor("energy");
   if (p_.exact_stick) {
@@ -53,10 +52,6 @@ void FrictionalForce::DeclareInterface() {
     // c = 1e7, atol 1e-14: 135956 steps for 10 s instead of a few hundred).
     DeclareStates(1);
   }
-  DeclareCrossing(mech::Crossing::kFalling);  // kSlipPlusStops: v
-  DeclareCrossing(mech::Crossing::kRising);   // kSlipMinusStops: v
-  DeclareCrossing(mech::Crossing::kRising);   // kBreaksForward: holding - ratio F
-  DeclareCrossing(mech::Crossing::kRising);   // kBreaksBackward: -holding - ratio F
 }
 
 FrictionalForce::Slide FrictionalForce::Measure(const ElementContext& ctx) const {
@@ -74,7 +69,7 @@ FrictionalForce::Slide FrictionalForce::Measure(const ElementContext& ctx) const
 
 void FrictionalForce::Initialize(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
   const Slide g = Measure(ctx);
-  modes[0] = g.v > 0 ? kSlipPlus : g.v < 0 ? kSlipMinus : kStick;
+  modes[0] = StickSlip::InitialMode(g.v);
   if (!p_.exact_stick) state[0] = 0.0;
 }
 
@@ -148,65 +143,23 @@ double FrictionalForce::StickAcceleration(const ElementContext& ctx, const Dynam
   return g.line.u.dot(a) + (w.squaredNorm() - g.v * g.v) / g.x;
 }
 
-bool FrictionalForce::UpdateModes(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
-  if (!StuckExactly(ctx)) return false;
-  const double holding = Holding(ctx, Measure(ctx));
-  const double limit = BreakawayLimit(p_.ratio.Get(ctx) * p_.friction.Get(ctx));
-  if (std::abs(holding) <= limit) return false;
-  modes[0] = holding > 0 ? kSlipPlus : kSlipMinus;
-  return true;
+bool FrictionalForce::UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
+  return StuckExactly(ctx) && SlipWhereHoldFails(ctx, state, modes);
 }
 
-bool FrictionModesAtRest(const ForceElement& element, const ElementContext& ctx, std::span<double> state,
-                         std::span<double> modes, int slip_ends, int breaks_forward, int breaks_backward) {
-  if (modes[0] != kStick) {
-    element.OnCrossing(slip_ends, -1, ctx, state, modes);
-    return true;
-  }
-  std::array<double, 4> values{};
-  element.ZeroCrossings(ctx, values);
-  const int breaks = values[breaks_forward] > 0 ? breaks_forward : values[breaks_backward] > 0 ? breaks_backward : -1;
-  if (breaks < 0) return false;
-  element.OnCrossing(breaks, 1, ctx, state, modes);
-  return true;
-}
-
-bool FrictionalForce::ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
-  return FrictionModesAtRest(*this, ctx, state, modes, kSlipPlusStops, kBreaksForward, kBreaksBackward);
-}
-
-void FrictionalForce::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
+StickSlipHold FrictionalForce::Hold(const ElementContext& ctx, double mode) const {
   Slide g;
   if (!ctx.sensors.empty() && q_index_ < 0)
     g.v = ctx.sensors[2];  // its rate, measured by Evaluate on these kinematics
   else
     g = Measure(ctx);
-  const double mode = ctx.modes[0];
-  // Inactive functions sit at a constant away from zero, on the side that
-  // cannot trigger.
-  values[kSlipPlusStops] = mode == kSlipPlus ? g.v : 1.0;
-  values[kSlipMinusStops] = mode == kSlipMinus ? g.v : -1.0;
-  const double limit = BreakawayLimit(p_.ratio.Get(ctx) * p_.friction.Get(ctx));
-  const double holding = mode == kStick ? Holding(ctx, g) : 0.0;
-  values[kBreaksForward] = mode == kStick ? holding - limit : -1.0;
-  values[kBreaksBackward] = mode == kStick ? -holding - limit : -1.0;
+  return {.slip_rate = g.v,
+          .holding = mode == kStick ? Holding(ctx, g) : 0.0,
+          .static_limit = p_.ratio.Get(ctx) * p_.friction.Get(ctx)};
 }
 
-void FrictionalForce::OnCrossing(int index, int, const ElementContext&, std::span<double> state,
-                                 std::span<double> modes) const {
-  switch (index) {
-    case kSlipPlusStops:
-    case kSlipMinusStops:
-      modes[0] = kStick;
-      if (!p_.exact_stick) state[0] = 0.0;
-      break;
-    case kBreaksForward:
-      modes[0] = kSlipPlus;
-      break;
-    case kBreaksBackward:
-      modes[0] = kSlipMinus;
-      break;
-  }
+void FrictionalForce::OnSwitch(const ElementContext&, double, double to, std::span<double> state) const {
+  if (to == kStick && !p_.exact_stick) state[0] = 0.0;  // the stick spring starts relaxed
 }
 
 ElementCoordinate FrictionalForce::Coordinate(const std::string& component) const {
@@ -217,23 +170,12 @@ ElementCoordinate FrictionalForce::Coordinate(const std::string& component) cons
 
 std::string FrictionalForce::LinearisedAs(std::span<const double> modes) const {
   if (modes[0] != 0.0)
-    return std::string("sliding ") + (modes[0] > 0 ? "forward" : "backward") +
-           ": a constant friction force, no stiffness or damping across it";
+    return StickSlip::Sliding(modes[0]) + ": a constant friction force, no stiffness or damping across it";
   if (p_.exact_stick)
     return "stuck, held exactly: its relative motion is locked, one coordinate fewer (a zero eigenvalue below "
            "is that lock, not a free motion)";
   return "stuck on its stick spring: the spring's stiffness c and damping d enter the modes (frequencies of "
          "the stick spring, not of free sliding)";
-}
-
-std::string FrictionalForce::CrossingName(int index, int) const {
-  switch (index) {
-    case kSlipPlusStops: return "slip+ ends: sticks (or turns, when the hold is beyond the limit)";
-    case kSlipMinusStops: return "slip- ends: sticks (or turns, when the hold is beyond the limit)";
-    case kBreaksForward: return "breaks away: slip+";
-    case kBreaksBackward: return "breaks away: slip-";
-  }
-  return ForceElement::CrossingName(index, 0);
 }
 
 }  // namespace mechflow::mech

@@ -1,51 +1,35 @@
 #pragma once
-// Frictional element (ELEMENTS.md 3.6): dry friction between point A on body
-// 1 and point B on body 2, along the line between them, with a stiffness and
-// damping that hold it while it sticks -- or on one joint coordinate (x = q,
-// v = q'; a friction moment on a rotation, a force on a translation; issue
-// 12, item 4), where the force below acts as a generalized force.
+// Frictional element (docs/ELEMENTS.md 3.6): dry friction between point A on
+// body 1 and point B on body 2, along the line between them, with a stiffness
+// and damping that hold it while it sticks -- or on one joint coordinate
+// (x = q, v = q'), where the force below acts as a generalized force: a
+// friction moment on a rotation, a force on a translation.
 //
 //   modes: STICK (0), SLIP+ (+1, lengthening), SLIP- (-1)
 //   state: the stick deflection delta, integrated from v while stuck (the
 //          length's change since sticking began)
 //   force on body 2 (positive pushes apart):
 //     STICK: -c delta - d v      SLIP+: -F      SLIP-: +F
-//   switches are events (zero crossings), never `if`s inside a step:
-//     SLIP+ -> STICK when v falls through 0, SLIP- -> STICK when v rises
-//     through 0 (delta := 0); STICK -> SLIP+/- when the holding force
-//     +-(c delta + d v) rises through ratio * F.
+//   switches (mech/stick_slip.h): the slip rate is v, the holding force
+//   c delta + d v, the static limit ratio * F; entering STICK sets delta := 0.
 // Entering STICK at v = 0 starts with no spring force, so the element does
 // not ring. F = c = d = 0 makes it inactive. Parameters may follow inputs
 // (LeafSpring feeds F from a normal force).
 //
-// Exact stick (issue 12, item 3; `exact_stick`, no c and d): while stuck,
-// the relative motion is held by a constraint force -- the holding force H =
-// -force, found from the whole mechanism's balance (mech/exact_stick.h) --
-// instead of a spring that must first deflect to carry a load. STICK ->
-// SLIP+/- when +-H rises through ratio * F; on entering STICK (and at the
-// start) an H already beyond the limit slips at once in its direction, so a
-// reversal costs no stick phase and a load applied at once is held or not
-// exactly. It has no state and no deflection sensor.
+// Exact stick (`exact_stick`, no c and d): while stuck, the relative motion
+// is held by a constraint force -- the holding force H = -force, found from
+// the whole mechanism's balance (mech/exact_stick.h) -- instead of a spring
+// that must first deflect to carry a load. STICK -> SLIP+/- when +-H rises
+// through ratio * F; on entering STICK (and at the start) an H already beyond
+// the limit slips at once in its direction, so a reversal costs no stick
+// phase and a load applied at once is held or not exactly. It has no state
+// and no deflection sensor.
 // Sensors: force, length, rate, mode, deflection (spring stick only).
 
 #include "mech/bipolar_force.h"
-#include "mech/force_element.h"
+#include "mech/stick_slip_element.h"
 
 namespace mechflow::mech {
-
-// The static limit the break-away crossings use: never below 1e-9 N, so that
-// a limit that starts at exactly zero (friction fed from a force that is
-// zero at the start) still gives a crossing the solver can see -- one that
-// starts at zero is not reported.
-inline double BreakawayLimit(double limit) { return limit > 1e-9 ? limit : 1e-9; }
-
-// ForceElement::ModesAtRest of a friction element, from its own crossings
-// (four, like every friction element's): at rest a sliding element sticks as
-// when its slip ends (crossing `slip_ends` applied); a stuck one whose
-// break-away function `breaks_forward` or `breaks_backward` is positive
-// breaks away as at that crossing.
-bool FrictionModesAtRest(const ForceElement& element, const ElementContext& ctx, std::span<double> state,
-                         std::span<double> modes, int slip_ends, int breaks_forward, int breaks_backward);
 
 struct FrictionalParameters {
   Parameter friction;     // sliding force F [N], >= 0
@@ -55,7 +39,7 @@ struct FrictionalParameters {
   bool exact_stick = false;  // hold by a constraint force; c and d unused
 };
 
-class FrictionalForce final : public ForceElement {
+class FrictionalForce final : public StickSlipElement {
  public:
   FrictionalForce(std::string name, std::string origin, int body1, Vec3 point1, int body2, Vec3 point2,
                   FrictionalParameters parameters);
@@ -64,12 +48,7 @@ class FrictionalForce final : public ForceElement {
   void Evaluate(const ElementContext& ctx, Loads* loads, std::span<double> state_rate,
                 std::span<double> sensors) const override;
   ElementCoordinate Coordinate(const std::string& component) const override;
-  std::string CrossingName(int index, int direction) const override;
   std::string LinearisedAs(std::span<const double> modes) const override;
-  bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
-  void ZeroCrossings(const ElementContext& ctx, std::span<double> values) const override;
-  void OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double> state,
-                  std::span<double> modes) const override;
   // Exact stick: a hold beyond the static limit slips in its direction.
   bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
   bool StuckExactly(const ElementContext& ctx) const override;
@@ -83,6 +62,9 @@ class FrictionalForce final : public ForceElement {
                            std::span<const double> vdot) const override;
 
  private:
+  StickSlipHold Hold(const ElementContext& ctx, double mode) const override;
+  void OnSwitch(const ElementContext& ctx, double from, double to, std::span<double> state) const override;
+
   struct Slide {
     double x = 0.0, v = 0.0;
     BipolarGeometry line;  // between the points (not for a joint coordinate)

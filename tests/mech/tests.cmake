@@ -10,6 +10,7 @@ if(NOT MECHFLOW_SANITIZE AND NOT MECHFLOW_FUZZ)
 endif()
 mechflow_test(force_elements_test unit tests/mech/force_elements_test.cc)
 mechflow_test(friction_hysteresis_test unit tests/mech/friction_hysteresis_test.cc)
+mechflow_test(stick_slip_test unit tests/mech/stick_slip_test.cc)
 mechflow_test(gear_pitch_test unit tests/mech/gear_pitch_test.cc)
 mechflow_test(energy_sensor_test unit tests/mech/energy_sensor_test.cc)
 
