@@ -193,7 +193,7 @@ class Block {
                std::span<const double> weights) const {
     DoProject(ctx, correction, error, weights);
   }
-  // Analytic Jacobian (issue 17): empty when the block gives the exact
+  // Analytic Jacobian: empty when the block gives the exact
   // derivatives of its state derivatives with respect to its own states, its
   // inputs held (CalcStateJacobian); else why not, as a sentence.
   virtual std::string StateJacobianUnavailable() const { return "a " + type() + " block computes none"; }

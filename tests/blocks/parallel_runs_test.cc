@@ -88,7 +88,8 @@ RunResult RunOnce(const diagrams::LoadedDiagram& loaded) {
   for (int c = 0; c < sim.results().num_columns(); ++c) r.columns.push_back(sim.results().Column(c));
   r.loop = d.loops().at(0).stats(sim.context());
   const int m = d.FindBlock("m"), f = d.FindBlock("coulomb");
-  r.worst_residual = dynamic_cast<const blocks::MechanismBlock&>(d.block(m)).worst_constraint_residual(sim.context(), m);
+  const auto& mechanism = dynamic_cast<const blocks::MechanismBlock&>(d.block(m));
+  r.worst_residual = mechanism.worst_constraint_residual(sim.context(), m);
   r.pulling = dynamic_cast<const blocks::FrictionFromNormalForceBlock&>(d.block(f)).PullingWarning(sim.context(), f);
   return r;
 }
