@@ -15,6 +15,25 @@ enum Port { kX, kV, kForce, kReaction };
 
 }  // namespace
 
+struct ElementDriveBlock::Scratch final : blocks::BlockScratch {
+  Scratch(const mech::Mechanism& mechanism, const mech::ForceElement& element, const std::vector<double>& q0)
+      : kin(mechanism.model()),
+        q(q0),
+        v(mechanism.model().nv(), 0.0),
+        args(1 + mechanism.num_inputs(), 0.0),
+        sensors(element.num_sensors(), 0.0),
+        rates(element.num_states(), 0.0),
+        loads(mechanism.model()) {}
+
+  mech::Kinematics kin;
+  std::vector<double> q, v, args, sensors, rates;
+  mech::Loads loads;
+};
+
+std::unique_ptr<blocks::BlockScratch> ElementDriveBlock::MakeScratch() const {
+  return std::make_unique<Scratch>(mechanism_, element_, q0_);
+}
+
 ElementDriveBlock::ElementDriveBlock(std::string name, const mech::Mechanism& mechanism, int element,
                                      const std::string& component, HarmonicDrive drive)
     : Block("element_drive", std::move(name)),
@@ -23,14 +42,7 @@ ElementDriveBlock::ElementDriveBlock(std::string name, const mech::Mechanism& me
       coordinate_(element_.Coordinate(component)),
       drive_(drive),
       kin0_(mechanism.model()),
-      q0_(mechanism.model().initial_q()),
-      kin_(mechanism.model()),
-      q_(q0_),
-      v_(mechanism.model().nv(), 0.0),
-      args_(1 + mechanism.num_inputs(), 0.0),
-      sensors_(element_.num_sensors(), 0.0),
-      rates_(element_.num_states(), 0.0),
-      loads_(mechanism.model()) {
+      q0_(mechanism.model().initial_q()) {
   const std::string what = (element_.origin().empty() ? "" : element_.origin() + ": ") + "element '" +
                            element_.name() + "'" + (component.empty() ? "" : " component '" + component + "'");
   if (coordinate_.kind == Kind::kNone) {
@@ -53,7 +65,8 @@ ElementDriveBlock::ElementDriveBlock(std::string name, const mech::Mechanism& me
   if (!std::isfinite(drive_.amplitude)) throw InputError("force analysis: the amplitude must be a number");
 
   const mech::Model& model = mechanism.model();
-  mech::UpdateKinematics(model, 0.0, q0_, v_, &kin0_);
+  const std::vector<double> at_rest(model.nv(), 0.0);
+  mech::UpdateKinematics(model, 0.0, q0_, at_rest, &kin0_);
   auto is_ground = [&](int body) { return body < 0 || model.bodies()[body].segment == mech::kGround; };
   switch (coordinate_.kind) {
     case Kind::kLine: {
@@ -103,53 +116,54 @@ ElementDriveBlock::ElementDriveBlock(std::string name, const mech::Mechanism& me
   // x0: the coordinate in the initial configuration, as the element measures
   // it (a contact's deepest point, a bushing's deflection)
   std::vector<double> state(element_.num_states(), 0.0), modes(element_.num_modes(), 0.0);
-  element_.Initialize(Context(0.0, state, modes, false), state, modes);
-  element_.Evaluate(Context(0.0, state, modes, false), &loads_, rates_, sensors_);
-  x0_ = sensors_[coordinate_.coordinate_sensor];
+  Scratch s(mechanism_, element_, q0_);
+  element_.Initialize(Context(s, 0.0, state, modes, false), state, modes);
+  element_.Evaluate(Context(s, 0.0, state, modes, false), &s.loads, s.rates, s.sensors);
+  x0_ = s.sensors[coordinate_.coordinate_sensor];
 }
 
-mech::ElementContext ElementDriveBlock::Context(double t, std::span<const double> state,
+mech::ElementContext ElementDriveBlock::Context(Scratch& s, double t, std::span<const double> state,
                                                 std::span<const double> modes, bool driven) const {
   const double w = kTwoPi * drive_.frequency, angle = w * t + drive_.phase, a = driven ? drive_.amplitude : 0.0;
-  const double s = a * std::sin(angle), rate = a * w * std::cos(angle);
-  kin_ = kin0_;
-  kin_.time = t;
+  const double shift = a * std::sin(angle), rate = a * w * std::cos(angle);
+  s.kin = kin0_;
+  s.kin.time = t;
   if (coordinate_.kind == Kind::kJoint) {
-    q_[coordinate_.q_index] = q0_[coordinate_.q_index] + s;
-    v_[coordinate_.v_index] = rate;
+    s.q[coordinate_.q_index] = q0_[coordinate_.q_index] + shift;
+    s.v[coordinate_.v_index] = rate;
   } else if (coordinate_.kind == Kind::kRotation) {
-    mech::Pose& pose = kin_.body_pose[mover_];
-    const mech::Mat3 turn = mech::AxisRotation(direction_, s);
+    mech::Pose& pose = s.kin.body_pose[mover_];
+    const mech::Mat3 turn = mech::AxisRotation(direction_, shift);
     pose.R = turn * pose.R;
     pose.p = pivot_ + turn * (pose.p - pivot_);
-    kin_.body_omega[mover_] = rate * direction_;
-    kin_.body_velocity[mover_] = kin_.body_omega[mover_].cross(pose.p - pivot_);
+    s.kin.body_omega[mover_] = rate * direction_;
+    s.kin.body_velocity[mover_] = s.kin.body_omega[mover_].cross(pose.p - pivot_);
   } else {
-    kin_.body_pose[mover_].p += s * direction_;
-    kin_.body_velocity[mover_] = rate * direction_;
+    s.kin.body_pose[mover_].p += shift * direction_;
+    s.kin.body_velocity[mover_] = rate * direction_;
   }
-  args_[0] = t;
+  s.args[0] = t;
   mech::ElementContext ctx;
   ctx.t = t;
   ctx.model = &mechanism_.model();
-  ctx.kin = &kin_;
-  ctx.q = q_;
-  ctx.v = v_;
-  ctx.parameter_args = args_;
+  ctx.kin = &s.kin;
+  ctx.q = s.q;
+  ctx.v = s.v;
+  ctx.parameter_args = s.args;
   ctx.state = state;
   ctx.modes = modes;
   return ctx;
 }
 
-void ElementDriveBlock::Evaluate(const blocks::BlockContext& ctx, std::span<double> rates) const {
-  loads_.Clear();
-  element_.Evaluate(Context(ctx.time(), ctx.state(), ctx.discrete()), &loads_, rates, sensors_);
+void ElementDriveBlock::Evaluate(const blocks::BlockContext& ctx, Scratch& s, std::span<double> rates) const {
+  s.loads.Clear();
+  element_.Evaluate(Context(s, ctx.time(), ctx.state(), ctx.discrete()), &s.loads, rates, s.sensors);
 }
 
 void ElementDriveBlock::DoInitialize(const blocks::BlockContext& ctx) const {
   for (double& m : ctx.discrete()) m = 0.0;
   for (double& x : ctx.state()) x = 0.0;
-  element_.Initialize(Context(0.0, ctx.state(), ctx.discrete()), ctx.state(), ctx.discrete());
+  element_.Initialize(Context(ctx.scratch<Scratch>(), 0.0, ctx.state(), ctx.discrete()), ctx.state(), ctx.discrete());
 }
 
 void ElementDriveBlock::DoCalcOutput(int port, const blocks::BlockContext& ctx) const {
@@ -159,29 +173,32 @@ void ElementDriveBlock::DoCalcOutput(int port, const blocks::BlockContext& ctx) 
   } else if (port == kV) {
     ctx.output(port)[0] = drive_.amplitude * w * std::cos(angle);
   } else {
-    Evaluate(ctx, rates_);
-    const double force = coordinate_.force_sign * sensors_[coordinate_.force_sensor];
+    Scratch& s = ctx.scratch<Scratch>();
+    Evaluate(ctx, s, s.rates);
+    const double force = coordinate_.force_sign * s.sensors[coordinate_.force_sensor];
     ctx.output(port)[0] = port == kForce ? force : -force;
   }
 }
 
 void ElementDriveBlock::DoCalcDerivatives(const blocks::BlockContext& ctx) const {
   if (element_.num_states() == 0) return;
-  Evaluate(ctx, ctx.derivative());
+  Evaluate(ctx, ctx.scratch<Scratch>(), ctx.derivative());
 }
 
 void ElementDriveBlock::DoCalcZeroCrossings(const blocks::BlockContext& ctx) const {
-  element_.ZeroCrossings(Context(ctx.time(), ctx.state(), ctx.discrete()), ctx.zero_crossings());
+  element_.ZeroCrossings(Context(ctx.scratch<Scratch>(), ctx.time(), ctx.state(), ctx.discrete()),
+                         ctx.zero_crossings());
 }
 
 void ElementDriveBlock::DoZeroCrossing(int index, int direction, const blocks::BlockContext& ctx) const {
-  element_.OnCrossing(index, direction, Context(ctx.time(), ctx.state(), ctx.discrete()), ctx.state(),
-                      ctx.discrete());
+  element_.OnCrossing(index, direction, Context(ctx.scratch<Scratch>(), ctx.time(), ctx.state(), ctx.discrete()),
+                      ctx.state(), ctx.discrete());
 }
 
 bool ElementDriveBlock::DoUpdateModes(const blocks::BlockContext& ctx) const {
   if (element_.num_modes() == 0) return false;
-  return element_.UpdateModes(Context(ctx.time(), ctx.state(), ctx.discrete()), ctx.state(), ctx.discrete());
+  return element_.UpdateModes(Context(ctx.scratch<Scratch>(), ctx.time(), ctx.state(), ctx.discrete()), ctx.state(),
+                              ctx.discrete());
 }
 
 }  // namespace mechflow::analysis

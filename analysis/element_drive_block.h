@@ -1,8 +1,8 @@
 #pragma once
 // ElementDriveBlock: one force element of a mechanism, detached from the
 // rest and driven along its own scalar coordinate (ForceElement::Coordinate)
-// as x = x0 + a sin(2 pi f t + phase) -- the harmonic drive of force analysis (the
-// seed's "Analysis of force elements", ../shared/ELEMENTS.md 3.10).
+// as x = x0 + a sin(2 pi f t + phase) -- the harmonic drive of force analysis: an
+// element characterised alone, through the force it takes to move it so.
 //
 // x0 is the coordinate in the diagram's initial configuration. Every body
 // is held there at rest except the one the drive moves: body 2 along the
@@ -16,6 +16,7 @@
 // "reaction" = -force, what it takes to impose the motion. The mechanism
 // must outlive the block.
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,8 +41,11 @@ class ElementDriveBlock final : public blocks::Block {
                     HarmonicDrive drive);
 
   double initial_coordinate() const { return x0_; }
+  std::unique_ptr<blocks::BlockScratch> MakeScratch() const override;
 
  private:
+  struct Scratch;  // the run's kinematics and element buffers
+
   void DoInitialize(const blocks::BlockContext& ctx) const override;
   void DoCalcOutput(int port, const blocks::BlockContext& ctx) const override;
   void DoCalcDerivatives(const blocks::BlockContext& ctx) const override;
@@ -50,11 +54,11 @@ class ElementDriveBlock final : public blocks::Block {
   bool DoUpdateModes(const blocks::BlockContext& ctx) const override;
 
   // The element's context at time t with the drive applied (kinematics and
-  // coordinates in the mutable scratch below); `driven` false: at rest at x0.
-  mech::ElementContext Context(double t, std::span<const double> state, std::span<const double> modes,
+  // coordinates in the run's scratch `s`); `driven` false: at rest at x0.
+  mech::ElementContext Context(Scratch& s, double t, std::span<const double> state, std::span<const double> modes,
                                bool driven = true) const;
-  // Element sensors at the block's current state.
-  void Evaluate(const blocks::BlockContext& ctx, std::span<double> rates) const;
+  // Element sensors at the block's current state, into s.sensors.
+  void Evaluate(const blocks::BlockContext& ctx, Scratch& s, std::span<double> rates) const;
 
   const mech::Mechanism& mechanism_;
   const mech::ForceElement& element_;
@@ -66,9 +70,6 @@ class ElementDriveBlock final : public blocks::Block {
   mech::Vec3 pivot_ = mech::Vec3::Zero();                // global point on a rotation axis
   mech::Kinematics kin0_;                    // the initial configuration, at rest
   std::vector<double> q0_;
-  mutable mech::Kinematics kin_;
-  mutable std::vector<double> q_, v_, args_, sensors_, rates_;
-  mutable mech::Loads loads_;
 };
 
 }  // namespace mechflow::analysis

@@ -25,8 +25,11 @@
 // wedge or brake, whose friction force feeds its own normal force with gain
 // mu c / b > 1. That is a NoSolutionError, with the gain.
 //
-// The workspace is sized when the loop is built; Solve allocates nothing.
+// The workspace (Newton arrays, the kept Jacobian, the counters) is the
+// run's: made with the Context (MakeScratch, sized there), so Solve allocates
+// nothing and one built loop may be solved by several runs at once.
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,9 +82,11 @@ class AlgebraicLoop {
   // read the slot it is writing (see DiagramBuilder::LayOut).
   // `port` names one port of the loop ("s.y"), `hops` one line per hop of a
   // cycle through it ("\n  a.y -> s.u1 (feeds s.y directly) at file:line").
-  AlgebraicLoop(std::vector<OutputNode> inner, std::vector<OutputNode> tears, const std::vector<int>& tear_offsets,
-                const std::vector<int>& tear_widths, std::vector<std::pair<int, int>> copies, std::string port,
-                std::string hops);
+  // `index`: the loop's in the diagram (Diagram::loops()), where its scratch
+  // sits in Context::loop_scratch.
+  AlgebraicLoop(int index, std::vector<OutputNode> inner, std::vector<OutputNode> tears,
+                const std::vector<int>& tear_offsets, const std::vector<int>& tear_widths,
+                std::vector<std::pair<int, int>> copies, std::string port, std::string hops);
 
   const std::vector<OutputNode>& inner() const { return inner_; }
   const std::vector<OutputNode>& tears() const { return tears_; }
@@ -89,8 +94,11 @@ class AlgebraicLoop {
   const std::string& port() const { return port_; }
   // " through s.y:" and the hops.
   const std::string& description() const { return description_; }
-  const LoopStats& stats() const { return stats_; }
-  void ResetStats() const { stats_ = {}; }
+  // The counters of the run that `run` holds (zero until it is prepared).
+  const LoopStats& stats(const Context& run) const;
+
+  // The loop's scratch for a new run (InitializeStates makes one per loop).
+  std::unique_ptr<BlockScratch> MakeScratch() const;
 
   // Computes every port of the loop so that the tears agree with what they
   // feed. Throws SimulationError when it cannot.
@@ -99,32 +107,22 @@ class AlgebraicLoop {
  private:
   // Writes z into the tear signals, evaluates inner ports then tears, and
   // reads G(z) into g.
-  void Evaluate(const Diagram& d, Context* ctx, const Eigen::VectorXd& z, Eigen::VectorXd* g) const;
-  void UpdateJacobian(const Diagram& d, Context* ctx) const;
-  double PivotRatio() const;
+  struct Scratch;
+  Scratch& ScratchOf(Context* ctx) const;
+  void Evaluate(const Diagram& d, Context* ctx, Scratch& s, const Eigen::VectorXd& z, Eigen::VectorXd* g) const;
+  void UpdateJacobian(const Diagram& d, Context* ctx, Scratch& s) const;
+  double PivotRatio(const Scratch& s) const;
   bool Converged(const Eigen::VectorXd& z, const Eigen::VectorXd& r, double* worst) const;
-  [[noreturn]] void Fail(const Context& ctx, const std::string& why, bool no_solution = false) const;
+  [[noreturn]] void Fail(const Context& ctx, Scratch& s, const std::string& why, bool no_solution = false) const;
   // After kMaxIterations: why, as words, and whether the loop has no solution.
-  std::string Diagnose(double worst, bool* no_solution) const;
+  std::string Diagnose(const Scratch& s, double worst, bool* no_solution) const;
 
+  int index_ = 0;
   std::vector<OutputNode> inner_, tears_;
   std::vector<int> slot_;  // unknown k lives at signals[slot_[k]]
   std::vector<std::pair<int, int>> copies_;  // (unknown, signal) also set to z
   std::string port_, description_;
 
-  mutable Eigen::VectorXd z_, g_, r_, r_old_, step_, column_;
-  mutable Eigen::MatrixXd newton_matrix_;  // J - I
-  mutable Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
-  mutable bool have_jacobian_ = false;
-  // Over one Solve: the residual's first signs, whether one changed, and the
-  // fresh Jacobian with the smallest det(I - J) (the largest gain along some
-  // direction) -- kept for the diagnosis of a failure.
-  mutable Eigen::VectorXd first_sign_;
-  mutable bool sign_changed_ = false;
-  mutable Eigen::MatrixXd gain_jacobian_;
-  mutable double least_det_ = 0.0;
-  mutable bool have_gain_ = false;
-  mutable LoopStats stats_;
 };
 
 }  // namespace mechflow::blocks

@@ -12,8 +12,9 @@
 //   - zero-crossing functions with the direction that triggers them,
 //   - its sample time (continuous, or periodic with an offset).
 // At run time every method is const and works on a BlockContext, the block's
-// view into the diagram's Context (time, signals, states). All values live in
-// the Context, so one built diagram can be run again from scratch.
+// view into the diagram's Context (time, signals, states, the block's
+// scratch). All values live in the Context, so one built diagram can be run
+// again from scratch, or by several Contexts at once.
 //
 // Outputs are computed per port (DoCalcOutput(port, ...)) so the scheduler can
 // order ports, not blocks: a mechanism whose positions do not depend on its
@@ -26,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -127,6 +129,13 @@ class Block {
   }
 
   // --- run time ------------------------------------------------------------
+  // The block's run-time scratch, made once per run when the Context is
+  // prepared (InitializeStates), or null when it needs none. Whatever a
+  // run-time method changes besides the Context's values lives there (work
+  // arrays, caches between output ports, figures read after the run), never
+  // in the block: one built diagram may run on several threads at once. The
+  // run-time methods reach it through ctx.scratch<T>().
+  virtual std::unique_ptr<BlockScratch> MakeScratch() const { return nullptr; }
   // Sets initial continuous and discrete states (inputs are not yet valid).
   void Initialize(const BlockContext& ctx) const { DoInitialize(ctx); }
   // Computes output port `port` from time, states and (feedthrough) inputs.
@@ -184,7 +193,7 @@ class Block {
                std::span<const double> weights) const {
     DoProject(ctx, correction, error, weights);
   }
-  // Analytic Jacobian (issue 17): empty when the block gives the exact
+  // Analytic Jacobian: empty when the block gives the exact
   // derivatives of its state derivatives with respect to its own states, its
   // inputs held (CalcStateJacobian); else why not, as a sentence.
   virtual std::string StateJacobianUnavailable() const { return "a " + type() + " block computes none"; }
@@ -193,9 +202,10 @@ class Block {
   virtual void CalcStateJacobian(const BlockContext&, std::vector<JacobianEntry>* entries) const {
     entries->clear();
   }
-  // After a failed run: what the block knows about why (e.g. a mechanism at
-  // a singular position), as a sentence; empty when it knows nothing.
-  virtual std::string FailureNote() const { return {}; }
+  // After a failed run, with the run's context: what the block knows about
+  // why (e.g. a mechanism at a singular position), as a sentence; empty when
+  // it knows nothing.
+  virtual std::string FailureNote(const BlockContext&) const { return {}; }
   // What zero crossing `index` firing in `direction` meant, for the event
   // log (`mechflow run --verbose`); "" when the block has no words for it.
   virtual std::string CrossingName(int /*index*/, int /*direction*/) const { return {}; }

@@ -4,9 +4,18 @@
 // It is a pair of pointers (the diagram Context and the block's layout), built
 // on the stack for each call: no allocation, no lookup. Spans point straight
 // into the Context's packed arrays.
+//
+// Everything a run changes lives in the Context, never in the blocks: values
+// (signals, states) and a block's scratch (work arrays, caches, figures kept
+// for reports). So one built diagram can be run by several Contexts at once,
+// one per thread, as long as its blocks call no shared Lua state
+// (scripting/lua_state.h).
 
 #include <cstdint>
+#include <memory>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace mechflow::blocks {
@@ -14,6 +23,7 @@ namespace mechflow::blocks {
 // Where one block's values sit in the Context's packed arrays. Filled once by
 // the diagram builder.
 struct BlockLayout {
+  int block = 0;                   // the block's index: its scratch in Context::scratch
   std::vector<int> input_offset;   // per input port: offset of its driving signal
   std::vector<int> input_width;
   std::vector<int> output_offset;  // per output port: offset in Context::signals
@@ -24,6 +34,14 @@ struct BlockLayout {
   int num_discrete = 0;
   int first_crossing = 0;          // into the zero-crossing vector
   int num_crossings = 0;
+};
+
+// A block's (or an algebraic loop's) run-time scratch: work arrays sized
+// once, caches, figures kept for reports. Made by Block::MakeScratch when a
+// Context is prepared for a run (InitializeStates), owned by the Context.
+class BlockScratch {
+ public:
+  virtual ~BlockScratch() = default;
 };
 
 // All run-time values of a diagram. Owned by the simulator; the continuous
@@ -43,7 +61,25 @@ struct Context {
   // outputs in the same evaluation, so a block may do work they share while
   // computing an output. False for output rows and root functions.
   bool derivatives_follow = false;
+  // Per block (by index; null for a block that needs none) and per algebraic
+  // loop: made afresh by InitializeStates (blocks/evaluation.h).
+  std::vector<std::unique_ptr<BlockScratch>> scratch;
+  std::vector<std::unique_ptr<BlockScratch>> loop_scratch;
+  std::unique_ptr<BlockScratch> run_claim;  // Diagram::run_claim's, held while the run's Context lives
 };
+
+// Block `block`'s scratch in a run's Context, of type T, for figures read
+// after the run; null when the Context was never prepared (no run started).
+// Throws std::logic_error when the block's scratch is not a T (the wrong
+// block index or Context).
+template <typename T>
+const T* RunScratch(const Context& run, int block) {
+  if (run.scratch.empty()) return nullptr;
+  const auto i = static_cast<std::size_t>(block);
+  const T* s = i < run.scratch.size() ? dynamic_cast<const T*>(run.scratch[i].get()) : nullptr;
+  if (!s) throw std::logic_error("block " + std::to_string(block) + " of this run is not the block asked about");
+  return s;
+}
 
 class BlockContext {
  public:
@@ -82,6 +118,15 @@ class BlockContext {
   std::span<double> zero_crossings() const {
     return {ctx_->crossings + layout_->first_crossing,
             static_cast<std::size_t>(layout_->num_crossings)};
+  }
+  // The block's own scratch, of the type its MakeScratch makes. A Context
+  // that InitializeStates did not prepare has none: a programming error.
+  template <typename T>
+  T& scratch() const {
+    const std::size_t b = static_cast<std::size_t>(layout_->block);
+    if (b >= ctx_->scratch.size() || !ctx_->scratch[b]) [[unlikely]]
+      throw std::logic_error("a block's scratch is missing: prepare the Context with InitializeStates first");
+    return static_cast<T&>(*ctx_->scratch[b]);
   }
 
  private:

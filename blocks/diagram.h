@@ -12,6 +12,7 @@
 // are found at build time; each becomes one schedule entry, solved by Newton
 // on a few of its signals at every evaluation (see AlgebraicLoop).
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -38,6 +39,12 @@ struct Connection {
   int from_block = 0, from_port = 0;
   int to_block = 0, to_port = 0;
 };
+
+// Made when a Context is prepared for a run and kept by it until it is
+// prepared again or ends: a claim on something the diagram's blocks share
+// that allows one run at a time (the Lua state of scripting/lua_state.h,
+// which refuses a run on another thread meanwhile). Throws when it cannot.
+using RunClaimMaker = std::function<std::unique_ptr<BlockScratch>()>;
 
 class Diagram {
  public:
@@ -69,6 +76,10 @@ class Diagram {
   const std::vector<int>& crossing_blocks() const { return crossing_; }
   const std::vector<int>& periodic_blocks() const { return periodic_; }
 
+  // Empty when runs claim nothing: then several may run at once, one per
+  // Context (and thread).
+  const RunClaimMaker& run_claim() const { return run_claim_; }
+
   // Resolves "block.port" (or "block" for a block with one output). Throws
   // InputError naming what exists when it does not resolve.
   SignalRef ResolveSignal(std::string_view reference) const;
@@ -89,6 +100,7 @@ class Diagram {
   std::vector<std::pair<int, int>> input_copies_;
   std::vector<int> stateful_, crossing_, periodic_;
   int num_signals_ = 0, num_states_ = 0, num_discrete_ = 0, num_crossings_ = 0;
+  RunClaimMaker run_claim_;
 };
 
 }  // namespace mechflow::blocks

@@ -177,6 +177,7 @@ void DiagramBuilder::LayOut(Diagram* d, const std::vector<Connection>& resolved)
   for (int bi = 0; bi < d->num_blocks(); ++bi) {
     const Block& b = *d->blocks_[bi];
     BlockLayout& l = d->layouts_[bi];
+    l.block = bi;
     for (int p = 0; p < b.num_outputs(); ++p) {
       l.output_offset.push_back(d->num_signals_);
       l.output_width.push_back(b.output_port(p).width);
@@ -426,8 +427,8 @@ void DiagramBuilder::Schedule(Diagram* d) const {
     entry.loop = static_cast<int>(d->loops_.size());
     std::string port;
     std::string hops = describe(*it, &port);
-    d->loops_.emplace_back(std::move(inner), std::move(tears), offsets, widths, std::move(copies), std::move(port),
-                           std::move(hops));
+    d->loops_.emplace_back(entry.loop, std::move(inner), std::move(tears), offsets, widths, std::move(copies),
+                           std::move(port), std::move(hops));
     d->schedule_.push_back(entry);
   }
 }

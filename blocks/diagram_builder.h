@@ -31,6 +31,9 @@ class DiagramBuilder {
   // to input `to` ("block.port", or "block" when it has one input).
   void Connect(std::string_view from, std::string_view to, std::string origin = "");
 
+  // What a run of the diagram must claim before it starts (Diagram::RunClaim).
+  void SetRunClaim(RunClaimMaker make) { ThrowIfBuilt("SetRunClaim"); diagram_->run_claim_ = std::move(make); }
+
   // Checks everything and returns the built diagram.
   std::unique_ptr<Diagram> Build();
 

@@ -3,6 +3,16 @@
 namespace mechflow::blocks {
 
 void InitializeStates(const Diagram& d, Context* ctx) {
+  // the claim first: a run refused there leaves nothing half made
+  ctx->run_claim.reset();
+  if (d.run_claim()) ctx->run_claim = d.run_claim()();
+  // fresh scratch: a run never starts from caches or counters of another
+  ctx->scratch.clear();
+  ctx->scratch.reserve(d.num_blocks());
+  for (int b = 0; b < d.num_blocks(); ++b) ctx->scratch.push_back(d.block(b).MakeScratch());
+  ctx->loop_scratch.clear();
+  ctx->loop_scratch.reserve(d.loops().size());
+  for (const AlgebraicLoop& loop : d.loops()) ctx->loop_scratch.push_back(loop.MakeScratch());
   for (int b = 0; b < d.num_blocks(); ++b) d.block(b).Initialize(BlockContext(ctx, &d.layout(b)));
 }
 

@@ -2,7 +2,7 @@
 // The passes over a built diagram that the simulator runs at each instant.
 //
 // Each pass walks precomputed index lists: nothing here allocates or looks a
-// name up. The caller points the Context's x / xdot / crossings at the right
+// name up (but InitializeStates, which starts a run). The caller points the Context's x / xdot / crossings at the right
 // buffers and sets its time first.
 
 #include "blocks/block_context.h"
@@ -10,7 +10,10 @@
 
 namespace mechflow::blocks {
 
-// Sets every block's initial continuous and discrete states.
+// Starts a run: claims what the diagram's runs must (Diagram::run_claim;
+// throws when it cannot), makes the run's scratch afresh (every block's and
+// algebraic loop's, Context::scratch; this allocates), then sets every
+// block's initial continuous and discrete states.
 void InitializeStates(const Diagram& d, Context* ctx);
 
 // Computes every output port in schedule order.

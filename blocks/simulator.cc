@@ -786,7 +786,6 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   results_.Clear();  // a run again starts afresh (streaming, if set, stays)
   events_.clear();
   stats_ = SolverStats();
-  for (const AlgebraicLoop& loop : diagram_.loops()) loop.ResetStats();
   if (jacobian_) {
     stats_.sparse = true;
     stats_.colours = jacobian_->num_colours();
@@ -941,7 +940,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
                              "here; a singular position, a discontinuity without an event, or rtol below what the "
                              "model's round-off allows)";
         for (int b = 0; b < diagram_.num_blocks(); ++b) {
-          const std::string note = diagram_.block(b).FailureNote();
+          const std::string note = diagram_.block(b).FailureNote(BlockContext(&ctx_, &diagram_.layout(b)));
           if (!note.empty()) outcome.failure += "; block '" + diagram_.block(b).name() + "': " + note;
         }
         break;

@@ -207,6 +207,9 @@ class Simulator {
   // `observer` (not owned) sees every row after it is recorded. Call before Run.
   void SetRowObserver(RowObserver* observer) { observer_ = observer; }
   const SolverStats& stats() const { return stats_; }
+  // The run's values and scratch (blocks/block_context.h), for figures read
+  // after it: AlgebraicLoop::stats, MechanismBlock::worst_constraint_residual.
+  const Context& context() const { return ctx_; }
   const std::vector<EventRecord>& events() const { return events_; }
   // The reports' figures so far (also in results().figures() after a run).
   std::vector<ReportFigure> figures() const;

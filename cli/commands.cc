@@ -147,10 +147,10 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     const auto* mechanism = dynamic_cast<const blocks::MechanismBlock*>(&loaded.diagram->block(b));
     if (mechanism && !mechanism->mechanism().constraints().empty())
       out << "mechanism '" << mechanism->name() << "': largest loop-constraint residual before projection "
-          << mechanism->worst_constraint_residual() << "\n";
+          << mechanism->worst_constraint_residual(sim.context(), b) << "\n";
   }
   for (const blocks::AlgebraicLoop& loop : loaded.diagram->loops()) {
-    const blocks::LoopStats& s = loop.stats();
+    const blocks::LoopStats& s = loop.stats(sim.context());
     out << "algebraic loop through " << loop.port() << ": " << s.solves << " solves, "
         << (s.solves ? double(s.iterations) / s.solves : 0.0) << " Newton steps per solve, " << s.jacobians
         << " difference Jacobians, largest accepted residual " << s.worst_residual << "\n";
@@ -165,7 +165,7 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   PrintFigures(sim.results().figures(), outcome.ok, out);
   if (args.verbose) PrintEventLog(*loaded.diagram, sim.events(), out);
   PrintEventWarnings(*loaded.diagram, sim.events(), err);
-  PrintRunWarnings(*loaded.diagram, err);
+  PrintRunWarnings(*loaded.diagram, sim.context(), err);
   // 130 SIGINT, 143 SIGTERM, 129 SIGHUP, as shells report them; after the
   // run, a plot or a <spectrum> stopped by a signal ends the command alike
   const int signal = outcome.interrupted ? outcome.interrupted : plot_stopped_by ? plot_stopped_by : *InterruptFlag();

@@ -178,10 +178,10 @@ void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks
   }
 }
 
-void PrintRunWarnings(const blocks::Diagram& diagram, std::ostream& out) {
+void PrintRunWarnings(const blocks::Diagram& diagram, const blocks::Context& run, std::ostream& out) {
   for (int b = 0; b < diagram.num_blocks(); ++b)
     if (const auto* friction = dynamic_cast<const blocks::FrictionFromNormalForceBlock*>(&diagram.block(b)))
-      if (const std::string warning = friction->PullingWarning(); !warning.empty())
+      if (const std::string warning = friction->PullingWarning(run, b); !warning.empty())
         out << "warning: " << diagram.origin(b) << ": " << warning << "\n";
 }
 

@@ -37,9 +37,9 @@ void PrintEventLog(const blocks::Diagram& diagram, const std::vector<blocks::Eve
 void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks::EventRecord>& events,
                         std::ostream& out);
 
-// After a run: what blocks saw that the model may not mean (a unilateral
+// After a run (`run`: its Context): what blocks saw that the model may not mean (a unilateral
 // friction block fed a pulling normal force), one line per block.
-void PrintRunWarnings(const blocks::Diagram& diagram, std::ostream& out);
+void PrintRunWarnings(const blocks::Diagram& diagram, const blocks::Context& run, std::ostream& out);
 
 // What the control script did: callbacks run, and per identifier it set the
 // number of changes with the first and last (time, value).

@@ -521,6 +521,14 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
     builder.AddBlock(std::move(block), b.loc.str());
   }
   for (const auto& c : d.connections) builder.Connect(c.from, c.to, c.loc.str());
+  if (out.lua->has_run_time_code() || d.script.present())  // one Lua state: one thread at a time runs it
+    builder.SetRunClaim([lua = out.lua.get()]() -> std::unique_ptr<blocks::BlockScratch> {
+      struct Claim final : blocks::BlockScratch {
+        explicit Claim(scripting::LuaState::RunClaim held) : claim(std::move(held)) {}
+        scripting::LuaState::RunClaim claim;
+      };
+      return std::make_unique<Claim>(lua->ClaimForRun());
+    });
   out.diagram = builder.Build();
   if (d.script.present())
     out.control = std::make_unique<scripting::ControlScript>(*out.lua, ids, *out.diagram,

@@ -94,6 +94,7 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
       label_(!chunk_name.empty() && (chunk_name[0] == '=' || chunk_name[0] == '@') ? chunk_name.substr(1)
                                                                                    : chunk_name),
       arguments_(std::move(argument_names)) {
+  lua_.NoteRunTimeCode();  // evaluated during runs: they must claim the state
   for (std::size_t i = 0; i < arguments_.size(); ++i) {
     if (!IsLuaName(arguments_[i]))
       throw InputError(label_ + ": argument name '" + arguments_[i] + "' is not a Lua name");

@@ -17,7 +17,7 @@ class ExpressionBlock : public blocks::Block {
  public:
   ExpressionBlock(const std::string& name, const std::string& expr, const std::vector<std::string>& inputs,
                   LuaState& lua, const IdentifierTable& identifiers)
-      : Block("expression", name), arguments_(inputs.size() + 1, 0.0) {
+      : Block("expression", name) {
     for (const auto& input : inputs) DeclareInputPort(input);
     DeclareOutputPort("y");  // every input feeds y: the default
     std::vector<std::string> names = {"t"};
@@ -27,17 +27,25 @@ class ExpressionBlock : public blocks::Block {
   }
 
  protected:
+  // (t, inputs...) for the call, sized once per run
+  struct Scratch final : blocks::BlockScratch {
+    explicit Scratch(int n) : arguments(n, 0.0) {}
+    std::vector<double> arguments;
+  };
+
+  std::unique_ptr<blocks::BlockScratch> MakeScratch() const override {
+    return std::make_unique<Scratch>(num_inputs() + 1);
+  }
+
   void DoCalcOutput(int, const blocks::BlockContext& ctx) const override {
-    arguments_[0] = ctx.time();
-    for (int i = 0; i < num_inputs(); ++i) arguments_[i + 1] = ctx.input_scalar(i);
-    ctx.output(0)[0] = expression_->Evaluate(arguments_.data());
+    std::vector<double>& arguments = ctx.scratch<Scratch>().arguments;
+    arguments[0] = ctx.time();
+    for (int i = 0; i < num_inputs(); ++i) arguments[i + 1] = ctx.input_scalar(i);
+    ctx.output(0)[0] = expression_->Evaluate(arguments.data());
   }
 
  private:
   std::unique_ptr<CompiledExpression> expression_;
-  // (t, inputs...) for the call, sized once; a diagram is evaluated by one
-  // simulator at a time (it shares the one Lua state anyway)
-  mutable std::vector<double> arguments_;
 };
 
 std::vector<std::string> SplitNames(const std::string& text) {

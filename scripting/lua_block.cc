@@ -202,10 +202,8 @@ class LuaBlock : public blocks::Block {
     DeclareFeedthrough(feedthrough, inputs, outputs);
     num_input_values_ = TotalWidth(inputs);
     num_output_values_ = TotalWidth(outputs);
-    const int num_args = 1 + static_cast<int>(states.size()) + num_input_values_;
-    args_.assign(num_args, 0.0);
-    cached_args_.assign(num_args, 0.0);
-    cached_outputs_.assign(num_output_values_, 0.0);
+    num_args_ = 1 + static_cast<int>(states.size()) + num_input_values_;
+    lua_.NoteRunTimeCode();  // called during runs: they must claim the state
     Compile(code, ids, !states.empty());
   }
 
@@ -216,9 +214,24 @@ class LuaBlock : public blocks::Block {
   }
 
  protected:
+  // The run's arguments and the last call of `outputs`, sized once.
+  struct Scratch final : blocks::BlockScratch {
+    Scratch(int num_args, int num_outputs)
+        : args(num_args, 0.0), cached_args(num_args, 0.0), cached_outputs(num_outputs, 0.0) {}
+    std::vector<double> args;  // (t, states, inputs)
+    std::vector<double> cached_args;
+    std::vector<double> cached_outputs;
+    std::uint64_t cached_evaluation = 0;
+    bool has_cache = false;
+  };
+
+  std::unique_ptr<blocks::BlockScratch> MakeScratch() const override {
+    return std::make_unique<Scratch>(num_args_, num_output_values_);
+  }
+
   void DoInitialize(const blocks::BlockContext& ctx) const override {
     std::copy(initial_.begin(), initial_.end(), ctx.state().begin());
-    has_cache_ = false;
+    ctx.scratch<Scratch>().has_cache = false;
   }
 
   void DoCalcOutput(int port, const blocks::BlockContext& ctx) const override {
@@ -227,24 +240,26 @@ class LuaBlock : public blocks::Block {
       std::copy_n(ctx.state().begin() + output_first_[port], out.size(), out.begin());
       return;
     }
-    GatherArguments(ctx);
+    Scratch& s = ctx.scratch<Scratch>();
+    GatherArguments(ctx, s);
     // the other ports' call may already hold this port's values
-    const bool cached = has_cache_ && num_outputs() > 1 && cached_evaluation_ == ctx.evaluation() &&
-                        std::equal(args_.begin(), args_.end(), cached_args_.begin());
+    const bool cached = s.has_cache && num_outputs() > 1 && s.cached_evaluation == ctx.evaluation() &&
+                        std::equal(s.args.begin(), s.args.end(), s.cached_args.begin());
     if (!cached) {
-      Call(outputs_ref_, "outputs", num_output_values_, cached_outputs_.data());
-      cached_args_ = args_;  // same size: copies, no allocation
-      cached_evaluation_ = ctx.evaluation();
-      has_cache_ = true;
+      Call(s, outputs_ref_, "outputs", num_output_values_, s.cached_outputs.data());
+      s.cached_args = s.args;  // same size: copies, no allocation
+      s.cached_evaluation = ctx.evaluation();
+      s.has_cache = true;
     }
     const std::span<double> out = ctx.output(port);
-    std::copy_n(cached_outputs_.begin() + output_first_[port], out.size(), out.begin());
+    std::copy_n(s.cached_outputs.begin() + output_first_[port], out.size(), out.begin());
   }
 
   void DoCalcDerivatives(const blocks::BlockContext& ctx) const override {
     if (num_states() == 0) return;
-    GatherArguments(ctx);
-    Call(derivatives_ref_, "derivatives", num_states(), ctx.derivative().data());
+    Scratch& s = ctx.scratch<Scratch>();
+    GatherArguments(ctx, s);
+    Call(s, derivatives_ref_, "derivatives", num_states(), ctx.derivative().data());
   }
 
  private:
@@ -419,24 +434,24 @@ class LuaBlock : public blocks::Block {
     return -1;
   }
 
-  // args_ = (t, states, inputs)
-  void GatherArguments(const blocks::BlockContext& ctx) const {
-    double* a = args_.data();
+  // s.args = (t, states, inputs)
+  void GatherArguments(const blocks::BlockContext& ctx, Scratch& s) const {
+    double* a = s.args.data();
     *a++ = ctx.time();
     for (const double x : ctx.state()) *a++ = x;
     for (int i = 0; i < num_inputs(); ++i)
       for (const double u : ctx.input(i)) *a++ = u;
   }
 
-  // Calls the function at `ref` with args_ and writes its `count` results.
-  void Call(int ref, const char* function, int count, double* out) const {
+  // Calls the function at `ref` with s.args and writes its `count` results.
+  void Call(const Scratch& s, int ref, const char* function, int count, double* out) const {
     lua_State* L = lua_.get();
     const int top = lua_gettop(L);
-    const int n = static_cast<int>(args_.size());
+    const int n = static_cast<int>(s.args.size());
     if (!lua_checkstack(L, n + 2)) throw SimulationError("block '" + name() + "': Lua stack overflow");
     lua_pushcfunction(L, &LuaState::TracebackHandler);
     lua_rawgeti(L, LUA_REGISTRYINDEX, ref);
-    for (const double a : args_) lua_pushnumber(L, a);
+    for (const double a : s.args) lua_pushnumber(L, a);
     int status;
     if (bounded_) {
       BoundedCall bounded(lua_);
@@ -449,12 +464,12 @@ class LuaBlock : public blocks::Block {
     if (status != LUA_OK) {
       const std::string message = lua_.ErrorText(status);
       lua_settop(L, top);
-      throw SimulationError(Where(function) + ": " + message);
+      throw SimulationError(Where(s, function) + ": " + message);
     }
     const int returned = lua_gettop(L) - top - 1;
     if (returned != count) {
       lua_settop(L, top);
-      throw SimulationError(Where(function) + ": returned " + std::to_string(returned) + " value" +
+      throw SimulationError(Where(s, function) + ": returned " + std::to_string(returned) + " value" +
                             (returned == 1 ? "" : "s") + ", expected " + std::to_string(count) + " (" +
                             (function[0] == 'o' ? "one per output value" : "one per state") + ")");
     }
@@ -464,7 +479,7 @@ class LuaBlock : public blocks::Block {
       if (!is_number || !std::isfinite(v)) {
         const std::string got = is_number ? std::to_string(v) : std::string("a ") + luaL_typename(L, top + 2 + i);
         lua_settop(L, top);
-        throw SimulationError(Where(function) + ": value " + std::to_string(i + 1) + " is " + got +
+        throw SimulationError(Where(s, function) + ": value " + std::to_string(i + 1) + " is " + got +
                               ", not a finite number");
       }
       out[i] = v;
@@ -473,19 +488,19 @@ class LuaBlock : public blocks::Block {
   }
 
   // "block 'f': Lua function outputs at t = 0.5, x1 = 2, u = 1"
-  std::string Where(const char* function) const {
+  std::string Where(const Scratch& s, const char* function) const {
     std::string out = "block '" + name() + "': Lua function " + function + " at t = ";
     char value[32];
-    std::snprintf(value, sizeof value, "%.9g", args_[0]);
+    std::snprintf(value, sizeof value, "%.9g", s.args[0]);
     out += value;
     int a = 1;
-    for (int s = 0; s < num_states(); ++s, ++a) {
-      std::snprintf(value, sizeof value, "%.6g", args_[a]);
-      out += ", " + state_name(s) + " = " + value;
+    for (int x = 0; x < num_states(); ++x, ++a) {
+      std::snprintf(value, sizeof value, "%.6g", s.args[a]);
+      out += ", " + state_name(x) + " = " + value;
     }
     for (int i = 0; i < num_inputs(); ++i)
       for (int k = 0; k < input_port(i).width; ++k, ++a) {
-        std::snprintf(value, sizeof value, "%.6g", args_[a]);
+        std::snprintf(value, sizeof value, "%.6g", s.args[a]);
         out += ", " + input_port(i).name + (input_port(i).width > 1 ? "[" + std::to_string(k) + "]" : "") +
                " = " + value;
       }
@@ -500,16 +515,12 @@ class LuaBlock : public blocks::Block {
   int outputs_ref_ = -1;
   int derivatives_ref_ = -1;
   int binder_ref_ = -1;
+  int num_args_ = 0;  // 1 + states + input values
   // false for straight-line code (CodeScan::may_loop) that reaches no value
-  // through which Lua code could run; set when a call finds one
+  // through which Lua code could run; set when a call finds one. A fact about
+  // the code in the diagram's one Lua state, not about a run: it stays set
+  // for later runs (which share that state and so never run at once).
   mutable bool bounded_ = true;
-  // scratch and the last call of `outputs`, sized once; a diagram is evaluated
-  // by one simulator at a time (it shares the one Lua state anyway)
-  mutable std::vector<double> args_;
-  mutable std::vector<double> cached_args_;
-  mutable std::vector<double> cached_outputs_;
-  mutable std::uint64_t cached_evaluation_ = 0;
-  mutable bool has_cache_ = false;
 };
 
 }  // namespace

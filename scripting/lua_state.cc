@@ -12,6 +12,7 @@
 #include <lua.hpp>
 
 #include "blocks/excerpt.h"
+#include "mech/errors.h"
 #include "scripting/lua_guards.h"
 
 namespace mechflow::scripting {
@@ -242,6 +243,24 @@ LuaState::LuaState(Options options) : unsafe_(options.unsafe) {
 
 LuaState::~LuaState() {
   if (L_) lua_close(L_);
+}
+
+LuaState::RunClaim LuaState::ClaimForRun() {
+  const std::lock_guard<std::mutex> lock(claim_mutex_);
+  const std::thread::id me = std::this_thread::get_id();
+  if (claims_ > 0 && claim_thread_ != me)
+    throw SimulationError("the diagram's Lua state (its Lua blocks, expressions and control script) is in use by a "
+                          "run on another thread, and one Lua state cannot run on two threads at once: load the "
+                          "diagram once per thread to run it on several");
+  claim_thread_ = me;
+  ++claims_;
+  return RunClaim(this);
+}
+
+LuaState::RunClaim::~RunClaim() {
+  if (!state_) return;
+  const std::lock_guard<std::mutex> lock(state_->claim_mutex_);
+  --state_->claims_;
 }
 
 void LuaState::Arm() {

@@ -33,6 +33,14 @@
 //   count cannot see are guarded separately (scripting/lua_guards.h); a
 //   guard's refusal (RaiseLimit) is raised again like a limit's error.
 //
+// One interpreter, one thread: a diagram's Lua blocks, expressions
+// (expression blocks, mechanism laws and parameters that follow inputs) and
+// control script share the one state its load made. A run of such a diagram
+// claims the state (ClaimForRun, when the run's Context is prepared) for as
+// long as its Context lives; a claim from another thread meanwhile is refused
+// (SimulationError: load the diagram once per thread). Runs without Lua at
+// run time share nothing and may run on several threads at once.
+//
 // Lua errors long-jump: no C++ frame owning resources may sit between a
 // lua_pcall and the code that raises. Every call into Lua from C++ goes
 // through a protected call (Call, Run, or lua_pcall directly).
@@ -40,7 +48,10 @@
 #include <algorithm>
 #include <climits>
 #include <cstddef>
+#include <mutex>
 #include <string>
+#include <thread>
+#include <utility>
 #include <string_view>
 #include <vector>
 
@@ -71,6 +82,28 @@ class LuaState {
 
   lua_State* get() const { return L_; }
   bool is_unsafe() const { return unsafe_; }
+
+  // Code compiled into the state that runs during a diagram's runs (a Lua
+  // block, a compiled expression): its runs must claim the state.
+  void NoteRunTimeCode() { ++run_time_code_; }
+  bool has_run_time_code() const { return run_time_code_ > 0; }
+
+  // Held by one run (of this state's diagram) while it lasts; movable.
+  class RunClaim {
+   public:
+    RunClaim(RunClaim&& other) noexcept : state_(std::exchange(other.state_, nullptr)) {}
+    RunClaim& operator=(RunClaim&&) = delete;
+    ~RunClaim();
+
+   private:
+    friend class LuaState;
+    explicit RunClaim(LuaState* state) : state_(state) {}
+    LuaState* state_;
+  };
+  // Claims the state for a run on this thread. Throws SimulationError when a
+  // run on another thread holds it: the state is one, so such runs would
+  // race in it. Claims on one thread nest (an analysis next to a run).
+  RunClaim ClaimForRun();
 
   // Bytes Lua may hold in all (default 256 MiB); allocations past it fail.
   void set_memory_limit(std::size_t bytes) { memory_.limit = bytes; }
@@ -172,6 +205,10 @@ class LuaState {
 
   Memory memory_;
   CallBudget call_;
+  int run_time_code_ = 0;
+  std::mutex claim_mutex_;  // guards the two below (claims are made once per run)
+  std::thread::id claim_thread_;
+  int claims_ = 0;
   char refusal_[400] = "";  // a guard's message (kRefused), raised again by the hook
   long instruction_limit_ = 0;
   double time_limit_ = 0.0;

@@ -24,11 +24,12 @@
 //
 // A unilateral block fed a pulling N gives no friction, which is right for a
 // contact that lifted off and wrong for a guide (a lever's pivot slot fed its
-// reaction): the block keeps the largest pull it computed with and when,
-// and PullingWarning() says so after the run, once. A pull below 1e-6 of the
+// reaction): each run keeps the largest pull the block computed with and
+// when (in its Context), and PullingWarning() says so after the run, once. A pull below 1e-6 of the
 // largest |N| is rounding about a zero (an abs block switching sign within a
 // step), not a pull.
 
+#include <memory>
 #include <string>
 
 #include "blocks/block.h"
@@ -43,20 +44,21 @@ class FrictionFromNormalForceBlock : public Block {
   bool bilateral() const { return bilateral_; }
   // The normal force the friction is proportional to: max(N, 0) or |N|.
   double PressingForce(double normal) const;
-  // After a run: "" when a unilateral block never computed with a pulling
-  // N, otherwise a sentence with the largest pull and when it was.
-  std::string PullingWarning() const;
+  // After the run that `run` holds (`block`: this block's index in the
+  // diagram): "" when a unilateral block never computed with a pulling N,
+  // otherwise a sentence with the largest pull and when it was.
+  std::string PullingWarning(const Context& run, int block) const;
+  std::unique_ptr<BlockScratch> MakeScratch() const override;
 
  protected:
   void DoInitialize(const BlockContext& ctx) const override;
   void DoCalcOutput(int port, const BlockContext& ctx) const override;
 
  private:
+  struct Scratch;  // the run's largest pull
+
   mech::FrictionLawParams law_;
   bool bilateral_ = false;
-  // The run's largest pull (most negative N) and when, and the largest |N|.
-  // Mutable: seen while outputs are computed; a diagram is run by one thread.
-  mutable double largest_pull_ = 0.0, largest_pull_time_ = 0.0, largest_size_ = 0.0;
 };
 
 }  // namespace mechflow::blocks

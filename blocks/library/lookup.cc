@@ -37,11 +37,7 @@ Lookup2DBlock::Lookup2DBlock(const std::string& name, Axis x, Axis y, const std:
     : Block("lookup_2d", name),
       x_(std::move(x)),
       y_(std::move(y)),
-      modes_({&x_, &y_}),
-      inputs_(2),
-      across_(y_.size()),
-      across_m_(y_.size()),
-      scratch_(y_.size()) {
+      modes_({&x_, &y_}) {
   if (static_cast<int>(values.size()) != x_.size())
     throw InputError("'values' has " + std::to_string(values.size()) + " rows for " + std::to_string(x_.size()) +
                      " breakpoints in 'x'");
@@ -63,33 +59,45 @@ Lookup2DBlock::Lookup2DBlock(const std::string& name, Axis x, Axis y, const std:
     DeclareZeroCrossing(AxisModes::CrossingRises(i) ? CrossingDirection::kRising : CrossingDirection::kFalling);
 }
 
-std::span<const double> Lookup2DBlock::Inputs(const BlockContext& ctx) const {
-  inputs_[0] = ctx.input_scalar(0);
-  inputs_[1] = ctx.input_scalar(1);
-  return inputs_;
+std::array<double, 2> Lookup2DBlock::Inputs(const BlockContext& ctx) const {
+  return {ctx.input_scalar(0), ctx.input_scalar(1)};
 }
+
+// The values across the columns at u1 and their spline's work arrays, sized once.
+struct Lookup2DBlock::Scratch final : BlockScratch {
+  explicit Scratch(int n) : across(n), across_m(n), work(n) {}
+  std::vector<double> across, across_m, work;
+};
+
+std::unique_ptr<BlockScratch> Lookup2DBlock::MakeScratch() const { return std::make_unique<Scratch>(y_.size()); }
 
 void Lookup2DBlock::DoInitialize(const BlockContext& ctx) const { modes_.Initialize(ctx.discrete()); }
 
 void Lookup2DBlock::DoCalcOutput(int, const BlockContext& ctx) const {
-  const std::span<const double> u = Inputs(ctx);
+  const std::array<double, 2> u = Inputs(ctx);
+  Scratch& s = ctx.scratch<Scratch>();
   const int along_x = modes_.Segment(0, u[0], ctx.discrete());
   const int along_y = modes_.Segment(1, u[1], ctx.discrete());
-  for (int j = 0; j < y_.size(); ++j) across_[j] = columns_[j].At(x_, u[0], along_x).value;
+  for (int j = 0; j < y_.size(); ++j) s.across[j] = columns_[j].At(x_, u[0], along_x).value;
   if (y_.interpolation() == Interpolation::kCubic)
-    SplineCurvatures(y_.x(), across_.data(), across_m_.data(), scratch_.data());
-  ctx.output(0)[0] = Curve::CurveAt(y_, across_.data(), across_m_.data(), u[1], along_y).value;
+    SplineCurvatures(y_.x(), s.across.data(), s.across_m.data(), s.work.data());
+  ctx.output(0)[0] = Curve::CurveAt(y_, s.across.data(), s.across_m.data(), u[1], along_y).value;
 }
 
 void Lookup2DBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
-  modes_.Crossings(Inputs(ctx), ctx.discrete(), ctx.zero_crossings());
+  const std::array<double, 2> u = Inputs(ctx);
+  modes_.Crossings(u, ctx.discrete(), ctx.zero_crossings());
 }
 
 void Lookup2DBlock::DoZeroCrossing(int index, int, const BlockContext& ctx) const {
-  modes_.Cross(index, Inputs(ctx), ctx.discrete());
+  const std::array<double, 2> u = Inputs(ctx);
+  modes_.Cross(index, u, ctx.discrete());
 }
 
-bool Lookup2DBlock::DoUpdateModes(const BlockContext& ctx) const { return modes_.Settle(Inputs(ctx), ctx.discrete()); }
+bool Lookup2DBlock::DoUpdateModes(const BlockContext& ctx) const {
+  const std::array<double, 2> u = Inputs(ctx);
+  return modes_.Settle(u, ctx.discrete());
+}
 
 void ReadTable2DCsv(const std::string& text, const std::string& path, std::vector<double>* x, std::vector<double>* y,
                     std::vector<std::vector<double>>* values) {

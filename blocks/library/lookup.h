@@ -13,8 +13,10 @@
 //
 // Run time: a binary search per input and, for 2-D, one 1-D evaluation per
 // column (a cubic 2-D table also solves the spline across the columns, into
-// buffers sized at construction).
+// the run's buffers, sized when its Context is prepared).
 
+#include <array>
+#include <memory>
 #include <vector>
 
 #include "blocks/block.h"
@@ -51,12 +53,13 @@ class Lookup2DBlock final : public Block {
   void DoCalcZeroCrossings(const BlockContext& ctx) const override;
   void DoZeroCrossing(int index, int direction, const BlockContext& ctx) const override;
   bool DoUpdateModes(const BlockContext& ctx) const override;
-  std::span<const double> Inputs(const BlockContext& ctx) const;
+  std::unique_ptr<BlockScratch> MakeScratch() const override;
+  std::array<double, 2> Inputs(const BlockContext& ctx) const;
+  struct Scratch;  // the run's buffers across the columns
 
   Axis x_, y_;
   std::vector<Curve> columns_;  // along x, one per y_j
   AxisModes modes_;
-  mutable std::vector<double> inputs_, across_, across_m_, scratch_;
 };
 
 // The rows of a 2-D table file: a first line with the column breakpoints y_j

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "blocks/library/mechanism_sparsity.h"
 #include "mech/errors.h"
@@ -32,15 +33,35 @@ std::vector<std::string> StateNames(const mech::Mechanism& mechanism) {
 
 }  // namespace
 
+struct MechanismBlock::Scratch final : BlockScratch {
+  explicit Scratch(const mech::Mechanism& mechanism)
+      : ws(mechanism),
+        inputs(mechanism.num_inputs(), 0.0),
+        projected(mechanism.num_states(), 0.0),
+        xdot(mechanism.num_states(), 0.0) {}
+
+  // After modes or states changed outside an evaluation: nothing cached holds.
+  void ForgetEvaluations() {
+    positions_at = full_at = elements_with_inputs_at = sensed_at = sensed_with_inputs_at = ~std::uint64_t{0};
+  }
+
+  mech::MechanismWorkspace ws;
+  std::vector<double> inputs, projected, xdot;
+  // The evaluation each result was last computed at. sensed_at: the
+  // sensed elements, perhaps with inputs not yet computed in it.
+  std::uint64_t positions_at = ~std::uint64_t{0}, full_at = ~std::uint64_t{0},
+                elements_with_inputs_at = ~std::uint64_t{0}, sensed_at = ~std::uint64_t{0},
+                sensed_with_inputs_at = ~std::uint64_t{0};
+  double worst_residual = 0.0;
+  bool initial_state_pending = false;  // driven segments: redo InitialState with the drives
+  std::vector<mech::SlidingJacobian::Entry> jacobian_entries;
+};
+
 MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mechanism> mechanism,
                                std::vector<mech::SensorSpec> sensors)
     : Block("mechanism", std::move(name)),
       mechanism_(std::move(mechanism)),
-      sensors_(std::move(sensors)),
-      ws_(*mechanism_),
-      inputs_(mechanism_->num_inputs(), 0.0),
-      scratch_(mechanism_->num_states(), 0.0),
-      xdot_(mechanism_->num_states(), 0.0) {
+      sensors_(std::move(sensors)) {
   for (int i = 0; i < mechanism_->num_inputs(); ++i) DeclareInputPort(mechanism_->input_name(i));
   for (const std::string& signal : mechanism_->model().drive_signals()) {
     if (FindInput(signal) >= 0)
@@ -87,80 +108,88 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
                          ? mechanism_->sensor_offset(sensor.index) + sensor.element_sensor
                          : -1);
     if (sensor.kind == mech::SensorKind::kReactionForce || sensor.kind == mech::SensorKind::kReactionTorque)
-      ws_.want_reactions = true;
+      want_reactions_ = true;
     if (sensor.kind == mech::SensorKind::kElement) sensed_elements_.push_back(sensor.index);
   }
   std::sort(sensed_elements_.begin(), sensed_elements_.end());
   sensed_elements_.erase(std::unique(sensed_elements_.begin(), sensed_elements_.end()), sensed_elements_.end());
+  if (mech::SlidingJacobian::Unavailable(*mechanism_).empty()) jacobian_.emplace(*mechanism_);
+}
+
+std::unique_ptr<BlockScratch> MechanismBlock::MakeScratch() const {
+  auto s = std::make_unique<Scratch>(*mechanism_);
+  s->ws.want_reactions = want_reactions_;
+  return s;
 }
 
 const BlockSparsity* MechanismBlock::sparsity() const {
-  if (!sparsity_) sparsity_ = MechanismSparsity(*mechanism_, sensors_);
-  return *sparsity_ ? &**sparsity_ : nullptr;
+  std::call_once(sparsity_once_, [this] { sparsity_ = MechanismSparsity(*mechanism_, sensors_); });
+  return sparsity_ ? &*sparsity_ : nullptr;
 }
 
-std::span<const double> MechanismBlock::Inputs(const BlockContext& ctx) const {
-  for (int i = 0; i < mechanism_->num_inputs(); ++i) inputs_[i] = ctx.input_scalar(i);
-  ReadDrives(ctx);
-  return inputs_;
+std::span<const double> MechanismBlock::Inputs(const BlockContext& ctx, Scratch& s) const {
+  for (int i = 0; i < mechanism_->num_inputs(); ++i) s.inputs[i] = ctx.input_scalar(i);
+  ReadDrives(ctx, s);
+  return s.inputs;
 }
 
-void MechanismBlock::ReadDrives(const BlockContext& ctx) const {
+void MechanismBlock::ReadDrives(const BlockContext& ctx, Scratch& s) const {
   const int first = mechanism_->num_inputs();
-  for (std::size_t k = 0; k < ws_.kin.drives.size(); ++k) {
+  for (std::size_t k = 0; k < s.ws.kin.drives.size(); ++k) {
     const std::span<const double> jet = ctx.input(first + static_cast<int>(k));
-    ws_.kin.drives[k] = {jet[0], jet[1], jet[2]};
+    s.ws.kin.drives[k] = {jet[0], jet[1], jet[2]};
   }
 }
 
 void MechanismBlock::DoInitialize(const BlockContext& ctx) const {
+  Scratch& s = ctx.scratch<Scratch>();
   // Inputs are not valid yet: elements initialise with inputs at zero, and
   // driven segments at zero until the first mode update (below).
-  std::fill(inputs_.begin(), inputs_.end(), 0.0);
-  std::fill(ws_.kin.drives.begin(), ws_.kin.drives.end(), mech::Jet{});
-  mech::InitialState(*mechanism_, inputs_, ctx.state(), ctx.discrete(), &ws_);
-  ForgetEvaluations();
-  worst_residual_ = 0.0;
-  initial_state_pending_ = !ws_.kin.drives.empty();
+  std::fill(s.inputs.begin(), s.inputs.end(), 0.0);
+  std::fill(s.ws.kin.drives.begin(), s.ws.kin.drives.end(), mech::Jet{});
+  mech::InitialState(*mechanism_, s.inputs, ctx.state(), ctx.discrete(), &s.ws);
+  s.ForgetEvaluations();
+  s.worst_residual = 0.0;
+  s.initial_state_pending = !s.ws.kin.drives.empty();
 }
 
-void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, bool full) const {
+void MechanismBlock::EnsureEvaluated(const BlockContext& ctx, Scratch& s, bool full) const {
   const std::uint64_t now = ctx.evaluation();
   if (full) {
-    if (full_at_ == now) return;
+    if (s.full_at == now) return;
     // x' is kept: CalcDerivatives in the same evaluation reuses it
-    mech::EvaluateMechanism(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, xdot_);
-    full_at_ = positions_at_ = now;
+    mech::EvaluateMechanism(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx, s), ctx.discrete(), &s.ws, s.xdot);
+    s.full_at = s.positions_at = now;
   } else {
-    if (positions_at_ == now || full_at_ == now) return;
-    ReadDrives(ctx);
-    mech::EvaluatePositions(*mechanism_, ctx.time(), ctx.state(), &ws_);
-    positions_at_ = now;
+    if (s.positions_at == now || s.full_at == now) return;
+    ReadDrives(ctx, s);
+    mech::EvaluatePositions(*mechanism_, ctx.time(), ctx.state(), &s.ws);
+    s.positions_at = now;
   }
 }
 
-bool MechanismBlock::StuckExactly(const BlockContext& ctx) const {
+bool MechanismBlock::StuckExactly(const BlockContext& ctx, const Scratch& s) const {
   if (mechanism_->exact_stick_elements().empty()) return false;
-  return mech::AnyStuckExactly(*mechanism_, ctx.time(), ctx.state(), ctx.discrete(), ws_);
+  return mech::AnyStuckExactly(*mechanism_, ctx.time(), ctx.state(), ctx.discrete(), s.ws);
 }
 
-void MechanismBlock::EvaluateElementsWithInputs(const BlockContext& ctx) const {
+void MechanismBlock::EvaluateElementsWithInputs(const BlockContext& ctx, Scratch& s) const {
   const std::uint64_t now = ctx.evaluation();
-  if (full_at_ == now || elements_with_inputs_at_ == now) return;
-  mech::EvaluateElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_, {});
-  elements_with_inputs_at_ = positions_at_ = now;
+  if (s.full_at == now || s.elements_with_inputs_at == now) return;
+  mech::EvaluateElements(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx, s), ctx.discrete(), &s.ws, {});
+  s.elements_with_inputs_at = s.positions_at = now;
 }
 
-void MechanismBlock::EvaluateSensedElements(const BlockContext& ctx, bool inputs_computed) const {
+void MechanismBlock::EvaluateSensedElements(const BlockContext& ctx, Scratch& s, bool inputs_computed) const {
   const std::uint64_t now = ctx.evaluation();
-  if (full_at_ == now || elements_with_inputs_at_ == now || sensed_with_inputs_at_ == now) return;
-  if (!inputs_computed && sensed_at_ == now) return;
-  const std::span<const double> inputs = Inputs(ctx);
+  if (s.full_at == now || s.elements_with_inputs_at == now || s.sensed_with_inputs_at == now) return;
+  if (!inputs_computed && s.sensed_at == now) return;
+  const std::span<const double> inputs = Inputs(ctx, s);
   // another port of this evaluation may have computed the kinematics
-  if (positions_at_ != now) mech::EvaluatePositions(*mechanism_, ctx.time(), ctx.state(), &ws_);
-  mech::EvaluateSensedElements(*mechanism_, ctx.time(), ctx.state(), inputs, ctx.discrete(), &ws_, sensed_elements_);
-  sensed_at_ = positions_at_ = now;
-  if (inputs_computed) sensed_with_inputs_at_ = now;
+  if (s.positions_at != now) mech::EvaluatePositions(*mechanism_, ctx.time(), ctx.state(), &s.ws);
+  mech::EvaluateSensedElements(*mechanism_, ctx.time(), ctx.state(), inputs, ctx.discrete(), &s.ws, sensed_elements_);
+  s.sensed_at = s.positions_at = now;
+  if (inputs_computed) s.sensed_with_inputs_at = now;
 }
 
 MechanismBlock::PortRoute MechanismBlock::RouteOf(const mech::SensorSpec& sensor) const {
@@ -172,6 +201,7 @@ MechanismBlock::PortRoute MechanismBlock::RouteOf(const mech::SensorSpec& sensor
 }
 
 void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
+  Scratch& s = ctx.scratch<Scratch>();
   switch (routes_[port]) {
     case PortRoute::kState:
       ctx.output(port)[0] = ctx.state()[slots_[port]];
@@ -180,7 +210,7 @@ void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
       // Its inputs may not be computed yet in this evaluation (it does not
       // feed through): evaluate the sensed elements only, and keep no solve
       // cached.
-      EvaluateSensedElements(ctx, false);
+      EvaluateSensedElements(ctx, s, false);
       break;
     case PortRoute::kElement:
       // An output row or a root check: no derivatives will reuse a solve, and
@@ -188,37 +218,38 @@ void MechanismBlock::DoCalcOutput(int port, const BlockContext& ctx) const {
       // element's values (its inputs feed through, so they are computed).
       // Else the full solve: in a right-hand side, its derivatives and
       // crossings reuse it, so the elements are evaluated once.
-      if (!ctx.derivatives_follow() && !StuckExactly(ctx))
-        EvaluateSensedElements(ctx, true);
+      if (!ctx.derivatives_follow() && !StuckExactly(ctx, s))
+        EvaluateSensedElements(ctx, s, true);
       else
-        EnsureEvaluated(ctx, true);
+        EnsureEvaluated(ctx, s, true);
       break;
     case PortRoute::kPositions:
-      EnsureEvaluated(ctx, false);
+      EnsureEvaluated(ctx, s, false);
       break;
     case PortRoute::kSolve:
-      EnsureEvaluated(ctx, true);
+      EnsureEvaluated(ctx, s, true);
       break;
   }
   if (slots_[port] >= 0) {  // an element's sensor: copied as mech::EvaluateSensor would
-    ctx.output(port)[0] = ws_.sensors[slots_[port]];
+    ctx.output(port)[0] = s.ws.sensors[slots_[port]];
     return;
   }
-  mech::EvaluateSensor(*mechanism_, ws_, ctx.state(), sensors_[port], ctx.output(port));
+  mech::EvaluateSensor(*mechanism_, s.ws, ctx.state(), sensors_[port], ctx.output(port));
 }
 
 void MechanismBlock::DoCalcDerivatives(const BlockContext& ctx) const {
+  Scratch& s = ctx.scratch<Scratch>();
   // An output port of this evaluation may have solved the same system already
   // (the inputs cannot have changed: every output is computed before any
   // derivative).
-  if (full_at_ == ctx.evaluation()) {
-    std::copy(xdot_.begin(), xdot_.end(), ctx.derivative().begin());
+  if (s.full_at == ctx.evaluation()) {
+    std::copy(s.xdot.begin(), s.xdot.end(), ctx.derivative().begin());
     return;
   }
-  mech::EvaluateMechanism(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_,
+  mech::EvaluateMechanism(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx, s), ctx.discrete(), &s.ws,
                           ctx.derivative());
-  std::copy(ctx.derivative().begin(), ctx.derivative().end(), xdot_.begin());
-  full_at_ = positions_at_ = ctx.evaluation();
+  std::copy(ctx.derivative().begin(), ctx.derivative().end(), s.xdot.begin());
+  s.full_at = s.positions_at = ctx.evaluation();
 }
 
 std::string MechanismBlock::StateJacobianUnavailable() const {
@@ -227,65 +258,71 @@ std::string MechanismBlock::StateJacobianUnavailable() const {
 }
 
 void MechanismBlock::CalcStateJacobian(const BlockContext& ctx, std::vector<JacobianEntry>* entries) const {
-  if (!jacobian_) jacobian_ = std::make_unique<mech::SlidingJacobian>(*mechanism_);
-  EvaluateElementsWithInputs(ctx);
-  jacobian_->Evaluate(*mechanism_, ctx.time(), ctx.state(), ctx.discrete(), ws_, &jacobian_entries_);
+  Scratch& s = ctx.scratch<Scratch>();
+  if (!jacobian_) throw std::logic_error("mechanism '" + name() + "': " + StateJacobianUnavailable());
+  EvaluateElementsWithInputs(ctx, s);
+  jacobian_->Evaluate(*mechanism_, ctx.time(), ctx.state(), ctx.discrete(), s.ws, &s.jacobian_entries);
   entries->clear();
-  for (const auto& [row, column, value] : jacobian_entries_) entries->push_back({row, column, value});
+  for (const auto& [row, column, value] : s.jacobian_entries) entries->push_back({row, column, value});
 }
 
 void MechanismBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
+  Scratch& s = ctx.scratch<Scratch>();
   // The crossings read positions, velocities, element states and parameters
   // (of t and the inputs, all computed by now), not loads or accelerations:
   // the kinematics are enough when no evaluation of this one is at hand --
   // unless an element sticks exactly, whose holding force is a solve's.
   const std::uint64_t now = ctx.evaluation();
-  if (StuckExactly(ctx)) {
-    EnsureEvaluated(ctx, true);
-  } else if (full_at_ != now && elements_with_inputs_at_ != now && sensed_with_inputs_at_ != now) {
-    mech::EvaluateForCrossings(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), &ws_);
-    positions_at_ = now;
+  if (StuckExactly(ctx, s)) {
+    EnsureEvaluated(ctx, s, true);
+  } else if (s.full_at != now && s.elements_with_inputs_at != now && s.sensed_with_inputs_at != now) {
+    mech::EvaluateForCrossings(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx, s), &s.ws);
+    s.positions_at = now;
   }
-  mech::EvaluateCrossings(*mechanism_, ctx.state(), ctx.discrete(), &ws_, ctx.zero_crossings());
+  mech::EvaluateCrossings(*mechanism_, ctx.state(), ctx.discrete(), &s.ws, ctx.zero_crossings());
 }
 
 void MechanismBlock::DoZeroCrossing(int index, int direction, const BlockContext& ctx) const {
-  EnsureEvaluated(ctx, true);
-  mech::ApplyCrossing(*mechanism_, index, direction, ctx.state(), ctx.discrete(), &ws_);
-  ForgetEvaluations();
+  Scratch& s = ctx.scratch<Scratch>();
+  EnsureEvaluated(ctx, s, true);
+  mech::ApplyCrossing(*mechanism_, index, direction, ctx.state(), ctx.discrete(), &s.ws);
+  s.ForgetEvaluations();
 }
 
 bool MechanismBlock::DoUpdateModes(const BlockContext& ctx) const {
-  if (initial_state_pending_) {
+  Scratch& s = ctx.scratch<Scratch>();
+  if (s.initial_state_pending) {
     // The first update with valid inputs: assemble the loops and start the
     // elements at the drives' starting values (DoInitialize saw zeros).
-    initial_state_pending_ = false;
-    mech::InitialState(*mechanism_, Inputs(ctx), ctx.state(), ctx.discrete(), &ws_);
-    ForgetEvaluations();
-    mech::UpdateElementModes(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_);
+    s.initial_state_pending = false;
+    mech::InitialState(*mechanism_, Inputs(ctx, s), ctx.state(), ctx.discrete(), &s.ws);
+    s.ForgetEvaluations();
+    mech::UpdateElementModes(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx, s), ctx.discrete(), &s.ws);
     return true;
   }
   if (mechanism_->num_modes() == 0) return false;
   const bool changed =
-      mech::UpdateElementModes(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_);
-  ForgetEvaluations();
+      mech::UpdateElementModes(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx, s), ctx.discrete(), &s.ws);
+  s.ForgetEvaluations();
   return changed;
 }
 
 bool MechanismBlock::DoUpdateModesAtRest(const BlockContext& ctx) const {
-  if (initial_state_pending_ || mechanism_->num_modes() == 0) return DoUpdateModes(ctx);
+  Scratch& s = ctx.scratch<Scratch>();
+  if (s.initial_state_pending || mechanism_->num_modes() == 0) return DoUpdateModes(ctx);
   const bool changed =
-      mech::ElementModesAtRest(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx), ctx.discrete(), &ws_);
-  ForgetEvaluations();
+      mech::ElementModesAtRest(*mechanism_, ctx.time(), ctx.state(), Inputs(ctx, s), ctx.discrete(), &s.ws);
+  s.ForgetEvaluations();
   return changed;
 }
 
 void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double>,
                                std::span<const double> weights) const {
+  Scratch& s = ctx.scratch<Scratch>();
   const mech::Model& model = mechanism_->model();
   const std::span<const double> x = ctx.state();
-  std::copy(x.begin(), x.end(), scratch_.begin());
-  std::span<double> q(scratch_.data(), model.nq()), v(scratch_.data() + model.nq(), model.nv());
+  std::copy(x.begin(), x.end(), s.projected.begin());
+  std::span<double> q(s.projected.data(), model.nq()), v(s.projected.data() + model.nq(), model.nv());
   // Unit quaternions first (their projection is exact), then the loops.
   for (const mech::Segment& seg : model.segments()) {
     if (seg.motion != mech::SegmentMotion::kFree) continue;
@@ -299,10 +336,10 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
     for (int k = 3; k < 7; ++k) q[seg.q_index + k] /= norm;
   }
   if (!mechanism_->constraints().empty()) {
-    ReadDrives(ctx);
-    mech::UpdateKinematics(model, ctx.time(), q, v, &ws_.kin);
-    mechanism_->constraints().Residual(model, ws_.kin, &ws_.constraint.phi);
-    worst_residual_ = std::max(worst_residual_, ws_.constraint.phi.lpNorm<Eigen::Infinity>());
+    ReadDrives(ctx, s);
+    mech::UpdateKinematics(model, ctx.time(), q, v, &s.ws.kin);
+    mechanism_->constraints().Residual(model, s.ws.kin, &s.ws.constraint.phi);
+    s.worst_residual = std::max(s.worst_residual, s.ws.constraint.phi.lpNorm<Eigen::Infinity>());
     // To round-off, always: a projection that skipped small residuals would
     // move the state by jumps of its tolerance, which CVODE adds to its
     // history (at rtol 1e-12 that stalled the step size).
@@ -316,20 +353,20 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
       if (sum > 0.0) velocity_tolerance = std::sqrt(model.nv() / sum);
     }
     const double after = mech::ProjectPositions(model, mechanism_->constraints(), ctx.time(), q, v, 1e-16, 5,
-                                                &ws_.kin, &ws_.constraint, velocity_tolerance);
+                                                &s.ws.kin, &s.ws.constraint, velocity_tolerance);
     if (!std::isfinite(after))
       throw SimulationError("mechanism '" + name() + "': projection onto the loop constraints failed at t = " +
                             std::to_string(ctx.time()));
-    mech::ProjectVelocities(model, mechanism_->constraints(), ctx.time(), q, v, &ws_.kin, &ws_.constraint,
+    mech::ProjectVelocities(model, mechanism_->constraints(), ctx.time(), q, v, &s.ws.kin, &s.ws.constraint,
                             velocity_tolerance);
   }
   for (std::size_t i = 0; i < x.size(); ++i) {
-    correction[i] = scratch_[i] - x[i];
+    correction[i] = s.projected[i] - x[i];
     if (!std::isfinite(correction[i]))
       throw SimulationError("mechanism '" + name() + "': projection gave a non-finite state at t = " +
                             std::to_string(ctx.time()));
   }
-  ForgetEvaluations();
+  s.ForgetEvaluations();
 }
 
 std::string MechanismBlock::CrossingName(int index, int direction) const {
@@ -341,9 +378,15 @@ std::string MechanismBlock::CrossingName(int index, int direction) const {
   return {};
 }
 
-std::string MechanismBlock::FailureNote() const {
+std::string MechanismBlock::FailureNote(const BlockContext& ctx) const {
   if (mechanism_->constraints().empty()) return {};
-  return mech::SingularPositionNote(mechanism_->model(), mechanism_->constraints(), ws_.constraint);
+  const Scratch& s = ctx.scratch<Scratch>();
+  return mech::SingularPositionNote(mechanism_->model(), mechanism_->constraints(), s.ws.constraint);
+}
+
+double MechanismBlock::worst_constraint_residual(const Context& run, int block) const {
+  const Scratch* s = RunScratch<Scratch>(run, block);
+  return s ? s->worst_residual : 0.0;
 }
 
 }  // namespace mechflow::blocks

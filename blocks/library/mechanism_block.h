@@ -30,14 +30,16 @@
 // signals runs it again at its first mode update, when the inputs are valid:
 // loops assemble around the drives' starting positions.
 //
-// The block keeps a per-run workspace (mutable: one run at a time per block
-// instance), shared within one evaluation (Context::evaluation) between its
-// output ports, its derivatives and its zero crossings: the mechanism is
-// solved at most once per evaluation, and only its kinematics when every
-// port read is a position, velocity or angle.
+// Each run keeps a workspace in its Context (the block's scratch, so one
+// block may be run by several Contexts at once), shared within one evaluation
+// (Context::evaluation) between the block's output ports, its derivatives and
+// its zero crossings: the mechanism is solved at most once per evaluation,
+// and only its kinematics when every port read is a position, velocity or
+// angle.
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -54,15 +56,18 @@ class MechanismBlock final : public Block {
 
   const mech::Mechanism& mechanism() const { return *mechanism_; }
   // Largest position-constraint residual (max norm) seen before projection
-  // during the run, and at the last projection after it.
-  double worst_constraint_residual() const { return worst_residual_; }
+  // during the run that `run` holds, and at its last projection after it;
+  // `block` is this block's index in the diagram.
+  double worst_constraint_residual(const Context& run, int block) const;
 
-  // From the topology, found on first use: for a long serial chain the
-  // pattern is dense, and `mechflow check` should not pay for it.
+  // From the topology, found on first use (once, whichever thread asks
+  // first): for a long serial chain the pattern is dense, and `mechflow
+  // check` should not pay for it.
   const BlockSparsity* sparsity() const override;
   // Names the loop constraint that became dependent when the run failed at
   // a singular position.
-  std::string FailureNote() const override;
+  std::string FailureNote(const BlockContext& ctx) const override;
+  std::unique_ptr<BlockScratch> MakeScratch() const override;
   // "element: what its crossing meant" (mech::ForceElement::CrossingName)
   std::string CrossingName(int index, int direction) const override;
   std::string OutputUnit(int port) const override { return mech::SensorUnit(*mechanism_, sensors_.at(port)); }
@@ -81,23 +86,22 @@ class MechanismBlock final : public Block {
   void DoProject(const BlockContext& ctx, std::span<double> correction, std::span<double> error,
                  std::span<const double> weights) const override;
 
+  // The run's workspace and caches (defined in the .cc).
+  struct Scratch;
+
   // The scalar inputs; also copies the driving signals into the kinematics.
-  std::span<const double> Inputs(const BlockContext& ctx) const;
-  void ReadDrives(const BlockContext& ctx) const;
-  void EnsureEvaluated(const BlockContext& ctx, bool full) const;
+  std::span<const double> Inputs(const BlockContext& ctx, Scratch& s) const;
+  void ReadDrives(const BlockContext& ctx, Scratch& s) const;
+  void EnsureEvaluated(const BlockContext& ctx, Scratch& s, bool full) const;
   // The elements' loads and sensors without the dynamics, with every input
   // computed (once per evaluation).
-  void EvaluateElementsWithInputs(const BlockContext& ctx) const;
+  void EvaluateElementsWithInputs(const BlockContext& ctx, Scratch& s) const;
   // The kinematics and the elements that sensors read, for output rows and
   // root checks (once per evaluation); `inputs_computed`: every input is
   // computed by now, else only elements that read none may be read.
-  void EvaluateSensedElements(const BlockContext& ctx, bool inputs_computed) const;
-  // After modes or states changed outside an evaluation: nothing cached holds.
-  void ForgetEvaluations() const {
-    positions_at_ = full_at_ = elements_with_inputs_at_ = sensed_at_ = sensed_with_inputs_at_ = ~std::uint64_t{0};
-  }
+  void EvaluateSensedElements(const BlockContext& ctx, Scratch& s, bool inputs_computed) const;
   // Some element sticks exactly: its holding force needs the dynamics.
-  bool StuckExactly(const BlockContext& ctx) const;
+  bool StuckExactly(const BlockContext& ctx, const Scratch& s) const;
 
   // What an output port evaluates, fixed by its sensor (DoCalcOutput).
   enum class PortRoute : std::uint8_t {
@@ -111,24 +115,17 @@ class MechanismBlock final : public Block {
 
   std::shared_ptr<const mech::Mechanism> mechanism_;
   std::vector<mech::SensorSpec> sensors_;
-  mutable mech::MechanismWorkspace ws_;
-  mutable std::vector<double> inputs_, scratch_, xdot_;
-  // The evaluation each result was last computed at. sensed_at_: the
-  // sensed elements, perhaps with inputs not yet computed in it.
-  mutable std::uint64_t positions_at_ = ~std::uint64_t{0}, full_at_ = ~std::uint64_t{0},
-                        elements_with_inputs_at_ = ~std::uint64_t{0}, sensed_at_ = ~std::uint64_t{0},
-                        sensed_with_inputs_at_ = ~std::uint64_t{0};
   std::vector<PortRoute> routes_;     // per output port
   // Per output port: where its scalar value is read, for the sensors that
   // only copy one (coordinates and velocities: the state's index; element
   // sensors: the workspace's sensor index); -1 for the others.
   std::vector<int> slots_;
   std::vector<int> sensed_elements_;  // the elements an element sensor reads, in order
-  mutable double worst_residual_ = 0.0;
-  mutable bool initial_state_pending_ = false;  // driven segments: redo InitialState with the drives
-  mutable std::optional<std::optional<BlockSparsity>> sparsity_;  // outer: found yet
-  mutable std::unique_ptr<mech::SlidingJacobian> jacobian_;       // on first use
-  mutable std::vector<mech::SlidingJacobian::Entry> jacobian_entries_;
+  bool want_reactions_ = false;       // a reaction sensor is read (MechanismWorkspace::want_reactions)
+  // Structure found on first use; call_once makes that safe from any thread.
+  mutable std::once_flag sparsity_once_;
+  mutable std::optional<BlockSparsity> sparsity_;
+  std::optional<mech::SlidingJacobian> jacobian_;  // a sliding mechanism's
 };
 
 }  // namespace mechflow::blocks

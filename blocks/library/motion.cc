@@ -37,15 +37,12 @@ MotionTableBlock::MotionTableBlock(const std::string& name, Axis axis, std::vect
     DeclareZeroCrossing(AxisModes::CrossingRises(i) ? CrossingDirection::kRising : CrossingDirection::kFalling);
 }
 
-std::span<const double> MotionTableBlock::Argument(const BlockContext& ctx) const {
-  argument_ = start_ + speed_ * ctx.time();
-  return {&argument_, 1};
-}
+double MotionTableBlock::Argument(const BlockContext& ctx) const { return start_ + speed_ * ctx.time(); }
 
 void MotionTableBlock::DoInitialize(const BlockContext& ctx) const { modes_.Initialize(ctx.discrete()); }
 
 void MotionTableBlock::DoCalcOutput(int, const BlockContext& ctx) const {
-  const double s = Argument(ctx)[0];
+  const double s = Argument(ctx);
   const CurvePoint p = curve_.At(axis_, s, modes_.Segment(0, s, ctx.discrete()));
   const auto y = ctx.output(0);
   y[0] = p.value;
@@ -54,15 +51,18 @@ void MotionTableBlock::DoCalcOutput(int, const BlockContext& ctx) const {
 }
 
 void MotionTableBlock::DoCalcZeroCrossings(const BlockContext& ctx) const {
-  modes_.Crossings(Argument(ctx), ctx.discrete(), ctx.zero_crossings());
+  const double s = Argument(ctx);
+  modes_.Crossings({&s, 1}, ctx.discrete(), ctx.zero_crossings());
 }
 
 void MotionTableBlock::DoZeroCrossing(int index, int, const BlockContext& ctx) const {
-  modes_.Cross(index, Argument(ctx), ctx.discrete());
+  const double s = Argument(ctx);
+  modes_.Cross(index, {&s, 1}, ctx.discrete());
 }
 
 bool MotionTableBlock::DoUpdateModes(const BlockContext& ctx) const {
-  return modes_.Settle(Argument(ctx), ctx.discrete());
+  const double s = Argument(ctx);
+  return modes_.Settle({&s, 1}, ctx.discrete());
 }
 
 MotionFilterBlock::MotionFilterBlock(const std::string& name, double frequency, double damping)

@@ -52,13 +52,12 @@ class MotionTableBlock final : public Block {
   void DoCalcZeroCrossings(const BlockContext& ctx) const override;
   void DoZeroCrossing(int index, int direction, const BlockContext& ctx) const override;
   bool DoUpdateModes(const BlockContext& ctx) const override;
-  std::span<const double> Argument(const BlockContext& ctx) const;
+  double Argument(const BlockContext& ctx) const;  // s = start + speed t
 
   Axis axis_;
   Curve curve_;
   AxisModes modes_;
   double start_, speed_;
-  mutable double argument_ = 0.0;
 };
 
 class MotionFilterBlock final : public Block {

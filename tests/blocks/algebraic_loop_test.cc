@@ -39,7 +39,7 @@ TEST(AlgebraicLoopTest, LinearLoopIsOneScheduleEntry) {
   for (const double s : run.Column("s.y")) EXPECT_NEAR(s, 2.0, 1e-12);
   for (const double a : run.Column("a.y")) EXPECT_NEAR(a, 1.0, 1e-12);
   // Linear: once the Jacobian is known every solve takes at most one step.
-  const LoopStats& stats = loop.stats();
+  const LoopStats& stats = loop.stats(run.sim->context());
   EXPECT_GT(stats.solves, 0);
   EXPECT_LE(stats.iterations, stats.solves);
   EXPECT_EQ(stats.jacobians, 1);

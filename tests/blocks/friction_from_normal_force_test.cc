@@ -117,17 +117,19 @@ TEST(FrictionFromNormalForceTest, TheNormalRuleIsAChoiceAndAPullIsReported) {
     EXPECT_NEAR(f[i], -0.3 * std::abs(n[i]), 1e-9);  // v = 2 m/s: mu_d, tanh = 1
   }
   const auto& pressed_both_ways = dynamic_cast<const FrictionFromNormalForceBlock&>(bilateral.diagram->block(0));
-  EXPECT_EQ(pressed_both_ways.PullingWarning(), "");
+  EXPECT_EQ(pressed_both_ways.PullingWarning(bilateral.sim->context(), 0), "");
 
   const testing::Run unilateral = run("unilateral", "0");
   const auto& pulled = dynamic_cast<const FrictionFromNormalForceBlock&>(unilateral.diagram->block(0));
-  EXPECT_EQ(pulled.PullingWarning().rfind("block 'f' (friction_from_normal_force, normal=\"unilateral\") receives a "
-                                          "pulling normal force (N = -10 N at t = 0.75 s, the largest pull)", 0), 0u)
-      << pulled.PullingWarning();
-  EXPECT_THAT(pulled.PullingWarning(), ::testing::HasSubstr("set normal=\"bilateral\""));
+  const std::string warning = pulled.PullingWarning(unilateral.sim->context(), 0);
+  EXPECT_EQ(warning.rfind("block 'f' (friction_from_normal_force, normal=\"unilateral\") receives a "
+                          "pulling normal force (N = -10 N at t = 0.75 s, the largest pull)", 0), 0u)
+      << warning;
+  EXPECT_THAT(warning, ::testing::HasSubstr("set normal=\"bilateral\""));
   // N = 10 (1 + sin) >= 0 touches 0 at t = 0.75: at most rounding below it
   const testing::Run touching = run("unilateral", "10");
-  EXPECT_EQ(dynamic_cast<const FrictionFromNormalForceBlock&>(touching.diagram->block(0)).PullingWarning(), "");
+  EXPECT_EQ(dynamic_cast<const FrictionFromNormalForceBlock&>(touching.diagram->block(0))
+                .PullingWarning(touching.sim->context(), 0), "");
 }
 
 TEST(FrictionFromNormalForceTest, FactoryRejectsUnusableParameters) {

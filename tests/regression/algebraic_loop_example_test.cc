@@ -86,7 +86,7 @@ TEST(AlgebraicLoopExampleTest, ReactionForceFrictionMatchesLagrange) {
   EXPECT_LT(worst_loop, 1e-8);
   // The reaction really varies with the swing: the loop is not trivial.
   EXPECT_GT(N_max - N_min, 1.0);
-  const blocks::LoopStats& stats = loaded.diagram->loops()[0].stats();
+  const blocks::LoopStats& stats = loaded.diagram->loops()[0].stats(sim.context());
   EXPECT_GT(stats.solves, 0);
   EXPECT_LT(double(stats.iterations) / stats.solves, 2.0);
   std::printf("N in [%.4f, %.4f] N; max errors x %.2e m, theta %.2e rad, N %.2e N; loop %.2e N; "
