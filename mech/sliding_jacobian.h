@@ -17,7 +17,7 @@
 // zero length a line has no direction (its force must then be zero): its
 // entries are left out.
 //
-// This is the class of the friction chains (../shared/BENCH.md P1-P3):
+// This is the class of the friction chains (bench/README.md P1-P3):
 // large, stiff and cheap to differentiate. Mechanisms that turn keep
 // difference quotients (or the Krylov solver).
 
