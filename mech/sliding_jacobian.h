@@ -1,5 +1,6 @@
 #pragma once
-// Analytic Jacobian of a sliding mechanism (issue 17).
+// Analytic Jacobian of a sliding mechanism (the friction chains' Newton
+// matrix without a difference quotient per state).
 //
 // A sliding mechanism is a sliding model (mech/sliding_structure.h: only
 // translations, perpendicular along every path, so M is constant and
