@@ -1,8 +1,8 @@
 #pragma once
 // ElementDriveBlock: one force element of a mechanism, detached from the
 // rest and driven along its own scalar coordinate (ForceElement::Coordinate)
-// as x = x0 + a sin(2 pi f t + phase) -- the harmonic drive of force analysis: an
-// element characterised alone, through the force it takes to move it so.
+// as x = x0 + a sin(2 pi f t + phase) -- the harmonic drive of force analysis (the
+// seed's "Analysis of force elements", docs/ELEMENTS.md 3.10).
 //
 // x0 is the coordinate in the diagram's initial configuration. Every body
 // is held there at rest except the one the drive moves: body 2 along the

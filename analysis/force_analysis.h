@@ -1,6 +1,6 @@
 #pragma once
-// Force analysis (issue 14, item 1; the seed's "Analysis of force elements",
-// ../shared/ELEMENTS.md 3.10): one force element of a diagram, detached and
+// Force analysis (the seed's "Analysis of force elements",
+// docs/ELEMENTS.md 3.10): one force element of a diagram, detached and
 // driven along its own coordinate as x = x0 + a sin(2 pi f t)
 // (analysis/element_drive_block.h), for every combination of varied
 // identifier values, amplitudes and frequencies.

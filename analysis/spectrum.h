@@ -1,5 +1,5 @@
 #pragma once
-// Power spectral density by Welch's method (issue 14, item 2; the seed's
+// Power spectral density by Welch's method (the seed's
 // §7.9, Fig. 7.26), with FFTW for the transforms.
 //
 // The signal (uniformly sampled, interval dt) has its mean removed and is cut

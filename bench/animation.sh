@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What the animation costs (issue 16, item 6).
+# What the animation costs, so that the README can say what --animate adds to a run.
 #  1. Run overhead: the wall time of `mechflow run EXAMPLE --quiet` (load, run,
 #     CSV, plot, animation) against the same with --no-animate, for every
 #     example diagram with shapes; medians of REPEAT runs each, alternating.

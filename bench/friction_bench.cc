@@ -1,4 +1,4 @@
-// Benchmarks P1, P2, P3 of ../shared/BENCH.md: friction with stick/slip
+// Benchmarks P1, P2, P3 of bench/README.md: friction with stick/slip
 // events, a mechflow diagram against the same equations written directly
 // against CVODE (bench/friction_direct.h, tested on its own by
 // tests/mech/friction_reference_test.cc), in one process, at the same
@@ -24,7 +24,7 @@
 // direct-dense (dense LU, difference-quotient Jacobian, as the simulator's
 // dense path, so counts compare); for P3 also mechflow-dense (the simulator
 // forced dense), direct-band (banded LU with the analytic Jacobian) and
-// direct-band-ftz (the same with flush-to-zero, BENCH.md's trap). The
+// direct-band-ftz (the same with flush-to-zero, the subnormal trap of bench/README.md). The
 // -ops contenders are the direct programs with mechflow's compiled vector
 // operations (blocks/compiled_ops.h) in place of Debian's unoptimised ones:
 // the comparison with equal vector kernels. Dense

@@ -193,7 +193,7 @@ using direct::Check;
 using direct::CheckPointer;
 using direct::Solver;
 
-// Flush-to-zero and denormals-are-zero for its lifetime (BENCH.md's trap:
+// Flush-to-zero and denormals-are-zero for its lifetime (the subnormal trap of bench/README.md:
 // the far end of a long chain fills with subnormals).
 struct FlushSubnormals {
   explicit FlushSubnormals(bool on) {

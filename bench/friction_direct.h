@@ -1,5 +1,5 @@
 #pragma once
-// The friction problems P1-P3 of ../shared/BENCH.md written directly against
+// The friction problems P1-P3 of bench/README.md written directly against
 // CVODE, independently of mech/ and blocks/: the reference the benchmark and
 // the tests compare mechflow with.
 //

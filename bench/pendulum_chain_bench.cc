@@ -1,4 +1,4 @@
-// Benchmark P4 of ../shared/BENCH.md: planar chain of N uniform rods (1 kg,
+// Benchmark P4 of bench/README.md: planar chain of N uniform rods (1 kg,
 // 1 m, I = 1/12 kg m^2 about the centre) on revolute joints, the first hinged
 // to the ground, gravity 9.81, released horizontal at rest, t_end = 5 s,
 // N = 2, 10, 50, 200, rtol 1e-6, atol 1e-8, 1000 output times.

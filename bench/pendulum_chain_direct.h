@@ -1,5 +1,5 @@
 #pragma once
-// The pendulum chain of problem P4 (../shared/BENCH.md) written directly,
+// The pendulum chain of problem P4 (bench/README.md) written directly,
 // independently of mech/: the reference the benchmark and the tests compare
 // mechflow with.
 //

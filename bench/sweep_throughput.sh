@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sweep throughput (issue 17, item 5): runs per second of the seed
+# Sweep throughput: runs per second of the seed
 # ElastFriction (diagrams/examples/elast_friction.xml, 3 s, its own 1 ms grid)
 # swept over RUNS values of the sliding force F, on 1 thread, on 2 threads,
 # and on 2 MPI ranks of one thread each; the ideal for 2 is twice 1 thread.

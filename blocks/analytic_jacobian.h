@@ -1,7 +1,7 @@
 #pragma once
 // AnalyticJacobian: the diagram's Jacobian df/dx from the blocks' own exact
 // derivatives (Block::CalcStateJacobian), instead of difference quotients
-// (issue 17).
+// (one block evaluation per state column, the cost of large friction chains).
 //
 // It applies when the diagram has exactly one block with continuous states,
 // that block computes its Jacobian, and none of its inputs reads a state

@@ -5,7 +5,7 @@
 // Why: Debian 12's SUNDIALS 6.4.1 is built without optimisation (its CMake
 // build type defaulted to none until SUNDIALS 7), so every vector operation
 // of CVODE keeps each loop variable in memory: a weighted norm of 3000
-// numbers took 12 % of a P3 run (../shared/BENCH.md) at N = 1000, and
+// numbers took 12 % of a P3 run (bench/README.md) at N = 1000, and
 // copying and scaling the 30 x 30 Newton matrix 25 % at N = 10.
 //
 // The operations compute exactly what NVECTOR_SERIAL computes -- the same

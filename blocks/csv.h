@@ -1,5 +1,5 @@
 #pragma once
-// CSV as RFC 4180 reads it (issue 15, item 4): a field holding a comma, a
+// CSV as RFC 4180 reads it, so spreadsheets and pandas read ours: a field holding a comma, a
 // quote or a line break is quoted (quotes doubled); a number is written in
 // the shortest form that reads back to the same double (std::to_chars), and
 // a negative zero as 0.

@@ -3,7 +3,7 @@
 // subnormal operands read as zero (x86 MXCSR FTZ and DAZ bits); the previous
 // mode is restored on destruction.
 //
-// Why: on a long chain (../shared/BENCH.md P3, N = 1000) the far end fills
+// Why: on a long chain (bench/README.md P3, N = 1000) the far end fills
 // with subnormal numbers, and arithmetic on them is microcoded: the solve
 // became 5 times slower. Values below 2.2e-308 carry no information at any
 // tolerance a run can ask for. Elsewhere than x86 this does nothing.

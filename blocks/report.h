@@ -17,7 +17,7 @@
 // would stop and restart CVODE at each local maximum of the signal.
 // A minimum is the maximum of -f, the largest magnitude that of |f|.
 //
-// The other figures (issue 14, item 4) watch the same steps
+// The other figures (extremes, crossings, settling) watch the same steps
 // (SignalAccumulator): the integral by 3-point Gauss-Legendre on each step's
 // polynomial (exact for CVODE's interpolants up to degree 5), the mean and
 // rms from it over the time watched, the final value at the last step's

@@ -68,7 +68,7 @@ enum class DerivativeSupport {
 };
 
 // The scalar coordinate an element acts along, for driving the element alone
-// (force analysis, issue 14):
+// (force analysis, analysis/force_analysis.h):
 //   kLine         the length between point1 on body 1 and point2 on body 2
 //   kJoint        a joint coordinate (q_index, v_index)
 //   kPenetration  of body 1's points into the plane on body 2 with normal
@@ -183,7 +183,7 @@ class ForceElement {
   virtual bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
     return UpdateModes(ctx, state, modes);
   }
-  // Exact stick (issue 12, item 3). An element that declared it
+  // Exact stick (docs/ELEMENTS.md 3.6). An element that declared it
   // (DeclareExactStick) and reports StuckExactly holds its relative motion
   // by a constraint force: the mechanism finds the force f that keeps the
   // element's relative acceleration at zero -- StickAcceleration, affine in
@@ -200,7 +200,7 @@ class ForceElement {
                                    std::span<const double> /*vdot*/) const {
     return 0.0;
   }
-  // Work accounting (issue 12, item 5), switched on before the mechanism is
+  // Work accounting (for the energy balance of a run), switched on before the mechanism is
   // built when a sensor asks for it: one more state, the work W the element
   // has done on the bodies (the mechanism integrates the power of its
   // loads), and the sensors "work" and -- for an element whose sensor

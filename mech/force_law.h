@@ -42,7 +42,7 @@ class ForceLaw {
   virtual void Derivatives(double /*x*/, double /*v*/, const ElementContext&, double* /*force_x*/,
                            double* /*force_v*/) const {}
   // A potential U(x) with F = -dU/dx - (the damping part), when the law has
-  // one that does not change in time (issue 12, item 5: stored energy).
+  // one that does not change in time (the stored-energy sensor reads it).
   virtual bool has_energy() const { return false; }
   virtual double Energy(double /*x*/, const ElementContext&) const { return 0.0; }
 };

@@ -7,7 +7,7 @@
 // When asked (TrackPower), it also sums the power of every load it takes --
 // force . velocity of its point, moment . angular velocity, generalized force
 // times rate -- so the mechanism can integrate each element's work on the
-// bodies (issue 12, item 5) from the difference before and after it.
+// bodies (the energy balance) from the difference before and after it.
 
 #include <span>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Sensors: the named outputs of a mechanism (ELEMENTS.md, issue 3 item 6).
+// Sensors: the named outputs of a mechanism (docs/ELEMENTS.md names each element's).
 //
 // A sensor reads the workspace after an evaluation. Positions, velocities and
 // angles need only kinematics; accelerations, reactions and element sensors

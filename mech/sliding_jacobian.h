@@ -1,5 +1,6 @@
 #pragma once
-// Analytic Jacobian of a sliding mechanism (issue 17).
+// Analytic Jacobian of a sliding mechanism (the friction chains' Newton
+// matrix without a difference quotient per state).
 //
 // A sliding mechanism is a sliding model (mech/sliding_structure.h: only
 // translations, perpendicular along every path, so M is constant and
@@ -17,7 +18,7 @@
 // zero length a line has no direction (its force must then be zero): its
 // entries are left out.
 //
-// This is the class of the friction chains (../shared/BENCH.md P1-P3):
+// This is the class of the friction chains (bench/README.md P1-P3):
 // large, stiff and cheap to differentiate. Mechanisms that turn keep
 // difference quotients (or the Krylov solver).
 

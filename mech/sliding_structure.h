@@ -1,5 +1,5 @@
 #pragma once
-// The structure of a sliding model (issue 17).
+// The structure of a sliding model (what makes its analytic Jacobian possible).
 //
 // A sliding model's segments translate -- joint coordinates and time-driven
 // translations -- or are fixed, and the coordinates on any body's path to the

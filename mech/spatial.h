@@ -1,7 +1,7 @@
 #pragma once
 // Small 3-D and spatial (6-D) algebra shared by the mechanics.
 //
-// Conventions (../shared/ELEMENTS.md 0.1): a rotation matrix maps frame-local
+// Conventions (docs/ELEMENTS.md 0.1): a rotation matrix maps frame-local
 // components to parent (ultimately global) components; a Pose places a child
 // frame in its parent: x_parent = R * x_child + p. Spatial vectors follow
 // Featherstone: motion [angular; linear], force [moment; force], both in one

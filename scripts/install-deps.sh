@@ -1,20 +1,42 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages mechflow needs to build, test and plot,
-# then three.js from the npm registry (graphics/web, pinned by its
-# package-lock.json). Does nothing when all is present; the packages need
-# root (or passwordless sudo), and it says so clearly when it has neither.
+# Installs the Debian 12 packages mechflow needs, then three.js from the npm
+# registry (graphics/web, pinned by its package-lock.json).
+#   scripts/install-deps.sh main   what `mechflow` needs to build, run and plot
+#                                  (scripts/run-example.sh: the first run stays short)
+#   scripts/install-deps.sh [all]  that and what the tests and benchmarks need too
+#                                  (GoogleTest, lld, OpenMPI, Simbody, Chromium, graphviz,
+#                                  the glTF validator)
+# Does nothing when all is present; the packages need root (or passwordless
+# sudo), and it says so clearly when it has neither.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+mode=${1:-all}
+case "$mode" in
+  main | all) ;;
+  *)
+    echo "usage: scripts/install-deps.sh [main|all]" >&2
+    exit 2
+    ;;
+esac
+
+# the `mechflow` target: compiler, CMake, the libraries it links, gnuplot for its plots
 packages=(
-  build-essential cmake pkg-config lld
-  libeigen3-dev libsundials-dev libsuitesparse-dev libtinyxml2-dev liblua5.4-dev libgtest-dev
+  build-essential cmake pkg-config
+  libeigen3-dev libsundials-dev libsuitesparse-dev libtinyxml2-dev liblua5.4-dev
   libudunits2-dev libudunits2-data
   gnuplot-nox libfftw3-dev
-  libopenmpi-dev openmpi-bin
-  libsimbody-dev
-  chromium
 )
+if [ "$mode" = all ]; then
+  packages+=(
+    lld                           # links the test programs ten times faster than GNU ld
+    libgtest-dev                  # the test suite
+    libopenmpi-dev openmpi-bin    # `mechflow sweep` over MPI ranks (its tests)
+    libsimbody-dev                # a contender of the pendulum-chain benchmark
+    chromium                      # the browser tests of the animation viewer
+    graphviz                      # `dot`, which draws `mechflow graph` (README tour)
+  )
+fi
 # Node.js and npm fetch three.js; a machine may have them from elsewhere
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 # more for one script (scripts/fuzz.sh: clang and its libFuzzer runtime)
@@ -26,11 +48,19 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 
-# three.js for the animation viewer, embedded into the binary at build time
+# three.js for the animation viewer, embedded into the binary at build time; the
+# tests also run the glTF validator (a development dependency), which `main` skips
 install_three() {
-  [ -f graphics/web/node_modules/three/build/three.min.js ] && return 0
-  echo "mechflow: installing three.js (npm ci in graphics/web)"
-  (cd graphics/web && npm ci --no-audit --no-fund --loglevel=error)
+  if [ "$mode" = main ]; then
+    [ -f graphics/web/node_modules/three/build/three.min.js ] && return 0
+    echo "mechflow: installing three.js (npm ci --omit=dev in graphics/web)"
+    (cd graphics/web && npm ci --omit=dev --no-audit --no-fund --loglevel=error)
+  else
+    [ -f graphics/web/node_modules/three/build/three.min.js ] &&
+      [ -d graphics/web/node_modules/gltf-validator ] && return 0
+    echo "mechflow: installing three.js and the glTF validator (npm ci in graphics/web)"
+    (cd graphics/web && npm ci --no-audit --no-fund --loglevel=error)
+  fi
 }
 
 if [ ${#missing[@]} -eq 0 ]; then
@@ -51,5 +81,9 @@ else
 fi
 export DEBIAN_FRONTEND=noninteractive
 "${as_root[@]}" apt-get update -qq
-"${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# --force-unsafe-io: dpkg skips its fsync after every file. The main set alone is
+# about 670 packages (npm's Node modules, SUNDIALS' MPI/PETSc dependencies); without
+# the syncs dpkg took 13 min instead of 15 on a loaded 2-core machine. An install
+# cut short is simply run again.
+"${as_root[@]}" apt-get install -y -qq --no-install-recommends -o Dpkg::Options::=--force-unsafe-io "${missing[@]}"
 install_three

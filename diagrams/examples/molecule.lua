@@ -1,4 +1,4 @@
--- Control script of the Molecule seed model (../shared/ELEMENTS.md 7 and
+-- Control script of the Molecule seed model (docs/ELEMENTS.md 7 and
 -- 9.15): the degree of the molecule's surface follows
 --   mdeg = (nmax + nmin)/2 + (nmax - nmin)/2 sin(om t)
 -- set before every output row, so each row shows the value at its time.

@@ -1,7 +1,7 @@
-// Force analysis (issue 14, item 1): an element of a diagram driven alone as
+// Force analysis: an element of a diagram driven alone as
 // x = x0 + a sin(2 pi f t), against closed forms -- a spring-damper's
 // dynamic stiffness and phase, the loop of dry friction -- and the EF2-4
-// table of ../shared/ELEMENTS.md 3.8 through the seed's own diagram.
+// table of docs/ELEMENTS.md 3.8 through the seed's own diagram.
 #include <cmath>
 #include <csignal>
 #include <cstdio>

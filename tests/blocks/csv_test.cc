@@ -1,4 +1,5 @@
-// CSV as tools read it (issue 15, item 4): numbers in the shortest form that
+// CSV as tools read it (spreadsheets, pandas and gnuplot read our files as they
+// are): numbers in the shortest form that
 // reads back to the same double, no negative zero; fields quoted per RFC 4180.
 #include "blocks/csv.h"
 

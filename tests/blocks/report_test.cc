@@ -130,7 +130,7 @@ TEST(ReportTest, AFailedRunReportsWhatItFoundUpToTheFailure) {
   EXPECT_GT(f[0].time, 0.999);  // x = 1/(1 - t) > 1e3
 }
 
-// The figures over a run (issue 14, item 4) against closed forms of
+// The figures over a run (what a report prints must be right, not just plausible) against closed forms of
 // x = sin(w t) / w (undamped) and of the damped oscillator's zero crossings.
 TEST(ReportTest, MeanRmsIntegralFinalCrossingAndPeriodToClosedForms) {
   const double w = 2 * M_PI * 1.3, T = 2.7;

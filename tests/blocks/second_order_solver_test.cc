@@ -203,7 +203,7 @@ TEST(KrylovSolverTest, RunsAsAccurateAsTheWholeSystem) {
     ExpectAsAccurate(example, blocks::LinearSolverKind::kKrylov);
 }
 
-// A serial chain of n rods as XML (P4 of ../shared/BENCH.md, shortened).
+// A serial chain of n rods as XML (P4 of bench/README.md, shortened).
 std::string Chain(int n, const std::string& solver_setting) {
   std::string x = "<diagram name=\"chain\"><mechanism name=\"c\">";
   for (int i = 1; i <= n; ++i)

@@ -1,4 +1,4 @@
-// Command-line conventions users bring from other tools (issue 15, item 5):
+// Command-line conventions users bring from other tools (so habits work, not surprise):
 // --opt=value, solver and output settings on the command line, ranges for
 // --vary, --quiet, and a usage error that shows the command's own usage.
 #include <sys/stat.h>

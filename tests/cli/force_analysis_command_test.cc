@@ -1,4 +1,4 @@
-// `mechflow force-analysis` as a user runs it (issue 14, item 1): the seed's
+// `mechflow force-analysis` as a user runs it: the seed's
 // Fig. 7.10 run -- ElastFriction2's friction element, K and delta against
 // mu = mu0 at three amplitudes -- and its files; bad input exits 2.
 #include <filesystem>

@@ -259,7 +259,7 @@ TEST(ModesCommandTest, BadInputExitsWithTwo) {
 }
 
 // A diagram with switching elements says which mode each was linearised in
-// (issue 15, item 6): a locked friction damper is not a free motion.
+// (a user must see that a locked friction damper is not a free motion).
 TEST(ModesCommandTest, SwitchingElementsAreNamedWithTheirModes) {
   const fs::path dir = FreshDir("switching");
   const Outcome car = Mechflow("modes " + Example("quarter_car.xml"), dir);

@@ -1,4 +1,4 @@
-// `mechflow psd` and the <spectrum> output (issue 14, item 2): the
+// `mechflow psd` and the <spectrum> output: the
 // Frequencies seed's body 3 peaks at its three natural frequencies; bad input
 // exits 2 naming what was expected.
 #include <cmath>

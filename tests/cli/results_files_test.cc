@@ -1,4 +1,4 @@
-// Results files a tool can read (issue 15, item 4): a unit for every column
+// Results files another tool can read without help: a unit for every column
 // (NAME.units.csv, and on the plot's axes), identifier names as the diagram
 // writes them, and shortest round-trip numbers in the script's changes.
 

@@ -1,5 +1,5 @@
 // `mechflow sweep`, run as a user would: the damping ratio of DampingRatio
-// (diagrams/examples/damping_ratio.xml, ../shared/ELEMENTS.md 9.1) swept and
+// (diagrams/examples/damping_ratio.xml, docs/ELEMENTS.md 9.1) swept and
 // each run's decay checked against the closed form of the damped oscillator
 //   z(t) = 0.5 e^(-beta w t) (cos wd t + beta/sqrt(1-beta^2) sin wd t),
 //   w = 2 pi f (f = 1 Hz), wd = w sqrt(1 - beta^2)

@@ -1,4 +1,4 @@
-// <xy> panels (issue 14, item 3): a logged column against another in the
+// <xy> panels: a logged column against another in the
 // run's plot -- the script draws exactly the columns named, from the results
 // written beside it; bad input exits 2 at its line.
 #include <filesystem>

@@ -1,4 +1,4 @@
-// Bad input of issue 4, item 7: negative stiffness or friction, static below
+// Bad input a model can hold by mistake, refused before the run: negative stiffness or friction, static below
 // dynamic friction, a contact plane with a zero normal, a bound that is not
 // positive, and <report>s that name no signal; each an InputError naming the
 // file:line of the offending attribute or element (one test per rule and

@@ -1,5 +1,5 @@
 // Mechanisms in diagrams: every kind of bad input names file:line and says
-// what was expected; src= files; inputs.
+// what was expected, so a user can fix the file; src= files; inputs.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -43,7 +43,7 @@ TEST(MechanismLoaderTest, BadBodies) {
 }
 
 TEST(MechanismLoaderTest, PointMassesWhereNoRotationAboutThemNeedsInertia) {
-  // inertia 0 0 0 is a point mass
+  // inertia 0 0 0 is a point mass, accepted where no rotation about it needs an inertia
   const std::string dot = "<body name=\"P\" mass=\"2\" inertia=\"0 0 0\" com=\"0 L 0\"/>\n";
   const std::string z = "<sensor name=\"z\" kind=\"position\" body=\"P\" point=\"0 L 0\"/>";
   auto run = [&](const std::string& joint, double length) {

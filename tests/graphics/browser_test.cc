@@ -1,4 +1,4 @@
-// The animation in a real browser (issue 16, items 3 and 5): headless
+// The animation in a real browser (what a user sees, not what we wrote): headless
 // Chromium (Debian's, software WebGL) opens the files `mechflow run` writes.
 // - NAME.html: the page's test interface seeks to given times and reports
 //   every body's world transform, the share of non-background pixels, the

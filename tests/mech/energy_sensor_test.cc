@@ -1,4 +1,4 @@
-// Energy sensors (issue 12, item 5) against independent computations: the
+// Energy sensors against independent computations: the
 // kinetic energy of all bodies equals v^T M v / 2 with M from the
 // composite-rigid-body algorithm, and the potential energy's gradient is the
 // gravity term of inverse dynamics at rest.

@@ -1,5 +1,5 @@
 // Friction elements with memory driven by an imposed harmonic displacement
-// (the force-analysis runs of ../shared/ELEMENTS.md 3.10): EF-2, the Jenkins
+// (the force-analysis runs of docs/ELEMENTS.md 3.10): EF-2, the Jenkins
 // loop of the elastic-friction element with d = 0, and EF2-4, the dynamic
 // stiffness and phase of the elastic-friction-2 element under its three
 // friction limits; plus the mode invariants and bad input of elastic-friction-2.

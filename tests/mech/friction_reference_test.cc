@@ -1,6 +1,6 @@
 // The P1-P3 reference (bench/friction_direct.h) checked on its own: the free
 // slide FR-1 against its closed form, the closed-form Coulomb stick-slip
-// period against the CT-4 figures of ../shared/ELEMENTS.md and against the
+// period against the CT-4 figures of docs/ELEMENTS.md and against the
 // direct program with an ever stiffer stick, the chain without friction
 // against its energy balance and the harmonic closed form, the banded
 // analytic Jacobian against the dense difference-quotient one; and the

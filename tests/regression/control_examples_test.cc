@@ -1,4 +1,4 @@
-// Examples driven by control scripts: Molecule (../shared/ELEMENTS.md 9.15,
+// Examples driven by control scripts: Molecule (docs/ELEMENTS.md 9.15,
 // test MO-1) and the inverted pendulum under sampled PD control in Lua,
 // against the formula and against the sampled closed loop integrated here.
 

@@ -1,4 +1,4 @@
-// Seed model ElastFriction2 (../shared/ELEMENTS.md 9.3): the box on an
+// Seed model ElastFriction2 (docs/ELEMENTS.md 9.3): the box on an
 // elastic-friction-2 element, tests EF2-1 to EF2-3 of 3.8.
 
 #include <algorithm>

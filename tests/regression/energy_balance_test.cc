@@ -1,4 +1,4 @@
-// Energy accounting (issue 12, item 5): every element integrates the work it
+// Energy accounting: every element integrates the work it
 // does on the bodies (the power of its loads), springs report their stored
 // energy and friction and damping elements what they dissipated. Checks:
 //   - the energy balance (kinetic + gravitational energy gained minus all

@@ -1,4 +1,4 @@
-// Energy (issue 12, item 5): in every seed model without external work,
+// Energy: in every seed model without external work,
 // dampers or friction, the mechanism's kinetic plus gravitational potential
 // energy, as its sensors report it, stays constant to the solver's accuracy.
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Exact stick (issue 12, item 3): a frictional element with stick="exact" is
+// Exact stick (docs/ELEMENTS.md 3.6): a frictional element with stick="exact" is
 // held by a constraint force while it sticks (mech/exact_stick.h), so
 //   - the Coulomb oscillator (FR-2: m = 10 kg, k = 1000 N/m, x0 = 0.105 m,
 //     F = 10 N, ratio 1.2) reverses without a stick phase and stops for good

@@ -1,5 +1,5 @@
 // Friction elements with memory in the seed model ElastFriction
-// (../shared/ELEMENTS.md 3.6, tests FR-1, FR-2, FR-3), against the piecewise
+// (docs/ELEMENTS.md 3.6, tests FR-1, FR-2, FR-3), against the piecewise
 // analytic Coulomb solution.
 
 #include <algorithm>

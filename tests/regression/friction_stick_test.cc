@@ -1,6 +1,6 @@
 // Sticking without chatter or creep at the solver's default accuracy
-// (issue 4 item 5: "the frictional type shows no high-frequency chatter at
-// stick at rtol 1e-6"): the ElastFriction Free variant (box 10 kg at 1.5 m/s,
+// (the seed promises that the frictional type shows no high-frequency chatter
+// at stick at rtol 1e-6): the ElastFriction Free variant (box 10 kg at 1.5 m/s,
 // sliding force 10 N) run at rtol 1e-6, atol 1e-8 instead of the diagram's
 // 1e-8 / 1e-10.
 
@@ -75,7 +75,7 @@ TEST(FrictionStickTest, DeflectionSensorHoldsThePush) {
 }
 
 TEST(FrictionStickTest, AHeldBlockCostsNoMoreStepsAtATightAtol) {
-  // issue 12, item 3 (round-off): a block held on a 30 degree slope by a
+  // Round-off must not cost steps: a block held on a 30 degree slope by a
   // frictional element with a stiff stick spring (1e7 N/m). Its deflection
   // was formed from absolute lengths, whose round-off times the spring made
   // noise that a tight atol chased: 135956 steps at atol 1e-14 against 647 at

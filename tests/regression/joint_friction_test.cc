@@ -1,4 +1,4 @@
-// Friction on a joint coordinate (issue 12, item 4): the frictional element
+// Friction on a joint coordinate (docs/ELEMENTS.md 3.6): the frictional element
 // on a revolute joint (a friction moment) and on a prismatic joint (a
 // force), against the Coulomb oscillator's closed form: with stiffness k and
 // friction F, every half period pi sqrt(I/k) the amplitude falls by 2 F / k,

@@ -1,4 +1,4 @@
-// Long runs (issue 12, item 7): the README's stick-slip example run for
+// Long runs (a run must not fail or drift after many cycles): the README's stick-slip example run for
 // 5000 s. It used to fail at t = 50.2 s: mid-stick, the regularised friction
 // law's near-kinks had polluted CVODE's history until seven error tests in a
 // row failed. The simulator now restarts the method from the last accepted

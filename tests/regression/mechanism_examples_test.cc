@@ -1,4 +1,4 @@
-// The mechanism example diagrams (seed models of ../shared/ELEMENTS.md 9),
+// The mechanism example diagrams (seed models of docs/ELEMENTS.md 9),
 // each run and checked against an answer computed independently: closed
 // forms, exact kinematics, elliptic integrals, conservation laws.
 

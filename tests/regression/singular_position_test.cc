@@ -1,4 +1,4 @@
-// Singular positions (issue 12, item 2): parallelogram four-bars pass, at
+// Singular positions (loops through dead centres must not stop the run): parallelogram four-bars pass, at
 // every half turn, through the position where all links are collinear and
 // the loops lose rank. Checked against the closed form of the coupled
 // cranks: the parallelograms keep every crank at the same angle theta, so the

@@ -1,4 +1,4 @@
-// The tension mechanism (../shared/TENSION.md, ELEMENTS.md 10, test TM-1):
+// The tension mechanism (docs/ELEMENTS.md 10 and 10.1, test TM-1):
 // the full closed-loop multibody model (end stop: a points-plane contact)
 // against an independent computation, the exact reduced
 // one-degree-of-freedom equation of the lever angle

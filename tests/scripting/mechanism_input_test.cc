@@ -1,5 +1,6 @@
 // A mechanism <input> (an identifier a signal feeds) seen from a control
-// script and from a time function (issue 15, item 1): no silent no-op --
+// script and from a time function (what a script sets must reach the
+// mechanism or be refused): no silent no-op --
 // sim:get reads the value the mechanism receives, sim:set is refused with
 // what to do instead, and a tt/rt expression naming an input is refused.
 #include <fstream>
