@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages mechflow needs, then three.js from the npm
-# registry (graphics/web, pinned by its package-lock.json).
+# registry (graphics/web, pinned by its package-lock.json: version and sha512).
 #   scripts/install-deps.sh main   what `mechflow` needs to build, run and plot
 #                                  (scripts/run-example.sh: the first run stays short)
 #   scripts/install-deps.sh [all]  that and what the tests and benchmarks need too
@@ -26,6 +26,7 @@ packages=(
   libeigen3-dev libsundials-dev libsuitesparse-dev libtinyxml2-dev liblua5.4-dev
   libudunits2-dev libudunits2-data
   gnuplot-nox libfftw3-dev
+  curl ca-certificates          # three.js's archive from the npm registry
 )
 if [ "$mode" = all ]; then
   packages+=(
@@ -37,8 +38,10 @@ if [ "$mode" = all ]; then
     graphviz                      # `dot`, which draws `mechflow graph` (README tour)
   )
 fi
-# Node.js and npm fetch three.js; a machine may have them from elsewhere
-command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
+# Node.js and npm install the viewer's development dependencies (the glTF
+# validator); a machine may have them from elsewhere. The main job does without:
+# they are some 360 Debian packages, most of a fresh machine's install time.
+if [ "$mode" = all ] && ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
 # more for one script (scripts/fuzz.sh: clang and its libFuzzer runtime)
 read -r -a extra <<< "${MECHFLOW_EXTRA_PACKAGES:-}"
 packages+=("${extra[@]}")
@@ -48,13 +51,39 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 
-# three.js for the animation viewer, embedded into the binary at build time; the
-# tests also run the glTF validator (a development dependency), which `main` skips
+# three.js for the animation viewer, embedded into the binary at build time.
+# `main` fetches its archive from the npm registry with curl and checks it against
+# the sha512 that package-lock.json pins (what `npm ci` checks); `all` runs npm ci,
+# which also installs the glTF validator the tests run.
+fetch_three() {
+  local lock=graphics/web/package-lock.json version integrity registry url tgz want got
+  version=$(sed -n '/"node_modules\/three"/,/}/s/.*"version": "\([^"]*\)".*/\1/p' "$lock")
+  integrity=$(sed -n '/"node_modules\/three"/,/}/s/.*"integrity": "sha512-\([^"]*\)".*/\1/p' "$lock")
+  if [ -z "$version" ] || [ -z "$integrity" ]; then
+    echo "mechflow: $lock names no three.js version with a sha512 integrity" >&2
+    exit 1
+  fi
+  registry=${npm_config_registry:-https://registry.npmjs.org}
+  url="${registry%/}/three/-/three-${version}.tgz"
+  tgz=$(mktemp)
+  echo "mechflow: fetching three.js ${version} ($url)"
+  curl -fsSL --retry 3 -o "$tgz" "$url"
+  want=$(printf '%s' "$integrity" | base64 -d | od -An -tx1 | tr -d ' \n')
+  got=$(sha512sum "$tgz" | cut -d' ' -f1)
+  if [ "$want" != "$got" ]; then
+    rm -f "$tgz"
+    echo "mechflow: $url does not match the sha512 in $lock; not installed" >&2
+    exit 1
+  fi
+  rm -rf graphics/web/node_modules/three
+  mkdir -p graphics/web/node_modules/three
+  tar xzf "$tgz" -C graphics/web/node_modules/three --strip-components=1
+  rm -f "$tgz"
+}
 install_three() {
   if [ "$mode" = main ]; then
     [ -f graphics/web/node_modules/three/build/three.min.js ] && return 0
-    echo "mechflow: installing three.js (npm ci --omit=dev in graphics/web)"
-    (cd graphics/web && npm ci --omit=dev --no-audit --no-fund --loglevel=error)
+    fetch_three
   else
     [ -f graphics/web/node_modules/three/build/three.min.js ] &&
       [ -d graphics/web/node_modules/gltf-validator ] && return 0
@@ -82,8 +111,8 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 "${as_root[@]}" apt-get update -qq
 # --force-unsafe-io: dpkg skips its fsync after every file. The main set alone is
-# about 670 packages (npm's Node modules, SUNDIALS' MPI/PETSc dependencies); without
-# the syncs dpkg took 13 min instead of 15 on a loaded 2-core machine. An install
+# some 300 packages (SUNDIALS' MPI/PETSc dependencies among them), 670 with Node.js;
+# without the syncs dpkg took 13 min instead of 15 for the 670 on a loaded 2-core machine. An install
 # cut short is simply run again.
 "${as_root[@]}" apt-get install -y -qq --no-install-recommends -o Dpkg::Options::=--force-unsafe-io "${missing[@]}"
 install_three
