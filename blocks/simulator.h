@@ -85,9 +85,8 @@ class Simulator {
   Simulator(const Diagram& diagram, SolverOptions options, std::vector<SignalRef> logged);
   ~Simulator();
 
-  // Figures to locate during every run (blocks/report.h). With reports the
-  // integrator advances one internal step at a time, each step watched;
-  // without, it runs to each output time at once. Signals must be scalar or
+  // Figures to locate during every run (blocks/report.h), each step of the
+  // integrator watched on its interpolant. Signals must be scalar or
   // indexed within their width (InputError otherwise).
   void SetReports(std::vector<ReportRequest> reports) { reports_.Set(std::move(reports)); }
 
