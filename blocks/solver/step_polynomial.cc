@@ -6,12 +6,12 @@ namespace mechflow::blocks {
 
 using sundials::Check;
 
-StepPolynomial::StepPolynomial(sunindextype n, const sundials::Context& ctx) {
+StepPolynomial::StepPolynomial(sunindextype n, const sundials::Context& ctx) : n_(static_cast<std::size_t>(n)) {
   for (int k = 0; k <= kMaxOrder; ++k) taylor_.push_back(std::make_unique<sundials::Vector>(n, ctx));
 }
 
 void StepPolynomial::At(void* mem, double t, double* out) {
-  const auto n = static_cast<std::size_t>(N_VGetLength(taylor_[0]->get()));
+  const std::size_t n = n_;
   if (order_ < 0) {
     // the step's polynomial about its end tn: y(t) = sum_k y^(k)(tn) (t - tn)^k / k!
     Check(CVodeGetLastOrder(mem, &order_), "CVodeGetLastOrder");

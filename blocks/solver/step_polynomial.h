@@ -4,6 +4,7 @@
 // instead of a CVodeGetDky per row (Debian's unoptimised SUNDIALS build: 7 %
 // of the P1 benchmark).
 
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -25,6 +26,7 @@ class StepPolynomial {
   void At(void* cvode_mem, double t, double* out);
 
  private:
+  const std::size_t n_;  // states
   std::vector<std::unique_ptr<sundials::Vector>> taylor_;
   int order_ = -1;  // -1: not found for this step
   double tn_ = 0.0;
