@@ -1,6 +1,8 @@
 # Tests of blocks/.
 mechflow_test(simulator_test unit tests/blocks/simulator_test.cc)
 mechflow_test(crossing_search_test unit tests/blocks/crossing_search_test.cc)
+# the run's own policies: refiring limit, restart, callback failures, the output grid
+mechflow_test(run_policies_test unit tests/blocks/solver/run_policies_test.cc)
 mechflow_test(library_test unit tests/blocks/library_test.cc)
 if(NOT MECHFLOW_SANITIZE AND NOT MECHFLOW_FUZZ)  # counts malloc calls (see tests/mech/tests.cmake)
   mechflow_test(no_allocation_test unit tests/blocks/no_allocation_test.cc)

@@ -1,0 +1,50 @@
+#pragma once
+// ReportWatch: the figures a diagram asks for (blocks/report.h), located
+// while the run goes: each report sees the solution on every stretch the
+// integrator has passed, evaluated on the step's interpolant.
+
+#include <functional>
+#include <vector>
+
+#include "blocks/report.h"
+
+namespace mechflow::blocks {
+
+class ReportWatch {
+ public:
+  // `signals`: where each report's signal is read after an evaluation (the
+  // Context's; not owned).
+  explicit ReportWatch(const std::vector<double>& signals) : signals_(signals) {}
+
+  // Throws InputError when a report's element is outside its signal's width.
+  void Set(std::vector<ReportRequest> reports);
+  bool empty() const { return reports_.empty(); }
+
+  // A new run from t0: nothing watched yet.
+  void Reset(double t0);
+  // What the solver found beyond t (a watched stretch) is void: watching
+  // goes on from t.
+  void Restart(double t) { watched_to_ = t; }
+  // Lets the reports see the solution on (watched_to_, t], within the last
+  // step; `evaluate_at(t)` brings every signal up to date at t inside it.
+  template <class EvaluateAt>
+  void WatchTo(double t, EvaluateAt&& evaluate_at) {
+    if (reports_.empty() || !(t > watched_to_)) return;
+    WatchStep(watched_to_, t, std::function<void(double)>(evaluate_at));
+    watched_to_ = t;
+  }
+
+  // The figures so far, in the reports' units.
+  std::vector<ReportFigure> figures() const;
+
+ private:
+  void WatchStep(double ta, double tb, const std::function<void(double)>& evaluate_at);
+
+  const std::vector<double>& signals_;
+  std::vector<ReportRequest> reports_;
+  std::vector<ExtremumTracker> trackers_;       // one per report (its extremum kinds)
+  std::vector<SignalAccumulator> accumulators_;  // one per report (the other kinds)
+  double watched_to_ = 0.0;  // reports have watched the solution up to here
+};
+
+}  // namespace mechflow::blocks
