@@ -23,7 +23,7 @@
 #include "mech/model_builder.h"
 #include "mech/points_plane_contact.h"
 #include "scripting/lua_scalar_function.h"
-#include "scripting/time_function.h"
+#include "scripting/jet_expression.h"
 
 namespace mechflow::diagrams {
 namespace {
@@ -300,7 +300,7 @@ mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
                                   "takes identifiers at their values at load and would not follow it; drive the "
                                   "motion by a signal instead (signal=\"NAME\", fed by a motion block)");
         r.CheckUnit(et, "value", false);
-        spec.function = std::make_shared<scripting::CompiledTimeFunction>(et.Text("value"), *eval.identifiers(), what);
+        spec.function = std::make_shared<scripting::JetExpression>(et.Text("value"), *eval.identifiers(), what);
         eval.identifiers()->NoteFixedUses(et.Text("value"), what);
       } else {
         spec.value = r.Number(et, "q0", 0.0);

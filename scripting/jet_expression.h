@@ -1,8 +1,11 @@
 #pragma once
-// CompiledTimeFunction: s(t) of a prescribed motion (the tt/rt elementary
-// transformations of a joint, ELEMENTS.md 2.1) with its first and second time
-// derivatives, computed exactly by forward-mode automatic differentiation. No
-// Lua and no finite differences are involved.
+// JetExpression: an arithmetic expression of time compiled into a small
+// program that returns s(t) with its first and second time derivatives (a
+// mech::Jet), computed exactly by forward-mode automatic differentiation. No
+// Lua and no finite differences are involved. It is what a prescribed motion
+// (the tt/rt elementary transformations of a joint, ELEMENTS.md 2.1) runs.
+// Compiler: scripting/jet_expression_compiler.cc; evaluator:
+// scripting/jet_expression.cc; the derivative rules: scripting/jet_rules.h.
 //
 // Grammar (ELEMENTS.md 1.1; the arithmetic subset of the Lua expressions used
 // elsewhere, with Lua's precedence):
@@ -37,7 +40,7 @@
 // Identifiers are constants: their values are read from the table when the
 // function is compiled and baked into the program. An identifier changed
 // later (a macro variant, --set, a control script) needs a new
-// CompiledTimeFunction; identifiers_used() says which ones a function reads.
+// JetExpression; identifiers_used() says which ones a function reads.
 //
 // Everything else is an InputError whose message starts with the caller's
 // `what` and says what was found and what was expected: unknown names (with
@@ -85,7 +88,7 @@ namespace mechflow::scripting {
 
 class IdentifierTable;
 
-class CompiledTimeFunction final : public mech::TimeFunction {
+class JetExpression final : public mech::TimeFunction {
  public:
   // Slots of the evaluation stack; deeper expressions are refused at
   // compilation. Constant operands take no slot, so `a*t + b*t^2` needs 2;
@@ -103,7 +106,7 @@ class CompiledTimeFunction final : public mech::TimeFunction {
   // Compiles `text` (grammar above) with the identifiers' current values.
   // `what` starts every message ("model.xml:12: joint 'j1' transformation 2").
   // Throws InputError.
-  CompiledTimeFunction(const std::string& text, const IdentifierTable& identifiers, const std::string& what);
+  JetExpression(const std::string& text, const IdentifierTable& identifiers, const std::string& what);
 
   // s(t) and its first two derivatives. Allocates nothing; throws
   // SimulationError when any of the three is not finite.
@@ -122,7 +125,7 @@ class CompiledTimeFunction final : public mech::TimeFunction {
   int stack_depth() const { return stack_depth_; }
 
  private:
-  friend class TimeFunctionCompiler;  // in time_function.cc: builds program_
+  friend class JetExpressionCompiler;  // in jet_expression_compiler.cc: builds program_
 
   enum class Op : std::uint8_t {
     kConst,  // push c

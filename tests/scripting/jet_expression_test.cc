@@ -1,7 +1,7 @@
 // Time functions of prescribed motions: values and exact first and second
 // derivatives against closed forms, the grammar against Lua, every kind of
 // error, and evaluation without allocation.
-#include "scripting/time_function.h"
+#include "scripting/jet_expression.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -72,12 +72,12 @@ class TimeFunctionTest : public ::testing::Test {
     ids_.Add("v_leader", "4", "f:7");
     ids_.Evaluate(lua_);
   }
-  mech::Jet At(const std::string& text, double t) const { return CompiledTimeFunction(text, ids_, "f:9").Evaluate(t); }
+  mech::Jet At(const std::string& text, double t) const { return JetExpression(text, ids_, "f:9").Evaluate(t); }
   double Value(const std::string& text) const { return At(text, 0.0).value; }
   // the InputError message of compiling `text`, or "no error"
   std::string ErrorOf(const std::string& text) const {
     try {
-      CompiledTimeFunction f(text, ids_, kWhat);
+      JetExpression f(text, ids_, kWhat);
       return "no error";
     } catch (const InputError& e) {
       return e.what();
@@ -119,7 +119,7 @@ TEST_F(TimeFunctionTest, CircularMotionHasExactDerivatives) {
   // roundings either way: 1e-14 of the amplitude r w^k (relative to the
   // amplitude, as cos and sin pass through zero).
   const double r = 2, w = 1.5, p = 0.25;
-  const CompiledTimeFunction f("r*cos(omega*t+phase)", ids_, kWhat);
+  const JetExpression f("r*cos(omega*t+phase)", ids_, kWhat);
   EXPECT_TRUE(f.depends_on_time());
   for (double t : {0.0, 0.3, 1.7, 5.0, -2.2, 123.4}) {
     const double a = w * t + p;
@@ -133,7 +133,7 @@ TEST_F(TimeFunctionTest, CircularMotionHasExactDerivatives) {
 TEST_F(TimeFunctionTest, AProductWithAConstantZeroIsThatZero) {
   // the seed's base motion ampl*sin(2*pi*om*t), switched off by its amplitude
   for (const char* text : {"0*sin(2*pi*t)", "sin(2*pi*t)*(alpha-30)", "0*ln(t-1)"}) {
-    const CompiledTimeFunction f(text, ids_, kWhat);
+    const JetExpression f(text, ids_, kWhat);
     EXPECT_EQ(f.num_instructions(), 1) << text;
     EXPECT_TRUE(f.depends_on_time()) << text;  // its text names t
     const mech::Jet j = f.Evaluate(0.5);  // ln(t-1) is not evaluated there
@@ -144,7 +144,7 @@ TEST_F(TimeFunctionTest, AProductWithAConstantZeroIsThatZero) {
 }
 
 TEST_F(TimeFunctionTest, ExpressionsWithoutTAreConstantsWithZeroDerivatives) {
-  const CompiledTimeFunction f("alpha*pi/180", ids_, kWhat);
+  const JetExpression f("alpha*pi/180", ids_, kWhat);
   EXPECT_FALSE(f.depends_on_time());
   EXPECT_EQ(f.num_instructions(), 1);  // folded at compilation
   for (double t : {0.0, 1.0, -3.5, 1e6}) {
@@ -159,12 +159,12 @@ TEST_F(TimeFunctionTest, ExpressionsWithoutTAreConstantsWithZeroDerivatives) {
 
 TEST_F(TimeFunctionTest, ConstantOperandsAreFoldedIntoTheProgram) {
   // push t, *omega, +phase, cos, *r
-  const CompiledTimeFunction f("r*cos(omega*t+phase)", ids_, kWhat);
+  const JetExpression f("r*cos(omega*t+phase)", ids_, kWhat);
   EXPECT_EQ(f.num_instructions(), 5);
   EXPECT_EQ(f.stack_depth(), 1);
   EXPECT_EQ(f.identifiers_used(), (std::vector<std::string>{"r", "omega", "phase"}));
   // constant sub-expressions anywhere fold to one number
-  EXPECT_EQ(CompiledTimeFunction("t*(2*pi*om/180 + sqr(ampl))", ids_, kWhat).num_instructions(), 2);
+  EXPECT_EQ(JetExpression("t*(2*pi*om/180 + sqr(ampl))", ids_, kWhat).num_instructions(), 2);
 }
 
 TEST_F(TimeFunctionTest, ProductQuotientChainAndPowerRules) {
@@ -242,7 +242,7 @@ TEST_F(TimeFunctionTest, DerivativesAgreeWithDifferencesOfTheValues) {
   };
   const double h = 1e-3;
   for (const char* text : expressions) {
-    const CompiledTimeFunction f(text, ids_, kWhat);
+    const JetExpression f(text, ids_, kWhat);
     for (double t : {0.37, 1.21, 2.9}) {
       const mech::Jet j = f.Evaluate(t);
       const auto d = [&](auto&& g) {
@@ -359,7 +359,7 @@ TEST_F(TimeFunctionTest, NamesAreCaseInsensitive) {
     EXPECT_EQ(a.acceleration, b.acceleration) << text;
   }
   EXPECT_EQ(Value("PI"), std::numbers::pi);
-  EXPECT_EQ(CompiledTimeFunction("OMEGA*T", ids_, kWhat).identifiers_used(), std::vector<std::string>{"omega"});
+  EXPECT_EQ(JetExpression("OMEGA*T", ids_, kWhat).identifiers_used(), std::vector<std::string>{"omega"});
 }
 
 // ---------------------------------------------------------------------------
@@ -454,11 +454,11 @@ TEST_F(TimeFunctionTest, LimitsAndNonFiniteConstantsAreInputErrors) {
   EXPECT_THAT(Detail(wide), StartsWith("needs 41 evaluation stack slots, more than the 32 available"));
   std::string ok = "t";
   for (int i = 0; i < 30; ++i) ok = std::string("t") + (i % 2 ? "*(" : "+(") + ok + ")";
-  EXPECT_EQ(CompiledTimeFunction(ok, ids_, kWhat).stack_depth(), 31);
+  EXPECT_EQ(JetExpression(ok, ids_, kWhat).stack_depth(), 31);
 
   std::string longest = "t";
   while (longest.size() + 2 <= 2000) longest += "+t";
-  EXPECT_EQ(CompiledTimeFunction(longest, ids_, kWhat).Evaluate(1).value, 1000);
+  EXPECT_EQ(JetExpression(longest, ids_, kWhat).Evaluate(1).value, 1000);
   EXPECT_EQ(ErrorOf(longest + "+t"),
             "m.xml:7: joint 'j': time function of 2001 characters: longer than 2000; simplify it or use identifiers");
 
@@ -478,7 +478,7 @@ TEST_F(TimeFunctionTest, EveryErrorIsAnInputErrorStartingWithWhat) {
                            "sin(t,1)",       "min(t)", "ln(alpha-30)", "{t}",      "t[1]",  "t:f()",
                            "function() end", "@"}) {
     try {
-      CompiledTimeFunction f(text, ids_, kWhat);
+      JetExpression f(text, ids_, kWhat);
       ADD_FAILURE() << "no error for '" << text << "'";
     } catch (const InputError& e) {
       EXPECT_THAT(e.what(), StartsWith(std::string(kWhat) + ": time function '" + text + "': ")) << text;
@@ -487,10 +487,10 @@ TEST_F(TimeFunctionTest, EveryErrorIsAnInputErrorStartingWithWhat) {
 }
 
 TEST_F(TimeFunctionTest, NonFiniteResultIsASimulationError) {
-  const CompiledTimeFunction f("ln(t-1)", ids_, "m.xml:3");
+  const JetExpression f("ln(t-1)", ids_, "m.xml:3");
   EXPECT_NO_THROW(f.Evaluate(2.0));
   EXPECT_THROW(f.Evaluate(0.0), SimulationError);
-  const auto message = [](const CompiledTimeFunction& g, double t) -> std::string {
+  const auto message = [](const JetExpression& g, double t) -> std::string {
     try {
       g.Evaluate(t);
       return "no error";
@@ -501,26 +501,26 @@ TEST_F(TimeFunctionTest, NonFiniteResultIsASimulationError) {
   EXPECT_EQ(message(f, 0.0),
             "m.xml:3: time function 'ln(t-1)' is not finite at t = 0 (value nan, rate -1, acceleration -1)");
   // the first part that went non-finite is named
-  EXPECT_EQ(message(CompiledTimeFunction("2 + 3*ln(t-1)", ids_, "m.xml:3"), 0.5),
+  EXPECT_EQ(message(JetExpression("2 + 3*ln(t-1)", ids_, "m.xml:3"), 0.5),
             "m.xml:3: time function '2 + 3*ln(t-1)' is not finite at t = 0.5: its part 'ln(t-1)' is not "
             "(value nan, rate -2, acceleration -4)");
   // a rate or acceleration that is not finite counts too: sqrt at 0
   // (acceleration: -inf + inf*0)
-  EXPECT_EQ(message(CompiledTimeFunction("sqrt(t)", ids_, "m.xml:3"), 0.0),
+  EXPECT_EQ(message(JetExpression("sqrt(t)", ids_, "m.xml:3"), 0.0),
             "m.xml:3: time function 'sqrt(t)' is not finite at t = 0 (value 0, rate inf, acceleration nan)");
   // min and max do not hide a NaN
-  EXPECT_THAT(message(CompiledTimeFunction("min(ln(t-1), 1)", ids_, "m.xml:3"), 0.0),
+  EXPECT_THAT(message(JetExpression("min(ln(t-1), 1)", ids_, "m.xml:3"), 0.0),
               HasSubstr("its part 'ln(t-1)' is not"));
   // general powers need a positive base
-  EXPECT_THAT(message(CompiledTimeFunction("(t-1)^t", ids_, "m.xml:3"), 0.5), HasSubstr("is not finite at t = 0.5"));
-  EXPECT_THROW(CompiledTimeFunction("1/t", ids_, "m.xml:3").Evaluate(0.0), SimulationError);
+  EXPECT_THAT(message(JetExpression("(t-1)^t", ids_, "m.xml:3"), 0.5), HasSubstr("is not finite at t = 0.5"));
+  EXPECT_THROW(JetExpression("1/t", ids_, "m.xml:3").Evaluate(0.0), SimulationError);
 }
 
 // ---------------------------------------------------------------------------
 // evaluation cost
 
 TEST_F(TimeFunctionTest, EvaluationAllocatesNothing) {
-  const CompiledTimeFunction f("r*cos(omega*t+phase) + exp(-t)*t^3/(1+t^2) + min(t, 1) + 2^t + atan(t, 2)", ids_,
+  const JetExpression f("r*cos(omega*t+phase) + exp(-t)*t^3/(1+t^2) + min(t, 1) + 2^t + atan(t, 2)", ids_,
                                kWhat);
   double sum = 0;
   g_new_calls = 0;

@@ -1,4 +1,7 @@
-#include "scripting/time_function.h"
+// The compiler of a JetExpression: text -> tokens -> tree (constants folded)
+// -> postfix program (the grammar and the folding rules are in
+// scripting/jet_expression.h).
+#include "scripting/jet_expression.h"
 
 #include <algorithm>
 #include <cctype>
@@ -11,122 +14,13 @@
 #include "blocks/suggest.h"
 #include "mech/errors.h"
 #include "scripting/identifiers.h"
+#include "scripting/jet_rules.h"
 
 namespace mechflow::scripting {
 namespace {
 
 using mech::Jet;
-
-// ---------------------------------------------------------------------------
-// the derivative rules
-
-// (value, d/dt, d2/dt2); no default member initialisers, so that the
-// evaluation stack costs nothing to set up
-struct Triple {
-  double v, d, dd;
-};
-
-bool IsFinite(const Triple& x) { return std::isfinite(x.v) && std::isfinite(x.d) && std::isfinite(x.dd); }
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// f(u), given f, f' and f'' at u.v: the chain rule to second order
-Triple Chain(const Triple& u, double f, double f1, double f2) { return {f, f1 * u.d, f2 * u.d * u.d + f1 * u.dd}; }
-
-Triple Multiply(const Triple& a, const Triple& b) {
-  return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + 2 * a.d * b.d + a.v * b.dd};
-}
-
-// q = a/b: q' = (a' - q b')/b, q'' = (a'' - 2 q' b' - q b'')/b
-Triple Divide(const Triple& a, const Triple& b) {
-  const double q = a.v / b.v;
-  const double q1 = (a.d - q * b.d) / b.v;
-  return {q, q1, (a.dd - 2 * q1 * b.d - q * b.dd) / b.v};
-}
-
-// c/x for a constant c: Divide with a' = a'' = 0
-Triple DivideInto(double c, const Triple& x) {
-  const double q = c / x.v;
-  const double q1 = -q * x.d / x.v;
-  return {q, q1, (-2 * q1 * x.d - q * x.dd) / x.v};
-}
-
-// x^n for a constant n; n = 0, 1, 2 avoid the 0*inf of the general rule at x = 0
-Triple PowerOfConstant(const Triple& x, double n) {
-  if (n == 0) return {std::pow(x.v, n), 0, 0};
-  if (n == 1) return {std::pow(x.v, n), x.d, x.dd};
-  if (n == 2) return Chain(x, std::pow(x.v, n), 2 * x.v, 2);
-  return Chain(x, std::pow(x.v, n), n * std::pow(x.v, n - 1), n * (n - 1) * std::pow(x.v, n - 2));
-}
-
-// c^x for a constant c > 0: (c^x)' = c^x ln(c) x', (c^x)'' = c^x (ln(c) x'' + (ln(c) x')^2)
-Triple ConstantToPower(double c, const Triple& x) {
-  const double p = std::pow(c, x.v), l = std::log(c);
-  const double g = l * x.d;
-  return {p, p * g, p * (l * x.dd + g * g)};
-}
-
-// a^b; when b does not move at this instant the power rule, else through
-// exp(b ln a) (a > 0): with g = (ln p)' = b' ln a + b a'/a,
-// p' = p g, p'' = p (g' + g^2), g' = b'' ln a + 2 b' a'/a + b (a''/a - (a'/a)^2)
-Triple Power(const Triple& a, const Triple& b) {
-  if (b.d == 0 && b.dd == 0) return PowerOfConstant(a, b.v);
-  const double p = std::pow(a.v, b.v), l = std::log(a.v), r = a.d / a.v;
-  const double g = b.d * l + b.v * r;
-  const double g1 = b.dd * l + 2 * b.d * r + b.v * (a.dd / a.v - r * r);
-  return {p, p * g, p * (g1 + g * g)};
-}
-
-// angle of (x, y): with N = x y' - y x' and D = x^2 + y^2, angle' = N/D and
-// angle'' = (N' - angle' D')/D, N' = x y'' - y x'', D' = 2 (x x' + y y')
-Triple Atan2(const Triple& y, const Triple& x) {
-  const double den = x.v * x.v + y.v * y.v;
-  const double w = (x.v * y.d - y.v * x.d) / den;
-  const double num1 = x.v * y.dd - y.v * x.dd;
-  const double den1 = 2 * (x.v * x.d + y.v * y.d);
-  return {std::atan2(y.v, x.v), w, (num1 - w * den1) / den};
-}
-
-// true when a <= b just after this instant: compare values, then rates, then accelerations
-bool NotAboveJustAfter(const Triple& a, const Triple& b) {
-  if (a.v != b.v) return a.v < b.v;
-  if (a.d != b.d) return a.d < b.d;
-  return a.dd <= b.dd;
-}
-
-// the derivatives of the branch that is active (just after the instant, at a tie);
-// NaN is passed on rather than lost in a comparison
-Triple Min(const Triple& a, const Triple& b) {
-  if (std::isnan(a.v) || std::isnan(b.v)) return {kNaN, kNaN, kNaN};
-  return NotAboveJustAfter(a, b) ? a : b;
-}
-Triple Max(const Triple& a, const Triple& b) {
-  if (std::isnan(a.v) || std::isnan(b.v)) return {kNaN, kNaN, kNaN};
-  return NotAboveJustAfter(b, a) ? a : b;
-}
-
-// |x| with the slope of the side x is on (or moves to, at x = 0)
-Triple Abs(const Triple& x) {
-  const double s = x.v > 0    ? 1.0
-                   : x.v < 0  ? -1.0
-                   : x.d > 0  ? 1.0
-                   : x.d < 0  ? -1.0
-                   : x.dd > 0 ? 1.0
-                   : x.dd < 0 ? -1.0
-                              : 0.0;
-  return {std::abs(x.v), s * x.d, s * x.dd};
-}
-
-Triple Sign(const Triple& x) { return {x.v > 0 ? 1.0 : x.v < 0 ? -1.0 : x.v == 0 ? 0.0 : x.v, 0, 0}; }
-
-// shortest text that reads back as the same double ("0.1", "-inf"); "nan"
-// whatever the sign bit (which depends on the CPU)
-std::string Number(double x) {
-  if (std::isnan(x)) return "nan";
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
-  return std::string(buffer, result.ptr);
-}
+using namespace jet;
 
 // ---------------------------------------------------------------------------
 // names
@@ -177,25 +71,25 @@ bool IsNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || 
 // ---------------------------------------------------------------------------
 // compiler: text -> tokens -> tree (constants folded) -> postfix program
 
-class TimeFunctionCompiler {
+class JetExpressionCompiler {
  public:
-  using Op = CompiledTimeFunction::Op;
-  using Instruction = CompiledTimeFunction::Instruction;
+  using Op = JetExpression::Op;
+  using Instruction = JetExpression::Instruction;
 
-  TimeFunctionCompiler(const IdentifierTable& identifiers, CompiledTimeFunction* out)
+  JetExpressionCompiler(const IdentifierTable& identifiers, JetExpression* out)
       : s_(out->text_), ids_(identifiers), out_(out) {}
 
   void Compile() {
-    if (s_.size() > static_cast<std::size_t>(CompiledTimeFunction::kMaxLength))
+    if (s_.size() > static_cast<std::size_t>(JetExpression::kMaxLength))
       throw InputError(out_->what_ + ": time function of " + std::to_string(s_.size()) + " characters: longer than " +
-                       std::to_string(CompiledTimeFunction::kMaxLength) + "; simplify it or use identifiers");
+                       std::to_string(JetExpression::kMaxLength) + "; simplify it or use identifiers");
     Next();
     const int root = Expression();
     if (token_.kind != Token::kEnd) FailAfterOperand("an operator (+ - * / ^) or the end of the expression");
     Emit(root);
-    if (max_depth_ > CompiledTimeFunction::kMaxStackDepth)
+    if (max_depth_ > JetExpression::kMaxStackDepth)
       Fail("needs " + std::to_string(max_depth_) + " evaluation stack slots, more than the " +
-           std::to_string(CompiledTimeFunction::kMaxStackDepth) +
+           std::to_string(JetExpression::kMaxStackDepth) +
            " available; write deeply nested parts first in sums and products, or simplify");
     out_->stack_depth_ = max_depth_;
   }
@@ -370,7 +264,7 @@ class TimeFunctionCompiler {
       // the same code as at run time, on operands without derivatives
       Instruction program[3] = {{Op::kConst, nodes_[a].value}, {Op::kConst, b < 0 ? 0.0 : nodes_[b].value}, {op}};
       if (b < 0) program[1] = program[2];
-      const double value = CompiledTimeFunction::RunProgram<false>(program, b < 0 ? 2 : 3, 0.0, nullptr).value;
+      const double value = JetExpression::RunProgram<false>(program, b < 0 ? 2 : 3, 0.0, nullptr).value;
       if (!std::isfinite(value))
         Fail("'" + s_.substr(begin, end - begin) + "' is " + Number(value) +
              " for the identifiers' values (it does not depend on t)");
@@ -406,8 +300,8 @@ class TimeFunctionCompiler {
   }
 
   int Unary() {
-    if (++nesting_ > CompiledTimeFunction::kMaxNesting)
-      Fail("nested more than " + std::to_string(CompiledTimeFunction::kMaxNesting) + " deep" + Column(token_.begin));
+    if (++nesting_ > JetExpression::kMaxNesting)
+      Fail("nested more than " + std::to_string(JetExpression::kMaxNesting) + " deep" + Column(token_.begin));
     int result;
     if (IsSymbol('-')) {
       const int begin = token_.begin;
@@ -606,7 +500,7 @@ class TimeFunctionCompiler {
 
   const std::string& s_;
   const IdentifierTable& ids_;
-  CompiledTimeFunction* out_;
+  JetExpression* out_;
   Token token_;
   std::vector<Node> nodes_;
   int nesting_ = 0;
@@ -614,196 +508,17 @@ class TimeFunctionCompiler {
 };
 
 // ---------------------------------------------------------------------------
-// CompiledTimeFunction
+// JetExpression
 
-CompiledTimeFunction::CompiledTimeFunction(const std::string& text, const IdentifierTable& identifiers,
+JetExpression::JetExpression(const std::string& text, const IdentifierTable& identifiers,
                                            const std::string& what)
     : text_(text), what_(what) {
-  TimeFunctionCompiler(identifiers, this).Compile();
-}
-
-template <bool kFindFailure>
-Jet CompiledTimeFunction::RunProgram(const Instruction* code, int size, double t, int* failed) {
-  Triple stack[kMaxStackDepth + 1];  // stack[0] is never used, so top[-1] is always in the array
-  Triple* top = stack + 1;           // one past the top
-  for (int i = 0; i < size; ++i) {
-    const Instruction& in = code[i];
-    Triple& x = top[-1];  // the operand of one-operand instructions
-    switch (in.op) {
-      case Op::kConst:
-        *top++ = {in.c, 0, 0};
-        break;
-      case Op::kTime:
-        *top++ = {t, 1, 0};
-        break;
-      case Op::kNeg:
-        x = {-x.v, -x.d, -x.dd};
-        break;
-      case Op::kAdd:
-        --top;
-        top[-1] = {top[-1].v + top[0].v, top[-1].d + top[0].d, top[-1].dd + top[0].dd};
-        break;
-      case Op::kSub:
-        --top;
-        top[-1] = {top[-1].v - top[0].v, top[-1].d - top[0].d, top[-1].dd - top[0].dd};
-        break;
-      case Op::kMul:
-        --top;
-        top[-1] = Multiply(top[-1], top[0]);
-        break;
-      case Op::kDiv:
-        --top;
-        top[-1] = Divide(top[-1], top[0]);
-        break;
-      case Op::kPow:
-        --top;
-        top[-1] = Power(top[-1], top[0]);
-        break;
-      case Op::kMin:
-        --top;
-        top[-1] = Min(top[-1], top[0]);
-        break;
-      case Op::kMax:
-        --top;
-        top[-1] = Max(top[-1], top[0]);
-        break;
-      case Op::kAtan2:
-        --top;
-        top[-1] = Atan2(top[-1], top[0]);
-        break;
-      case Op::kAddC:
-        x.v += in.c;
-        break;
-      case Op::kSubC:
-        x.v -= in.c;
-        break;
-      case Op::kRSubC:
-        x = {in.c - x.v, -x.d, -x.dd};
-        break;
-      case Op::kMulC:
-        x = {x.v * in.c, x.d * in.c, x.dd * in.c};
-        break;
-      case Op::kDivC:
-        x = {x.v / in.c, x.d / in.c, x.dd / in.c};
-        break;
-      case Op::kRDivC:
-        x = DivideInto(in.c, x);
-        break;
-      case Op::kPowC:
-        x = PowerOfConstant(x, in.c);
-        break;
-      case Op::kRPowC:
-        x = ConstantToPower(in.c, x);
-        break;
-      case Op::kSin: {
-        const double s = std::sin(x.v), c = std::cos(x.v);
-        x = Chain(x, s, c, -s);
-        break;
-      }
-      case Op::kCos: {
-        const double s = std::sin(x.v), c = std::cos(x.v);
-        x = Chain(x, c, -s, -c);
-        break;
-      }
-      case Op::kTan: {
-        const double tn = std::tan(x.v), sec2 = 1 + tn * tn;
-        x = Chain(x, tn, sec2, 2 * tn * sec2);
-        break;
-      }
-      case Op::kAsin: {
-        const double r = 1 / std::sqrt(1 - x.v * x.v);
-        x = Chain(x, std::asin(x.v), r, x.v * r * r * r);
-        break;
-      }
-      case Op::kAcos: {
-        const double r = 1 / std::sqrt(1 - x.v * x.v);
-        x = Chain(x, std::acos(x.v), -r, -x.v * r * r * r);
-        break;
-      }
-      case Op::kAtan: {
-        const double r = 1 / (1 + x.v * x.v);
-        x = Chain(x, std::atan(x.v), r, -2 * x.v * r * r);
-        break;
-      }
-      case Op::kSinh: {
-        const double sh = std::sinh(x.v), ch = std::cosh(x.v);
-        x = Chain(x, sh, ch, sh);
-        break;
-      }
-      case Op::kCosh: {
-        const double sh = std::sinh(x.v), ch = std::cosh(x.v);
-        x = Chain(x, ch, sh, ch);
-        break;
-      }
-      case Op::kTanh: {
-        const double th = std::tanh(x.v), sech2 = 1 - th * th;
-        x = Chain(x, th, sech2, -2 * th * sech2);
-        break;
-      }
-      case Op::kExp: {
-        const double e = std::exp(x.v);
-        x = Chain(x, e, e, e);
-        break;
-      }
-      case Op::kLn:
-        x = Chain(x, std::log(x.v), 1 / x.v, -1 / (x.v * x.v));
-        break;
-      case Op::kSqrt: {
-        const double s = std::sqrt(x.v);
-        x = Chain(x, s, 0.5 / s, -0.25 / (s * x.v));
-        break;
-      }
-      case Op::kSqr:
-        x = Chain(x, x.v * x.v, 2 * x.v, 2);
-        break;
-      case Op::kAbs:
-        x = Abs(x);
-        break;
-      case Op::kSign:
-        x = Sign(x);
-        break;
-    }
-    if constexpr (kFindFailure) {
-      if (!IsFinite(top[-1])) {
-        *failed = i;
-        return {top[-1].v, top[-1].d, top[-1].dd};
-      }
-    }
-  }
-  if constexpr (kFindFailure) *failed = -1;
-  return {stack[1].v, stack[1].d, stack[1].dd};
-}
-
-Jet CompiledTimeFunction::Evaluate(double t) const {
-  // a constant (folded at compilation): its value, without running the program
-  if (program_.size() == 1 && program_[0].op == Op::kConst && std::isfinite(program_[0].c))
-    return {program_[0].c, 0.0, 0.0};
-  const Jet result = RunProgram<false>(program_.data(), static_cast<int>(program_.size()), t, nullptr);
-  if (!(std::isfinite(result.value) && std::isfinite(result.rate) && std::isfinite(result.acceleration)))
-    ThrowNotFinite(t, result);
-  return result;
-}
-
-void CompiledTimeFunction::ThrowNotFinite(double t, const Jet& result) const {
-  // run again, stopping at the first part that is not finite
-  const int size = static_cast<int>(program_.size());
-  int failed = -1;
-  Jet part = RunProgram<true>(program_.data(), size, t, &failed);
-  std::string where;
-  if (failed >= 0 && failed + 1 < size) {
-    const auto [begin, end] = spans_[failed];
-    where = ": its part '" + text_.substr(begin, end - begin) + "' is not";
-  } else {
-    part = result;
-  }
-  throw SimulationError(what_ + ": time function '" + text_ + "' is not finite at t = " + Number(t) + where +
-                        " (value " + Number(part.value) + ", rate " + Number(part.rate) + ", acceleration " +
-                        Number(part.acceleration) + ")");
+  JetExpressionCompiler(identifiers, this).Compile();
 }
 
 double EvaluateConstantExpression(const std::string& text, const IdentifierTable& identifiers,
                                   const std::string& what) {
-  const CompiledTimeFunction f(text, identifiers, what);
+  const JetExpression f(text, identifiers, what);
   if (f.depends_on_time())
     throw InputError(what + ": '" + text + "' depends on t; expected an expression of numbers and identifiers");
   return f.Evaluate(0.0).value;  // finite: a non-finite constant does not compile
