@@ -38,7 +38,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "bench/direct_cvode.h"
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 
 namespace {

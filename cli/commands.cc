@@ -21,7 +21,7 @@
 #include "cli/psd_command.h"
 #include "cli/sweep.h"
 #include "blocks/library/mechanism_block.h"
-#include "blocks/linearization.h"
+#include "analysis/linearization.h"
 #include "diagrams/loader.h"
 #include "cli/animation_output.h"
 #include "graphics/scene.h"

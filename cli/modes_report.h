@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/linearization.h"
+#include "analysis/linearization.h"
 
 namespace mechflow::cli {
 

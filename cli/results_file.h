@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/results.h"
+#include "blocks/outputs/results.h"
 #include "cli/output_folder.h"
 
 namespace mechflow::cli {

@@ -1,6 +1,6 @@
 #include "cli/sweep.h"
 
-#include "blocks/csv.h"
+#include "blocks/outputs/csv.h"
 
 #include "cli/plot.h"
 
@@ -22,8 +22,8 @@
 #include <thread>
 #include <vector>
 
-#include "blocks/simulator.h"
-#include "blocks/suggest.h"
+#include "blocks/solver/simulator.h"
+#include "blocks/support/suggest.h"
 #include "cli/interrupt.h"
 #include "cli/output_budget.h"
 #include "cli/output_folder.h"

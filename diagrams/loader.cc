@@ -6,10 +6,10 @@
 #include <tuple>
 
 #include "analysis/spectrum_limits.h"
-#include "blocks/analytic_jacobian.h"
-#include "blocks/block_factory.h"
-#include "blocks/diagram_builder.h"
-#include "blocks/suggest.h"
+#include "blocks/solver/analytic_jacobian.h"
+#include "blocks/framework/block_factory.h"
+#include "blocks/framework/diagram_builder.h"
+#include "blocks/support/suggest.h"
 #include "diagrams/evaluator.h"
 #include "diagrams/attribute_units.h"
 #include "diagrams/mechanism_loader.h"

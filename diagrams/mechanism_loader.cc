@@ -9,7 +9,7 @@
 #include <set>
 
 #include "blocks/library/mechanism_block.h"
-#include "blocks/suggest.h"
+#include "blocks/support/suggest.h"
 #include "diagrams/attribute_units.h"
 #include "mech/applied_force.h"
 #include "mech/bipolar_force.h"

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <string_view>
 
-#include "blocks/suggest.h"
+#include "blocks/support/suggest.h"
 #include "mech/errors.h"
 #include "scripting/identifiers.h"
 #include "scripting/jet_rules.h"

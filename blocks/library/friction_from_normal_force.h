@@ -31,7 +31,7 @@
 
 #include <string>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 #include "mech/friction_law.h"
 
 namespace mechflow::blocks {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "blocks/csv.h"
+#include "blocks/outputs/csv.h"
 #include "blocks/library/hysteresis.h"
 #include "mech/errors.h"
 

@@ -17,7 +17,7 @@
 
 #include <vector>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 #include "blocks/library/interpolation.h"
 
 namespace mechflow::blocks {

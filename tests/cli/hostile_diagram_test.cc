@@ -17,7 +17,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "blocks/results.h"
+#include "blocks/outputs/results.h"
 #include "cli/output_folder.h"
 #include "cli/results_file.h"
 #include "cli/plot.h"

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "blocks/linearization.h"
+#include "analysis/linearization.h"
 #include "cli/commands.h"
 
 namespace mechflow::cli {

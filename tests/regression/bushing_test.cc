@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "blocks/linearization.h"
+#include "analysis/linearization.h"
 #include "tests/test_util.h"
 
 namespace mechflow {

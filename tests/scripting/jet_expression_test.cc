@@ -19,7 +19,7 @@
 #include "scripting/lua_state.h"
 
 // ---------------------------------------------------------------------------
-// counting replacements of operator new (as tests/blocks/no_allocation_test.cc)
+// counting replacements of operator new (as tests/blocks/solver/no_allocation_test.cc)
 
 namespace {
 
