@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 #include "mech/mechanism.h"
 
 namespace mechflow::analysis {

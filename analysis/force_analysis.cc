@@ -6,10 +6,10 @@
 #include <memory>
 
 #include "analysis/element_drive_block.h"
-#include "blocks/diagram_builder.h"
+#include "blocks/framework/diagram_builder.h"
 #include "blocks/library/mechanism_block.h"
-#include "blocks/simulator.h"
-#include "blocks/suggest.h"
+#include "blocks/solver/simulator.h"
+#include "blocks/support/suggest.h"
 #include "mech/errors.h"
 #include "run/model.h"
 

@@ -38,7 +38,8 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "bench/direct_cvode.h"
-#include "blocks/simulator.h"
+#include "blocks/solver/grid_time.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 
 namespace {
@@ -107,6 +108,7 @@ using ReferenceSolver = mechflow::bench::direct::Solver;
 Run RunReference(const Oscillator& osc, const mechflow::blocks::SolverOptions& options) {
   const auto start = Clock::now();
   const double t0 = options.t_start, t_end = options.t_end, h = options.output_interval;
+  const mechflow::blocks::OutputGrid grid(t0, h, t_end);
   ReferenceData data{osc.c() / osc.m, osc.d() / osc.m};
   Run run;
   run.rows.reserve(3 * (static_cast<std::size_t>(std::lround((t_end - t0) / h)) + 2));
@@ -134,7 +136,8 @@ Run RunReference(const Oscillator& osc, const mechflow::blocks::SolverOptions& o
   // output times from an integer index, the simulator's formula
   double t = t0;
   for (long k = 1; t < t_end; ++k) {
-    const double t_out = std::min(t0 + k * h, t_end);
+    // the output times mechflow's rows take (decimals: 0.47, not 47 * 0.01)
+    const double t_out = grid.Time(k);
     Check(CVode(s.cvode, t_out, s.y, &t, CV_NORMAL), "CVode");
     run.rows.insert(run.rows.end(), {t, y[0], y[1]});
   }

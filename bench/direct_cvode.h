@@ -2,7 +2,7 @@
 // What every hand-written reference program in bench/ needs around the
 // CVODE C API: failed calls turned into exceptions, and the SUNDIALS objects
 // of one run owned and freed in reverse order of creation. Deliberately
-// independent of mechflow's own SUNDIALS wrappers (blocks/sundials.h), so
+// independent of mechflow's own SUNDIALS wrappers (blocks/solver/sundials.h), so
 // the references share no code with what they measure.
 
 #include <stdexcept>

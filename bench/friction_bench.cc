@@ -26,7 +26,7 @@
 // forced dense), direct-band (banded LU with the analytic Jacobian) and
 // direct-band-ftz (the same with flush-to-zero, the subnormal trap of bench/README.md). The
 // -ops contenders are the direct programs with mechflow's compiled vector
-// operations (blocks/compiled_ops.h) in place of Debian's unoptimised ones:
+// operations (blocks/solver/compiled_ops.h) in place of Debian's unoptimised ones:
 // the comparison with equal vector kernels. Dense
 // contenders are skipped above --dense-max (default 100: at N = 1000 a run
 // would take an hour or more), mechflow above --mechflow-max (10000).
@@ -52,8 +52,8 @@
 
 #include "bench/friction_diagram.h"
 #include "bench/friction_direct.h"
-#include "blocks/compiled_ops.h"
-#include "blocks/simulator.h"
+#include "blocks/solver/compiled_ops.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
 

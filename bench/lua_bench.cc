@@ -43,8 +43,8 @@
 
 #include <lua.hpp>
 
-#include "blocks/evaluation.h"
-#include "blocks/simulator.h"
+#include "blocks/framework/evaluation.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
 #include "scripting/lua_state.h"

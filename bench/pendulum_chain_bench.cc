@@ -9,7 +9,7 @@
 //              closed form, Cholesky per evaluation; tested on its own by
 //              tests/mech/pendulum_chain_reference_test.cc);
 //   reference-ops  the same with mechflow's compiled vector operations
-//              (blocks/compiled_ops.h) in place of Debian's unoptimised ones;
+//              (blocks/solver/compiled_ops.h) in place of Debian's unoptimised ones;
 //   mechflow   a diagram with one mechanism (generated as XML text and loaded
 //              outside the timing), relative joint angles, articulated-body
 //              dynamics, run by blocks::Simulator with its dense solver
@@ -51,8 +51,8 @@
 #include <Eigen/Core>
 
 #include "bench/pendulum_chain_direct.h"
-#include "blocks/compiled_ops.h"
-#include "blocks/simulator.h"
+#include "blocks/solver/compiled_ops.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
 

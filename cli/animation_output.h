@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "cli/arguments.h"
 #include "cli/output_budget.h"
 #include "cli/output_folder.h"

@@ -8,9 +8,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "blocks/input_file.h"
-#include "blocks/excerpt.h"
-#include "blocks/suggest.h"
+#include "blocks/support/excerpt.h"
+#include "blocks/support/input_file.h"
+#include "blocks/support/suggest.h"
 #include "cli/force_analysis_command.h"
 #include "cli/help_topics.h"
 #include "cli/output_budget.h"

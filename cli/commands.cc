@@ -11,23 +11,23 @@
 #include <sstream>
 #include <string>
 
-#include "cli/modes_report.h"
+#include "analysis/linearization.h"
+#include "blocks/library/mechanism_block.h"
+#include "cli/animation_output.h"
+#include "cli/force_analysis_command.h"
 #include "cli/interrupt.h"
+#include "cli/modes_report.h"
 #include "cli/output_budget.h"
 #include "cli/output_folder.h"
 #include "cli/plot_envelope.h"
+#include "cli/psd_command.h"
 #include "cli/report.h"
 #include "cli/run_outputs.h"
-#include "cli/force_analysis_command.h"
-#include "cli/psd_command.h"
 #include "cli/sweep.h"
-#include "blocks/library/mechanism_block.h"
-#include "blocks/linearization.h"
 #include "diagrams/loader.h"
-#include "run/model.h"
-#include "cli/animation_output.h"
 #include "graphics/scene.h"
 #include "mech/errors.h"
+#include "run/model.h"
 
 namespace mechflow::cli {
 namespace {
@@ -203,23 +203,23 @@ int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   ModesReport report;
   report.time = loaded.solver.t_start;
   blocks::Context ctx;
-  blocks::PrepareContext(diagram, report.time, &ctx, &report.x);
-  if (args.equilibrium) report.equilibrium = blocks::FindEquilibrium(diagram, &ctx, &report.x);
+  analysis::PrepareContext(diagram, report.time, &ctx, &report.x);
+  if (args.equilibrium) report.equilibrium = analysis::FindEquilibrium(diagram, &ctx, &report.x);
 
   // linearise; coordinates (a state whose rate is another state, or a
   // mechanism's q) carry the mode shapes
-  const Eigen::MatrixXd A = blocks::StateJacobian(diagram, &ctx, report.x);
-  report.states = blocks::StateNames(diagram);
+  const Eigen::MatrixXd A = analysis::StateJacobian(diagram, &ctx, report.x);
+  report.states = analysis::StateNames(diagram);
   report.x.resize(report.states.size());
-  report.roles = blocks::FindStateRoles(A);
+  report.roles = analysis::FindStateRoles(A);
   for (std::size_t i = 0; i < report.states.size(); ++i) {
     if (report.states[i].find(".q:") != std::string::npos) report.roles.coordinate[i] = true;
     if (report.states[i].find(".v:") != std::string::npos) report.roles.rate[i] = true;
   }
   std::vector<bool> normalise_on = report.roles.coordinate;
   if (std::find(normalise_on.begin(), normalise_on.end(), true) == normalise_on.end()) normalise_on.clear();
-  report.modes = blocks::ModalAnalysis(A, normalise_on);
-  report.switching = blocks::DescribeLinearisedModes(diagram, ctx);
+  report.modes = analysis::ModalAnalysis(A, normalise_on);
+  report.switching = analysis::DescribeLinearisedModes(diagram, ctx);
 
   const auto count = [](std::size_t n, const char* what) {
     return std::to_string(n) + " " + what + (n == 1 ? "" : "s");

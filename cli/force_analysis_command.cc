@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "analysis/force_analysis.h"
-#include "blocks/csv.h"
+#include "blocks/outputs/csv.h"
 #include "cli/interrupt.h"
 #include "cli/output_folder.h"
 #include "cli/plot.h"

@@ -3,8 +3,8 @@
 #include <cstdlib>
 #include <memory>
 
-#include "blocks/block_factory.h"
-#include "blocks/suggest.h"
+#include "blocks/framework/block_factory.h"
+#include "blocks/support/suggest.h"
 #include "diagrams/element_table.h"
 #include "diagrams/evaluator.h"
 #include "diagrams/loader.h"

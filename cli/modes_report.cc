@@ -19,7 +19,7 @@ std::string Format(const char* format, double value) {
   return text;
 }
 
-std::string Role(const blocks::StateRoles& roles, std::size_t i) {
+std::string Role(const analysis::StateRoles& roles, std::size_t i) {
   const bool coordinate = i < roles.coordinate.size() && roles.coordinate[i];
   const bool rate = i < roles.rate.size() && roles.rate[i];
   if (coordinate && rate) return "coordinate, rate";
@@ -28,16 +28,16 @@ std::string Role(const blocks::StateRoles& roles, std::size_t i) {
   return "";
 }
 
-std::string Kind(const blocks::Mode& m) {
+std::string Kind(const analysis::Mode& m) {
   switch (m.kind) {
-    case blocks::ModeKind::kOscillating:
+    case analysis::ModeKind::kOscillating:
       return m.damping_ratio < 0 ? "oscillating, growing" : "oscillating";
-    case blocks::ModeKind::kDecaying:
+    case analysis::ModeKind::kDecaying:
       return "decaying at " + Format("%.6g", m.decay_rate) + " 1/s (time constant " +
              Format("%.6g", 1 / m.decay_rate) + " s)";
-    case blocks::ModeKind::kGrowing:
+    case analysis::ModeKind::kGrowing:
       return "growing at " + Format("%.6g", -m.decay_rate) + " 1/s (unstable)";
-    case blocks::ModeKind::kRigidBody:
+    case analysis::ModeKind::kRigidBody:
       return "rigid-body (free motion)";
   }
   return "";
@@ -83,7 +83,7 @@ void PrintModes(const ModesReport& r, std::ostream& out) {
   // frequencies
   out << "\n mode   f damped [Hz]   f natural [Hz]   damping ratio   Re lambda [1/s]   Im lambda [rad/s]   kind\n";
   for (std::size_t k = 0; k < r.modes.size(); ++k) {
-    const blocks::Mode& m = r.modes[k];
+    const analysis::Mode& m = r.modes[k];
     std::snprintf(line, sizeof line, " %4zu %15.6f %16.6f %15.6f %17.6g %19.6g   %s\n", k + 1, m.frequency_hz,
                   m.natural_frequency_hz, m.damping_ratio, m.eigenvalue.real(), m.eigenvalue.imag(),
                   Kind(m).c_str());
@@ -121,14 +121,14 @@ void PrintModes(const ModesReport& r, std::ostream& out) {
   }
 }
 
-void WriteModesCsv(const std::vector<blocks::Mode>& modes, const std::vector<std::string>& states,
+void WriteModesCsv(const std::vector<analysis::Mode>& modes, const std::vector<std::string>& states,
                    std::ostream& csv) {
   csv.precision(17);
   csv << "mode,frequency_hz,natural_frequency_hz,damping_ratio,lambda_re,lambda_im";
   for (const auto& s : states) csv << "," << s;
   csv << "\n";
   for (std::size_t k = 0; k < modes.size(); ++k) {
-    const blocks::Mode& m = modes[k];
+    const analysis::Mode& m = modes[k];
     csv << k + 1 << "," << m.frequency_hz << "," << m.natural_frequency_hz << "," << m.damping_ratio << ","
         << m.eigenvalue.real() << "," << m.eigenvalue.imag();
     for (double v : m.shape) csv << "," << v;

@@ -6,19 +6,19 @@
 #include <string>
 #include <vector>
 
-#include "blocks/linearization.h"
+#include "analysis/linearization.h"
 
 namespace mechflow::cli {
 
 // Everything one linear analysis found, as the report shows it.
 struct ModesReport {
   double time = 0.0;                                   // [s], where the diagram was linearised
-  std::optional<blocks::EquilibriumResult> equilibrium;  // set when linearised at a found equilibrium
+  std::optional<analysis::EquilibriumResult> equilibrium;  // set when linearised at a found equilibrium
   std::vector<std::string> states;                     // "block.state", in state order
   std::vector<double> x;                               // the state linearised at
-  blocks::StateRoles roles;                            // coordinates and rates, per state
-  std::vector<blocks::Mode> modes;                     // sorted by natural frequency
-  std::vector<std::string> switching;                  // blocks::DescribeLinearisedModes
+  analysis::StateRoles roles;                            // coordinates and rates, per state
+  std::vector<analysis::Mode> modes;                     // sorted by natural frequency
+  std::vector<std::string> switching;                  // analysis::DescribeLinearisedModes
 };
 
 // Prints where the diagram was linearised (state values and roles), the modes
@@ -31,7 +31,7 @@ void PrintModes(const ModesReport& report, std::ostream& out);
 // natural_frequency_hz (|lambda| / 2 pi), damping_ratio, lambda_re [1/s],
 // lambda_im [rad/s], then one per state with the mode shape (real part).
 // Numbers at full precision.
-void WriteModesCsv(const std::vector<blocks::Mode>& modes, const std::vector<std::string>& states,
+void WriteModesCsv(const std::vector<analysis::Mode>& modes, const std::vector<std::string>& states,
                    std::ostream& csv);
 
 }  // namespace mechflow::cli

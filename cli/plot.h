@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/results.h"
+#include "blocks/outputs/results.h"
 #include "cli/output_folder.h"
 #include "cli/plot_envelope.h"
 #include "diagrams/loader.h"

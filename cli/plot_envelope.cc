@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "blocks/csv.h"
+#include "blocks/outputs/csv.h"
 
 namespace mechflow::cli {
 namespace {

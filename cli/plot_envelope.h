@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/results.h"
+#include "blocks/outputs/results.h"
 #include "diagrams/loader.h"
 
 namespace mechflow::cli {

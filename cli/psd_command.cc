@@ -3,7 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "blocks/input_file.h"
+#include "blocks/support/input_file.h"
 #include "cli/interrupt.h"
 #include "cli/psd_output.h"
 #include "cli/results_table.h"

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "blocks/csv.h"
+#include "blocks/outputs/csv.h"
 #include "cli/plot.h"
 #include "cli/xy_plot.h"
 #include "mech/errors.h"

@@ -11,13 +11,13 @@
 #include <string>
 #include <utility>
 
-#include "blocks/analytic_jacobian.h"
-#include "blocks/csv.h"
-#include "blocks/excerpt.h"
-#include "blocks/input_file.h"
 #include "blocks/library/friction_from_normal_force.h"
 #include "blocks/library/mechanism_block.h"
-#include "blocks/suggest.h"
+#include "blocks/outputs/csv.h"
+#include "blocks/solver/analytic_jacobian.h"
+#include "blocks/support/excerpt.h"
+#include "blocks/support/input_file.h"
+#include "blocks/support/suggest.h"
 #include "diagrams/units.h"
 #include "mech/mechanism.h"
 #include "scripting/global_reads.h"

@@ -6,9 +6,9 @@
 #include <optional>
 #include <sstream>
 
-#include "blocks/csv.h"
-#include "blocks/excerpt.h"
-#include "blocks/suggest.h"
+#include "blocks/outputs/csv.h"
+#include "blocks/support/excerpt.h"
+#include "blocks/support/suggest.h"
 #include "mech/errors.h"
 
 namespace mechflow::cli {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "blocks/csv.h"
-#include "blocks/suggest.h"
+#include "blocks/outputs/csv.h"
+#include "blocks/support/suggest.h"
 #include "cli/interrupt.h"
 #include "cli/plot.h"
 #include "cli/psd_output.h"

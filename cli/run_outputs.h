@@ -7,7 +7,7 @@
 #include <memory>
 #include <ostream>
 
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "cli/output_folder.h"
 #include "cli/plot_envelope.h"
 #include "cli/results_file.h"

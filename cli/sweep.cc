@@ -1,6 +1,6 @@
 #include "cli/sweep.h"
 
-#include "blocks/csv.h"
+#include "blocks/outputs/csv.h"
 
 #include "cli/plot.h"
 
@@ -22,19 +22,19 @@
 #include <thread>
 #include <vector>
 
-#include "blocks/simulator.h"
-#include "blocks/suggest.h"
+#include "blocks/solver/simulator.h"
+#include "blocks/support/suggest.h"
 #include "cli/interrupt.h"
 #include "cli/output_budget.h"
 #include "cli/output_folder.h"
 #include "cli/plot_envelope.h"
-#include "cli/results_file.h"
 #include "cli/ranks.h"
 #include "cli/report.h"
+#include "cli/results_file.h"
 #include "diagrams/loader.h"
+#include "mech/errors.h"
 #include "run/columns.h"
 #include "run/model.h"
-#include "mech/errors.h"
 
 namespace mechflow::cli {
 namespace {

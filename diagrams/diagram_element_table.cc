@@ -5,17 +5,6 @@
 #include "diagrams/element_table.h"
 
 namespace mechflow::diagrams {
-namespace {
-
-AttributeSpec Req(std::string name, std::string unit, std::string doc) {
-  return {std::move(name), true, "", std::move(unit), std::move(doc)};
-}
-AttributeSpec Opt(std::string name, std::string default_text, std::string unit, std::string doc) {
-  return {std::move(name), false, std::move(default_text), std::move(unit), std::move(doc)};
-}
-
-}  // namespace
-
 std::vector<ElementSpec> DiagramElementSpecs() {
   const AttributeSpec comment = Opt("comment", "", "", "free text");
   std::vector<AttributeSpec> report = {};

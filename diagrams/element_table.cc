@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "blocks/excerpt.h"
-#include "blocks/suggest.h"
+#include "blocks/support/excerpt.h"
+#include "blocks/support/suggest.h"
 #include "mech/errors.h"
 
 namespace mechflow::diagrams {

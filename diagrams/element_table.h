@@ -24,6 +24,14 @@ struct AttributeSpec {
   std::string doc;  // one line
 };
 
+// The rows of the table, as its two halves write them.
+inline AttributeSpec Req(std::string name, std::string unit, std::string doc) {
+  return {std::move(name), true, "", std::move(unit), std::move(doc)};
+}
+inline AttributeSpec Opt(std::string name, std::string default_text, std::string unit, std::string doc) {
+  return {std::move(name), false, std::move(default_text), std::move(unit), std::move(doc)};
+}
+
 // One type= (or kind=) of a tag, with the attributes only it takes.
 struct ElementVariant {
   std::string name;
@@ -43,7 +51,7 @@ struct ElementSpec {
   std::string selector = "";                   // "type" or "kind" when it has variants
   std::vector<ElementVariant> variants = {};
   // Any further attribute is accepted here and checked later (a block's
-  // parameters depend on its type: blocks/block_factory.h).
+  // parameters depend on its type: blocks/framework/block_factory.h).
   bool open_attributes = false;
 
   const ElementVariant* FindVariant(const std::string& name) const;

@@ -2,7 +2,7 @@
 
 #include "diagrams/element_table.h"
 #include "diagrams/mechanism_reader.h"
-#include "scripting/time_function.h"
+#include "scripting/jet_expression.h"
 
 namespace mechflow::diagrams {
 namespace {
@@ -124,7 +124,7 @@ mech::JointSpec ReadJoint(const MechanismReader& r, const ElementDesc& e,
                                   "takes identifiers at their values at load and would not follow it; drive the "
                                   "motion by a signal instead (signal=\"NAME\", fed by a motion block)");
         r.CheckUnit(et, "value", false);
-        spec.function = std::make_shared<scripting::CompiledTimeFunction>(et.Text("value"), *eval.identifiers(), what);
+        spec.function = std::make_shared<scripting::JetExpression>(et.Text("value"), *eval.identifiers(), what);
         eval.identifiers()->NoteFixedUses(et.Text("value"), what);
       } else {
         spec.value = r.Number(et, "q0", 0.0);

@@ -6,12 +6,13 @@
 #include <tuple>
 
 #include "analysis/spectrum_limits.h"
-#include "blocks/analytic_jacobian.h"
-#include "blocks/block_factory.h"
-#include "blocks/diagram_builder.h"
-#include "blocks/suggest.h"
-#include "diagrams/evaluator.h"
+#include "blocks/framework/block_factory.h"
+#include "blocks/framework/diagram_builder.h"
+#include "blocks/outputs/column_names.h"
+#include "blocks/solver/analytic_jacobian.h"
+#include "blocks/support/suggest.h"
 #include "diagrams/attribute_units.h"
+#include "diagrams/evaluator.h"
 #include "diagrams/mechanism_loader.h"
 #include "diagrams/unit_check.h"
 #include "diagrams/units.h"
@@ -315,9 +316,7 @@ void CollectReports(const DiagramDescription& d, const Evaluator& eval, LoadedDi
 // <spectrum>s: a logged column (as the results name it) and the Welch
 // options, checked now so that a bad one is bad input before the run.
 void CollectSpectra(const DiagramDescription& d, const Evaluator& eval, LoadedDiagram* out) {
-  std::vector<std::string> columns;
-  for (const blocks::SignalRef& s : out->logged)
-    for (int i = 0; i < s.width; ++i) columns.push_back(s.width == 1 ? s.name : s.name + "[" + std::to_string(i) + "]");
+  const std::vector<std::string> columns = blocks::LoggedColumnNames(out->logged);
   for (const ReportDesc& r : d.spectra) {
     SpectrumRequest request;
     request.origin = r.loc.str();
@@ -358,9 +357,8 @@ void CollectSpectra(const DiagramDescription& d, const Evaluator& eval, LoadedDi
 
 // <xy>s: curves="X:Y X:Y ..." naming logged columns.
 void CollectXYPlots(const DiagramDescription& d, LoadedDiagram* out) {
-  std::vector<std::string> columns = {"time"};
-  for (const blocks::SignalRef& s : out->logged)
-    for (int i = 0; i < s.width; ++i) columns.push_back(s.width == 1 ? s.name : s.name + "[" + std::to_string(i) + "]");
+  std::vector<std::string> columns = blocks::LoggedColumnNames(out->logged);
+  columns.insert(columns.begin(), "time");
   auto column = [&](const std::string& name, const Attribute& a) {
     const auto it = std::find(columns.begin(), columns.end(), name);
     if (it == columns.end())

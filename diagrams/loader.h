@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "blocks/block_factory.h"
-#include "blocks/diagram.h"
-#include "blocks/input_file.h"
-#include "blocks/simulator.h"
+#include "blocks/framework/block_factory.h"
+#include "blocks/framework/diagram.h"
+#include "blocks/solver/simulator.h"
+#include "blocks/support/input_file.h"
 #include "diagrams/description.h"
 #include "scripting/control_script.h"
 #include "scripting/identifiers.h"
@@ -35,7 +35,7 @@ struct LoadOptions {
   std::optional<std::string> results;                     // --results NAME (the CSV file)
   bool unsafe_lua = false;
   // --allow-read DIR: folders whose trees the files the diagram names may lie
-  // in, besides its own folder's (blocks/input_file.h)
+  // in, besides its own folder's (blocks/support/input_file.h)
   std::vector<std::string> allow_read;
 };
 

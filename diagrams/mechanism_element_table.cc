@@ -6,13 +6,6 @@
 namespace mechflow::diagrams {
 namespace {
 
-AttributeSpec Req(std::string name, std::string unit, std::string doc) {
-  return {std::move(name), true, "", std::move(unit), std::move(doc)};
-}
-AttributeSpec Opt(std::string name, std::string default_text, std::string unit, std::string doc) {
-  return {std::move(name), false, std::move(default_text), std::move(unit), std::move(doc)};
-}
-
 // A stick model belongs to the frictional element alone.
 const std::pair<std::string, std::string> kNoStick = {
     "stick", "the slider already sticks exactly (its stiffness is the elastic link in series); remove stick"};

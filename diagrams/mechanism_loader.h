@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 #include "diagrams/description.h"
 #include "diagrams/evaluator.h"
 

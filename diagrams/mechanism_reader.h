@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/suggest.h"
+#include "blocks/support/suggest.h"
 #include "diagrams/attribute_units.h"
 #include "diagrams/description.h"
 #include "diagrams/evaluator.h"

@@ -7,9 +7,9 @@
 
 #include <tinyxml2.h>
 
-#include "blocks/excerpt.h"
-#include "blocks/input_file.h"
-#include "blocks/suggest.h"
+#include "blocks/support/excerpt.h"
+#include "blocks/support/input_file.h"
+#include "blocks/support/suggest.h"
 #include "diagrams/element_table.h"
 #include "diagrams/xml_text_check.h"
 #include "mech/errors.h"

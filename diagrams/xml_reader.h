@@ -17,7 +17,7 @@ namespace mechflow::diagrams {
 
 // `allow_read`: folders whose trees the files the diagram names (<mechanism
 // src>, <script src>) may lie in besides the diagram's own folder tree
-// (--allow-read; blocks/input_file.h).
+// (--allow-read; blocks/support/input_file.h).
 DiagramDescription ReadDiagramFile(const std::string& path, const std::vector<std::string>& allow_read = {});
 
 // Same, from text in memory; `file` is the name used in messages.

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "blocks/excerpt.h"
+#include "blocks/support/excerpt.h"
 #include "mech/errors.h"
 
 namespace mechflow::diagrams {

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "blocks/csv.h"
+#include "blocks/outputs/csv.h"
 #include "graphics/encoding.h"
 #include "graphics/mesh.h"
 #include "graphics/web_assets.h"

@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "blocks/csv.h"
+#include "blocks/outputs/csv.h"
 #include "graphics/encoding.h"
 #include "graphics/mesh.h"
 

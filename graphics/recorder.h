@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "graphics/mesh.h"
 #include "graphics/scene.h"
 #include "graphics/signal_track.h"

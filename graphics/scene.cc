@@ -4,9 +4,9 @@
 #include <cmath>
 #include <map>
 
-#include "blocks/csv.h"
 #include "blocks/library/mechanism_block.h"
-#include "blocks/suggest.h"
+#include "blocks/outputs/csv.h"
+#include "blocks/support/suggest.h"
 #include "diagrams/evaluator.h"
 #include "mech/errors.h"
 #include "scripting/compiled_expression.h"

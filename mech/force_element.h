@@ -175,7 +175,7 @@ class ForceElement {
   virtual bool UpdateModes(const ElementContext&, std::span<double> /*state*/, std::span<double> /*modes*/) const {
     return false;
   }
-  // A static equilibrium search (blocks/linearization.h) at a candidate state
+  // A static equilibrium search (analysis/linearization.h) at a candidate state
   // at rest: set the modes that element takes there -- a contact's from its
   // penetration, a sliding friction element sticks, a stuck one beyond its
   // static limit breaks away. Returns true when a mode (or a state it resets)

@@ -1,11 +1,14 @@
 #include "run/columns.h"
 
+#include <utility>
+
+#include "blocks/outputs/column_names.h"
+
 namespace mechflow::run {
 
 std::vector<std::string> ColumnNames(const std::vector<blocks::SignalRef>& logged) {
   std::vector<std::string> names = {"time"};
-  for (const blocks::SignalRef& s : logged)
-    for (int i = 0; i < s.width; ++i) names.push_back(s.width == 1 ? s.name : s.name + "[" + std::to_string(i) + "]");
+  for (std::string& name : blocks::LoggedColumnNames(logged)) names.push_back(std::move(name));
   return names;
 }
 

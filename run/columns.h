@@ -3,16 +3,13 @@
 // gives n columns "name[0]" .. "name[n-1]" (width 1: "name"), after "time";
 // a figure or column with a unit is headed "label [unit]" in the tables
 // that put the unit into the header (the sweep summary).
-//
-// The loader and the Simulator name columns before a run exists (the loader
-// checks <spectrum> and <xy> against them; blocks/ is below run/), so they
-// keep their own copy of the first rule; run/ and everything above it use
-// these.
+// The first rule is blocks::LoggedColumnNames (blocks/outputs/column_names.h),
+// which the simulator and the loader use too.
 
 #include <string>
 #include <vector>
 
-#include "blocks/diagram.h"
+#include "blocks/framework/diagram.h"
 
 namespace mechflow::run {
 

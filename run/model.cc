@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "blocks/suggest.h"
+#include "blocks/support/suggest.h"
 #include "diagrams/xml_reader.h"
 #include "mech/errors.h"
 

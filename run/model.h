@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 #include "run/columns.h"
 

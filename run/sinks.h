@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/results.h"
+#include "blocks/outputs/results.h"
 
 namespace mechflow::run {
 

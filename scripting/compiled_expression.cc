@@ -8,8 +8,8 @@
 
 #include <lua.hpp>
 
-#include "blocks/excerpt.h"
-#include "blocks/suggest.h"
+#include "blocks/support/excerpt.h"
+#include "blocks/support/suggest.h"
 #include "mech/errors.h"
 #include "scripting/identifier_bindings.h"
 #include "scripting/identifiers.h"

@@ -6,8 +6,8 @@
 
 #include <lua.hpp>
 
-#include "blocks/block.h"
-#include "blocks/suggest.h"
+#include "blocks/framework/block.h"
+#include "blocks/support/suggest.h"
 #include "mech/errors.h"
 #include "scripting/compiled_expression.h"
 #include "scripting/identifier_bindings.h"

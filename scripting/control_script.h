@@ -43,8 +43,8 @@
 #include <utility>
 #include <vector>
 
-#include "blocks/diagram.h"
-#include "blocks/run_control.h"
+#include "blocks/framework/diagram.h"
+#include "blocks/solver/run_control.h"
 
 struct lua_State;
 

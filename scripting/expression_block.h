@@ -20,7 +20,7 @@
 // a result that is not a finite number, fails the step with SimulationError
 // naming the block, the time and the inputs.
 
-#include "blocks/block_factory.h"
+#include "blocks/framework/block_factory.h"
 
 namespace mechflow::scripting {
 

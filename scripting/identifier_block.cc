@@ -1,6 +1,6 @@
 #include "scripting/identifier_block.h"
 
-#include "blocks/suggest.h"
+#include "blocks/support/suggest.h"
 #include "mech/errors.h"
 #include "scripting/identifiers.h"
 

@@ -15,8 +15,8 @@
 // integrator is re-initialised after each change) and every run starts from
 // the value the diagram was loaded with.
 
-#include "blocks/block.h"
-#include "blocks/block_factory.h"
+#include "blocks/framework/block.h"
+#include "blocks/framework/block_factory.h"
 
 namespace mechflow::scripting {
 

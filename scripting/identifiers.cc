@@ -10,8 +10,8 @@
 
 #include <lua.hpp>
 
-#include "blocks/excerpt.h"
-#include "blocks/suggest.h"
+#include "blocks/support/excerpt.h"
+#include "blocks/support/suggest.h"
 #include "mech/errors.h"
 #include "scripting/lua_guards.h"
 #include "scripting/lua_state.h"

@@ -54,7 +54,7 @@
 // call that filled the others (ports of different feedthrough are scheduled
 // apart, and an algebraic loop re-evaluates with new inputs).
 
-#include "blocks/block_factory.h"
+#include "blocks/framework/block_factory.h"
 
 namespace mechflow::scripting {
 

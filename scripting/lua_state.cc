@@ -11,7 +11,7 @@
 
 #include <lua.hpp>
 
-#include "blocks/excerpt.h"
+#include "blocks/support/excerpt.h"
 #include "mech/errors.h"
 #include "scripting/lua_guards.h"
 

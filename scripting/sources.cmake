@@ -10,5 +10,6 @@ set(MECHFLOW_SCRIPTING_SOURCES
   scripting/lua_block.cc
   scripting/lua_guards.cc
   scripting/lua_state.cc
-  scripting/time_function.cc
+  scripting/jet_expression.cc
+  scripting/jet_expression_compiler.cc
 )

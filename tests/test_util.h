@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
 #include "mech/errors.h"

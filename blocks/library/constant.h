@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 
 namespace mechflow::blocks {
 

@@ -10,7 +10,7 @@
 // Step response from y(0) = y0 to a constant u: y = K u + (y0 - K u) exp(-t/T).
 // No events.
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 
 namespace mechflow::blocks {
 

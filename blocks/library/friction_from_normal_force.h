@@ -32,7 +32,7 @@
 #include <memory>
 #include <string>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 #include "mech/friction_law.h"
 
 namespace mechflow::blocks {

@@ -39,7 +39,7 @@
 
 #include <optional>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 
 namespace mechflow::blocks {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "blocks/csv.h"
 #include "blocks/library/hysteresis.h"
+#include "blocks/outputs/csv.h"
 #include "mech/errors.h"
 
 namespace mechflow::blocks {

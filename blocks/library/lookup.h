@@ -19,7 +19,7 @@
 #include <memory>
 #include <vector>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 #include "blocks/library/interpolation.h"
 
 namespace mechflow::blocks {

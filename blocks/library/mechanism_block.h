@@ -25,7 +25,7 @@
 // an index that does not exist or a repeated sensor name).
 //
 // Initialize runs mech::InitialState with every input at zero: inputs are not
-// valid yet when a diagram initialises (blocks/block.h), so elements whose
+// valid yet when a diagram initialises (blocks/framework/block.h), so elements whose
 // initial state depends on an input see it as zero. A mechanism with driving
 // signals runs it again at its first mode update, when the inputs are valid:
 // loops assemble around the drives' starting positions.
@@ -43,7 +43,7 @@
 #include <optional>
 #include <vector>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 #include "mech/sensor.h"
 #include "mech/sliding_jacobian.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// The structural sparsity of a mechanism block (blocks/block.h,
+// The structural sparsity of a mechanism block (blocks/framework/block.h,
 // BlockSparsity), derived from the mechanism's topology.
 //
 // Groups: every segment tree hanging from the ground is one group, and trees
@@ -25,7 +25,7 @@
 #include <optional>
 #include <vector>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 #include "mech/sensor.h"
 
 namespace mechflow::blocks {

@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 #include "blocks/library/interpolation.h"
 
 namespace mechflow::blocks {

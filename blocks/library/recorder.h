@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 
 namespace mechflow::blocks {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/block_factory.h"
+#include "blocks/framework/block_factory.h"
 #include "blocks/library/abs.h"
 #include "blocks/library/clock.h"
 #include "blocks/library/constant.h"

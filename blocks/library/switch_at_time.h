@@ -11,7 +11,7 @@
 
 #include <string>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 
 namespace mechflow::blocks {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "blocks/csv.h"
-#include "blocks/excerpt.h"
+#include "blocks/outputs/csv.h"
+#include "blocks/support/excerpt.h"
 #include "mech/errors.h"
 
 namespace mechflow::blocks {

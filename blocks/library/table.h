@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "blocks/block.h"
+#include "blocks/framework/block.h"
 
 namespace mechflow::blocks {
 
@@ -51,7 +51,7 @@ struct NumberRow {
 };
 
 // The lines of numbers of a table file's `text` (read by the loader, which
-// confines it to the diagram's folder: blocks/input_file.h): fields separated
+// confines it to the diagram's folder: blocks/support/input_file.h): fields separated
 // by commas, semicolons, tabs or spaces, '#' comments, blank lines skipped, a
 // byte-order mark ignored, and at most one header line before the data,
 // either all text (skipped) or a corner label and numbers (kept, `header`).

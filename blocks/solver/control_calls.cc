@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "blocks/evaluation.h"
+#include "blocks/framework/evaluation.h"
 #include "blocks/solver/evaluate_at.h"
 #include "mech/errors.h"
 

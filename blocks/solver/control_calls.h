@@ -1,14 +1,14 @@
 #pragma once
-// ControlCalls: the calls of a run's control (blocks/run_control.h) and what
+// ControlCalls: the calls of a run's control (blocks/solver/run_control.h) and what
 // they leave behind: whether the model changed (then the modes are settled
 // again here and the simulator re-initialises), and a request to stop.
 
 #include <limits>
 #include <string>
 
-#include "blocks/block_context.h"
-#include "blocks/diagram.h"
-#include "blocks/run_control.h"
+#include "blocks/framework/block_context.h"
+#include "blocks/framework/diagram.h"
+#include "blocks/solver/run_control.h"
 
 namespace mechflow::blocks {
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "blocks/evaluation.h"
+#include "blocks/framework/evaluation.h"
 #include "blocks/solver/cvode_run.h"
 #include "blocks/solver/evaluate_at.h"
 #include "mech/errors.h"

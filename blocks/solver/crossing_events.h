@@ -1,16 +1,16 @@
 #pragma once
 // CrossingEvents: the diagram's zero crossings during a run. They are checked
 // at every step end and output time, as CVODE's own root finding would in
-// CV_NORMAL mode (blocks/crossing_search.h), located on the step's
+// CV_NORMAL mode (blocks/solver/crossing_search.h), located on the step's
 // interpolant, and handed to the blocks that own them; each handled crossing
 // is kept as an EventRecord.
 
 #include <memory>
 #include <vector>
 
-#include "blocks/block_context.h"
-#include "blocks/crossing_search.h"
-#include "blocks/diagram.h"
+#include "blocks/framework/block_context.h"
+#include "blocks/framework/diagram.h"
+#include "blocks/solver/crossing_search.h"
 #include "blocks/solver/refiring_limit.h"
 #include "blocks/solver/solver_options.h"
 

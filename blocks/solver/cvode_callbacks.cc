@@ -9,8 +9,8 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "blocks/algebraic_loop.h"
-#include "blocks/evaluation.h"
+#include "blocks/framework/algebraic_loop.h"
+#include "blocks/framework/evaluation.h"
 #include "blocks/solver/cvode_run.h"
 #include "blocks/solver/evaluate_at.h"
 #include "blocks/solver/run_failure.h"

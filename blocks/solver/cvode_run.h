@@ -12,14 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "blocks/block_context.h"
-#include "blocks/diagram.h"
-#include "blocks/second_order_solver.h"
+#include "blocks/framework/block_context.h"
+#include "blocks/framework/diagram.h"
 #include "blocks/solver/callback_failures.h"
 #include "blocks/solver/linear_solver_choice.h"
+#include "blocks/solver/second_order_solver.h"
 #include "blocks/solver/solver_options.h"
 #include "blocks/solver/step_polynomial.h"
-#include "blocks/sundials.h"
+#include "blocks/solver/sundials.h"
 
 #include <sundials/sundials_matrix.h>
 #include <sundials/sundials_nvector.h>

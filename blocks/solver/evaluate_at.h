@@ -2,9 +2,9 @@
 // Every output of the diagram at (t, x), the evaluation each part of a run
 // (rows, crossings, reports, sample hits, the control) starts from.
 
-#include "blocks/block_context.h"
-#include "blocks/diagram.h"
-#include "blocks/evaluation.h"
+#include "blocks/framework/block_context.h"
+#include "blocks/framework/diagram.h"
+#include "blocks/framework/evaluation.h"
 
 namespace mechflow::blocks {
 

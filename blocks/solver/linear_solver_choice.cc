@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <string>
 
-#include "blocks/sparsity.h"
+#include "blocks/solver/sparsity.h"
 #include "mech/errors.h"
 
 namespace mechflow::blocks {
@@ -38,7 +38,7 @@ LinearSolverChoice ChooseLinearSolver(const Diagram& diagram, const SolverOption
   if (!choice.sparse) choice.rate_pairs = DiagramRatePairs(diagram);
   // large mechanisms whose Jacobian is dense: matrix-free (see the header)
   // (not for closed loops: on the slider-crank its inexact solves cost
-  // accuracy, 5e-6 against 3e-7 at rtol 1e-8, tests/blocks/second_order_solver_test.cc)
+  // accuracy, 5e-6 against 3e-7 at rtol 1e-8, tests/blocks/solver/second_order_solver_test.cc)
   bool projects = false;
   for (int b = 0; b < diagram.num_blocks(); ++b) projects = projects || diagram.block(b).has_projection();
   choice.krylov = kind == LinearSolverKind::kKrylov ||

@@ -4,10 +4,10 @@
 //   dense:  CVODE's dense matrix and difference-quotient Jacobian (n
 //           right-hand sides per Jacobian, O(n^3) factorisation); with rate
 //           pairs (q' = v) the positions are eliminated before the LU
-//           (blocks/second_order_solver.h);
-//   sparse: the diagram's structural pattern (blocks/sparsity.h), filled by
+//           (blocks/solver/second_order_solver.h);
+//   sparse: the diagram's structural pattern (blocks/solver/sparsity.h), filled by
 //           coloured difference quotients (one right-hand side per colour,
-//           blocks/coloured_jacobian.h) into a compressed-column matrix that
+//           blocks/solver/coloured_jacobian.h) into a compressed-column matrix that
 //           KLU factors. The Newton matrix I - gamma J is formed by the
 //           simulator (CVodeSetLinSysFn): CVODE's own construction of it for
 //           a sparse matrix costs O(n^2) (in SUNDIALS 6.4 it took 91 % of a
@@ -20,7 +20,7 @@
 //           reads every coordinate), where dense costs n^2 per Jacobian and
 //           n^3 per factorisation.
 // Dense and sparse take the blocks' analytic Jacobian instead of difference
-// quotients when the diagram has one (blocks/analytic_jacobian.h; a sliding
+// quotients when the diagram has one (blocks/solver/analytic_jacobian.h; a sliding
 // mechanism, mech/sliding_jacobian.h): no right-hand sides per Jacobian.
 // kAuto picks sparse when the diagram has at least kSparseMinStates states and
 // its pattern needs at most a quarter as many colours as states (so a fill
@@ -39,9 +39,9 @@
 #include <utility>
 #include <vector>
 
-#include "blocks/analytic_jacobian.h"
-#include "blocks/coloured_jacobian.h"
-#include "blocks/diagram.h"
+#include "blocks/framework/diagram.h"
+#include "blocks/solver/analytic_jacobian.h"
+#include "blocks/solver/coloured_jacobian.h"
 #include "blocks/solver/solver_options.h"
 
 namespace mechflow::blocks {

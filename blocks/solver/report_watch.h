@@ -1,12 +1,12 @@
 #pragma once
-// ReportWatch: the figures a diagram asks for (blocks/report.h), located
+// ReportWatch: the figures a diagram asks for (blocks/outputs/report.h), located
 // while the run goes: each report sees the solution on every stretch the
 // integrator has passed, evaluated on the step's interpolant.
 
 #include <functional>
 #include <vector>
 
-#include "blocks/report.h"
+#include "blocks/outputs/report.h"
 
 namespace mechflow::blocks {
 

@@ -30,18 +30,6 @@ bool AllFinite(const std::vector<double>& values) {
 
 }  // namespace
 
-std::vector<std::string> ColumnNames(const std::vector<SignalRef>& logged) {
-  std::vector<std::string> names;
-  for (const auto& s : logged) {
-    if (s.width == 1) {
-      names.push_back(s.name);
-    } else {
-      for (int i = 0; i < s.width; ++i) names.push_back(s.name + "[" + std::to_string(i) + "]");
-    }
-  }
-  return names;
-}
-
 RowRecorder::RowRecorder(const Diagram& diagram, Context* ctx, const std::vector<SignalRef>& logged,
                          Results* results)
     : diagram_(diagram), ctx_(*ctx), results_(*results) {

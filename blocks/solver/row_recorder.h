@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "blocks/block_context.h"
-#include "blocks/diagram.h"
-#include "blocks/results.h"
+#include "blocks/framework/block_context.h"
+#include "blocks/framework/diagram.h"
+#include "blocks/outputs/results.h"
 
 namespace mechflow::blocks {
 
@@ -20,13 +20,10 @@ class RowObserver {
   virtual void OnRow(double t, const double* x, const Context& ctx) = 0;
 };
 
-// The results' column names of `logged`: a signal of width w gives w columns, name[i].
-std::vector<std::string> ColumnNames(const std::vector<SignalRef>& logged);
-
 class RowRecorder {
  public:
   // `logged`: the columns after time, in order; the results must have their
-  // columns (ColumnNames). Neither is owned.
+  // columns (LoggedColumnNames, blocks/outputs/column_names.h). Neither is owned.
   RowRecorder(const Diagram& diagram, Context* ctx, const std::vector<SignalRef>& logged, Results* results);
 
   // `observer` (not owned) sees every row after it is recorded.

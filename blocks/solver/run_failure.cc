@@ -6,7 +6,7 @@
 
 #include <cvode/cvode.h>
 
-#include "blocks/sundials.h"
+#include "blocks/solver/sundials.h"
 
 namespace mechflow::blocks {
 

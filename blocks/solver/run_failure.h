@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "blocks/diagram.h"
+#include "blocks/framework/diagram.h"
 #include "blocks/solver/callback_failures.h"
 
 namespace mechflow::blocks {

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "blocks/block_context.h"
-#include "blocks/diagram.h"
+#include "blocks/framework/block_context.h"
+#include "blocks/framework/diagram.h"
 #include "blocks/solver/solver_options.h"
 
 namespace mechflow::blocks {

@@ -7,7 +7,7 @@ namespace mechflow::blocks {
 
 enum class LinearSolverKind { kAuto, kDense, kSparse, kKrylov };
 // Where the Newton matrices' Jacobian comes from: kAuto takes the analytic
-// one when the diagram has it (blocks/analytic_jacobian.h), difference
+// one when the diagram has it (blocks/solver/analytic_jacobian.h), difference
 // quotients otherwise; kAnalytic refuses a diagram without it.
 enum class JacobianKind { kAuto, kAnalytic, kDifferenceQuotient };
 
@@ -23,7 +23,7 @@ struct SolverOptions {
   LinearSolverKind linear_solver = LinearSolverKind::kAuto;
   // Dense runs of diagrams with rate pairs (x_q' = x_v, Block::rate_pairs)
   // eliminate the positions from each Newton system
-  // (blocks/second_order_solver.h); false solves the whole system, as
+  // (blocks/solver/second_order_solver.h); false solves the whole system, as
   // before (for comparisons).
   bool second_order = true;
   JacobianKind jacobian = JacobianKind::kAuto;
@@ -52,7 +52,7 @@ struct SolverStats {
   long projection_failures = 0;  // failed projections (each retries its step smaller)
   bool sparse = false;           // sparse Jacobian and KLU (otherwise dense or Krylov)
   bool krylov = false;           // GMRES with difference-quotient products J v
-  bool analytic_jacobian = false;  // the blocks' exact Jacobian (blocks/analytic_jacobian.h)
+  bool analytic_jacobian = false;  // the blocks' exact Jacobian (blocks/solver/analytic_jacobian.h)
   int newton_size = 0;           // unknowns of each Newton system solved (fewer than states with rate pairs)
   int colours = 0;               // sparse: column groups, right-hand sides per Jacobian
   long nonzeros = 0;             // sparse: entries of the structural pattern

@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "blocks/sundials.h"
+#include "blocks/solver/sundials.h"
 
 namespace mechflow::blocks {
 

@@ -15,11 +15,11 @@
 
 #include <gtest/gtest.h>
 
-#include "blocks/block_factory.h"
-#include "blocks/diagram_builder.h"
-#include "blocks/evaluation.h"
-#include "blocks/input_file.h"
-#include "blocks/simulator.h"
+#include "blocks/framework/block_factory.h"
+#include "blocks/framework/diagram_builder.h"
+#include "blocks/framework/evaluation.h"
+#include "blocks/solver/simulator.h"
+#include "blocks/support/input_file.h"
 #include "mech/errors.h"
 
 namespace mechflow::blocks::testing {

@@ -13,7 +13,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "cli/commands.h"
 #include "cli/report.h"
 #include "tests/test_util.h"

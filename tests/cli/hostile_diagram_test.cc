@@ -17,10 +17,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "blocks/results.h"
+#include "blocks/outputs/results.h"
 #include "cli/output_folder.h"
-#include "cli/results_file.h"
 #include "cli/plot.h"
+#include "cli/results_file.h"
 #include "cli/xy_plot.h"
 #include "tests/cli/mechflow_command.h"
 

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "blocks/linearization.h"
+#include "analysis/linearization.h"
 #include "cli/commands.h"
 
 namespace mechflow::cli {
@@ -68,7 +68,7 @@ TEST(ModesTest, JacobianOfALinearSystemIsExact) {
   // A = [[0, 1], [-4, -0.4]]: eigenvalues -0.2 +- i sqrt(3.96).
   Eigen::MatrixXd A(2, 2);
   A << 0, 1, -4, -0.4;
-  const auto modes = blocks::ModalAnalysis(A);
+  const auto modes = analysis::ModalAnalysis(A);
   ASSERT_EQ(modes.size(), 1u);
   EXPECT_NEAR(modes[0].eigenvalue.imag(), std::sqrt(3.96), 1e-12);
   EXPECT_NEAR(modes[0].damping_ratio, 0.1, 1e-12);

@@ -15,7 +15,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "blocks/csv.h"
+#include "blocks/outputs/csv.h"
 #include "cli/gnuplot_text.h"
 #include "cli/output_folder.h"
 #include "cli/plot.h"

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
 #include "tests/fuzz/fuzz_target.h"

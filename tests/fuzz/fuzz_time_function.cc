@@ -2,8 +2,8 @@
 // compiled against two identifiers and evaluated at a few times.
 
 #include "scripting/identifiers.h"
+#include "scripting/jet_expression.h"
 #include "scripting/lua_state.h"
-#include "scripting/time_function.h"
 #include "tests/fuzz/fuzz_target.h"
 
 namespace {
@@ -17,7 +17,7 @@ void CompileAndEvaluate(const std::string& text) {
     ids.Evaluate(lua);
     return ids;
   }();
-  const mechflow::scripting::CompiledTimeFunction f(text, identifiers, "fuzz");
+  const mechflow::scripting::JetExpression f(text, identifiers, "fuzz");
   for (const double t : {0.0, 0.25, 1.0, -3.5, 1e6}) f.Evaluate(t);
 }
 

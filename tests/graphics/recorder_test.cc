@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "graphics/recorder.h"
 #include "tests/test_util.h"
 

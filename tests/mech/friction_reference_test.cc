@@ -15,7 +15,7 @@
 
 #include "bench/friction_diagram.h"
 #include "bench/friction_direct.h"
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
 

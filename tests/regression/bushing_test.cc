@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "blocks/linearization.h"
+#include "analysis/linearization.h"
 #include "tests/test_util.h"
 
 namespace mechflow {
@@ -28,13 +28,13 @@ TEST(BushingTest, SagAndFrequencyBU1) {
   const auto loaded = testing::LoadXml(kBushing);
   blocks::Context ctx;
   std::vector<double> x;
-  blocks::PrepareContext(*loaded.diagram, 0.0, &ctx, &x);
-  blocks::FindEquilibrium(*loaded.diagram, &ctx, &x);
+  analysis::PrepareContext(*loaded.diagram, 0.0, &ctx, &x);
+  analysis::FindEquilibrium(*loaded.diagram, &ctx, &x);
   const double sag = 10 * 9.81 / 39478.4;
   EXPECT_NEAR(sag, 2.485e-3, 1e-6);
   EXPECT_NEAR(x[2], -sag, 1e-9);  // the joint's z coordinate
-  const auto modes = blocks::ModalAnalysis(blocks::StateJacobian(*loaded.diagram, &ctx, x));
-  const auto vertical = std::find_if(modes.begin(), modes.end(), [](const blocks::Mode& m) {
+  const auto modes = analysis::ModalAnalysis(analysis::StateJacobian(*loaded.diagram, &ctx, x));
+  const auto vertical = std::find_if(modes.begin(), modes.end(), [](const analysis::Mode& m) {
     return std::abs(m.frequency_hz - 10.0) < 0.5;
   });
   ASSERT_NE(vertical, modes.end());

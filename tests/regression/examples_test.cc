@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 
 namespace mechflow {

@@ -14,7 +14,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 
 namespace mechflow {

@@ -11,7 +11,7 @@
 
 #include "analysis/spectrum.h"
 #include "blocks/library/mechanism_block.h"
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 
 namespace mechflow {

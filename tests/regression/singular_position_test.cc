@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "blocks/library/mechanism_block.h"
-#include "blocks/simulator.h"
+#include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 #include "mech/constraint_solve.h"
 #include "mech/mechanism.h"

@@ -10,11 +10,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "blocks/csv.h"
-#include "tests/cli/mechflow_command.h"
+#include "blocks/outputs/csv.h"
+#include "diagrams/xml_reader.h"
 #include "mech/errors.h"
 #include "run/sinks.h"
-#include "diagrams/xml_reader.h"
+#include "tests/cli/mechflow_command.h"
 
 namespace mechflow {
 namespace {

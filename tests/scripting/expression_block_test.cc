@@ -11,8 +11,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "blocks/diagram_builder.h"
-#include "blocks/simulator.h"
+#include "blocks/framework/diagram_builder.h"
+#include "blocks/solver/simulator.h"
 #include "mech/errors.h"
 #include "scripting/identifiers.h"
 #include "scripting/lua_state.h"

@@ -14,9 +14,9 @@
 
 #include <lua.hpp>
 
+#include "mech/errors.h"
 #include "scripting/compiled_expression.h"
 #include "scripting/identifiers.h"
-#include "mech/errors.h"
 #include "scripting/lua_state.h"
 #include "tests/test_util.h"
 
