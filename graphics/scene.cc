@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include "blocks/library/mechanism_block.h"
 #include "blocks/outputs/csv.h"
 #include "blocks/support/suggest.h"
+#include "diagrams/element_table.h"
 #include "diagrams/evaluator.h"
 #include "mech/errors.h"
 #include "scripting/compiled_expression.h"
@@ -148,8 +148,7 @@ bool IsColour(const std::string& c) {
 }  // namespace
 
 const std::vector<std::string>& ShapeKinds() {
-  static const std::vector<std::string> kinds = {"box",  "sphere",   "ellipsoid", "cylinder", "cone",  "plane", "gear",
-                                                 "surface", "polyline", "circle",  "curve",    "spring"};
+  static const std::vector<std::string> kinds = diagrams::FindElementSpec("shape")->VariantNames();
   return kinds;
 }
 
@@ -173,28 +172,10 @@ Shape ShapeBuilder::Read(const diagrams::ElementDesc& m, const diagrams::Element
   if (std::find(kinds.begin(), kinds.end(), s.kind) == kinds.end())
     throw InputError(r.What("type") + ": unknown shape type '" + s.kind + "'" + blocks::DidYouMean(s.kind, kinds) +
                      "; expected one of " + blocks::JoinNames(kinds));
-  // an attribute this kind does not use would change nothing: refused
-  static const std::map<std::string, std::vector<std::string>> kAttributes = {
-      {"box", {"size"}},
-      {"sphere", {"radius"}},
-      {"ellipsoid", {"size"}},
-      {"cylinder", {"radius", "length", "axis"}},
-      {"cone", {"radius", "radius2", "length", "axis"}},
-      {"plane", {"size"}},
-      {"gear", {"radius", "width", "tooth_height", "teeth", "taper", "axis"}},
-      {"surface", {"x", "y", "z", "u", "v", "samples"}},
-      {"polyline", {"points"}},
-      {"circle", {"radius"}},
-      {"curve", {"x", "y", "z", "u", "samples"}},
-      {"spring", {"body2", "point1", "point2", "radius", "coils"}}};
-  const std::vector<std::string>& own = kAttributes.at(s.kind);
-  for (const diagrams::Attribute& a : e.attributes) {
-    static const std::vector<std::string> kCommon = {"type", "name", "body", "position", "rotation", "color", "opacity"};
-    if (std::find(kCommon.begin(), kCommon.end(), a.name) == kCommon.end() &&
-        std::find(own.begin(), own.end(), a.name) == own.end())
-      throw InputError(a.loc.str() + ": shape '" + s.name + "': a " + s.kind + " has no '" + a.name +
-                       "'; it takes " + blocks::JoinNames(own) + " and " + blocks::JoinNames(kCommon));
-  }
+  // an attribute this kind does not use would change nothing: refused, by the
+  // format's element table (the reader checks it too; a description built in
+  // code reaches here unchecked)
+  diagrams::CheckAttributes("shape", e.attributes, e.loc);
   // the body a name means: -1 for Base0, else its index in `bodies`
   const auto body_of = [&](const std::string& attribute) {
     const std::string name = e.Text(attribute, "Base0");
