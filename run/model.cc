@@ -10,6 +10,18 @@
 namespace mechflow::run {
 namespace {
 
+// A later Set of identifier i replaces the earlier one, a number or an
+// expression: `value` goes into `own` (in place, or appended as `name`) and
+// any entry of i leaves `other`.
+template <typename Value, typename Other>
+void Override(const scripting::IdentifierTable& ids, int i, const std::string& name, const Value& value,
+              std::vector<std::pair<std::string, Value>>* own, Other* other) {
+  std::erase_if(*other, [&](const auto& o) { return ids.Find(o.first) == i; });
+  const auto same = std::find_if(own->begin(), own->end(), [&](const auto& o) { return ids.Find(o.first) == i; });
+  if (same != own->end()) same->second = value;
+  else own->emplace_back(name, value);
+}
+
 // Every field of diagrams::LoadOptions (a field added there belongs here too).
 bool Same(const LoadOptions& a, const LoadOptions& b) {
   return a.variants == b.variants && a.overrides == b.overrides && a.expression_overrides == b.expression_overrides &&
@@ -75,24 +87,13 @@ int Model::FindIdentifier(const std::string& name) {
 
 void Model::Set(const std::string& name, double value) {
   const int i = FindIdentifier(name);
-  const scripting::IdentifierTable& ids = *loaded_->identifiers;
-  // a later Set of the same identifier replaces the earlier (number or expression)
-  std::erase_if(options_.expression_overrides, [&](const auto& o) { return ids.Find(o.first) == i; });
-  const auto same = std::find_if(options_.overrides.begin(), options_.overrides.end(),
-                                 [&](const auto& o) { return ids.Find(o.first) == i; });
-  if (same != options_.overrides.end()) same->second = value;
-  else options_.overrides.emplace_back(name, value);
+  Override(*loaded_->identifiers, i, name, value, &options_.overrides, &options_.expression_overrides);
   dirty_ = true;
 }
 
 void Model::SetExpression(const std::string& name, const std::string& expression) {
   const int i = FindIdentifier(name);
-  const scripting::IdentifierTable& ids = *loaded_->identifiers;
-  std::erase_if(options_.overrides, [&](const auto& o) { return ids.Find(o.first) == i; });
-  const auto same = std::find_if(options_.expression_overrides.begin(), options_.expression_overrides.end(),
-                                 [&](const auto& o) { return ids.Find(o.first) == i; });
-  if (same != options_.expression_overrides.end()) same->second = expression;
-  else options_.expression_overrides.emplace_back(name, expression);
+  Override(*loaded_->identifiers, i, name, expression, &options_.expression_overrides, &options_.overrides);
   dirty_ = true;
 }
 
