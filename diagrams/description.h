@@ -24,6 +24,13 @@ struct Attribute {
   SourceLoc loc;
 };
 
+// The attribute called `name` in `attributes`, or null.
+inline const Attribute* FindAttribute(const std::vector<Attribute>& attributes, const std::string& name) {
+  for (const Attribute& a : attributes)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
 struct IdentifierDesc {
   std::string name, value, comment, unit;
   SourceLoc loc;
@@ -61,11 +68,7 @@ struct ElementDesc {
   std::vector<ElementDesc> children;
   SourceLoc loc;
 
-  const Attribute* Find(const std::string& name) const {
-    for (const auto& a : attributes)
-      if (a.name == name) return &a;
-    return nullptr;
-  }
+  const Attribute* Find(const std::string& name) const { return FindAttribute(attributes, name); }
   std::string Text(const std::string& name, const std::string& fallback = "") const {
     const Attribute* a = Find(name);
     return a ? a->value : fallback;

@@ -1,0 +1,16 @@
+#pragma once
+// The output requests of a diagram, resolved against its built blocks: the
+// logged signals and their columns' units (<log>, recorders), <report>s,
+// <spectrum>s and <xy> panels. Every error is an InputError naming file:line.
+
+#include "diagrams/description.h"
+#include "diagrams/evaluator.h"
+#include "diagrams/loader.h"
+
+namespace mechflow::diagrams {
+
+// Fills out->logged, units, groups, reports, spectra and xy_plots from `d`;
+// out->diagram and out->identifiers must be built.
+void CollectOutputRequests(const DiagramDescription& d, const Evaluator& eval, LoadedDiagram* out);
+
+}  // namespace mechflow::diagrams
