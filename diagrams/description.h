@@ -6,6 +6,7 @@
 // loader, which evaluates and builds later, can still point at the source.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mechflow::diagrams {
@@ -13,8 +14,12 @@ namespace mechflow::diagrams {
 struct SourceLoc {
   std::string file;
   int line = 0;
-  // "file:line", the prefix of every message about this item.
-  std::string str() const { return file + ":" + std::to_string(line); }
+  // Inside a subsystem or part: the instance and the lines that included it,
+  // innermost first ("in s[2] (chain.xml:30)"); "" at the diagram's level.
+  std::string context = {};
+  // "file:line", the prefix of every message about this item, then the
+  // instance it belongs to, as a traceback: "stage.xml:12: in s[2] (chain.xml:30)".
+  std::string str() const { return file + ":" + std::to_string(line) + (context.empty() ? "" : ": " + context); }
 };
 
 // An attribute as written, with its own location.
@@ -42,6 +47,11 @@ struct BlockDesc {
   SourceLoc loc;
   std::string text;    // the element's text content (CDATA included), as written
   SourceLoc text_loc;  // where that text starts
+  // type="subsystem": the <param name value> children (the values of the
+  // subsystem's parameters, expressions in the including scope) and the key
+  // of the file read in (DiagramDescription::components)
+  std::vector<Attribute> args = {};
+  std::string component = {};
 };
 
 struct ConnectionDesc {
@@ -67,6 +77,8 @@ struct ElementDesc {
   std::vector<Attribute> attributes;
   std::vector<ElementDesc> children;
   SourceLoc loc;
+  // <include part=...>: the key of the part's file (DiagramDescription::components)
+  std::string component = {};
 
   const Attribute* Find(const std::string& name) const { return FindAttribute(attributes, name); }
   std::string Text(const std::string& name, const std::string& fallback = "") const {
@@ -92,6 +104,49 @@ struct ScriptDesc {
   bool present() const { return !chunk_name.empty(); }
 };
 
+// <parameter name default unit comment> of a subsystem or part: its interface.
+struct ParameterDesc {
+  std::string name, default_value, unit, comment;
+  bool has_default = false;
+  SourceLoc loc;
+};
+
+// <input name width> and <output name> of a subsystem.
+struct PortDesc {
+  std::string name;
+  std::string width;  // "" for an output, or an input taking the width of its source
+  SourceLoc loc;
+};
+
+// A file whose root is <subsystem> (signal blocks with ports) or <part>
+// (mechanism elements with attach points), read once however often it is
+// used; the loader makes its instances (diagrams/instances.h).
+struct ComponentDesc {
+  std::string kind;  // "subsystem" or "part"
+  std::string name;
+  std::string file;  // the path it was read from
+  SourceLoc loc;     // of its root element
+  std::vector<ParameterDesc> parameters;
+  std::vector<IdentifierDesc> identifiers;  // local: visible only inside
+  // subsystem
+  std::vector<PortDesc> inputs, outputs;
+  std::vector<ElementDesc> mechanisms;
+  std::vector<BlockDesc> blocks;
+  std::vector<ConnectionDesc> connections;
+  // part: <attach name> points, and its elements (bodies, joints, forces,
+  // contacts, sensors, shapes, includes of further parts)
+  std::vector<Attribute> attach_points;  // name = the attach point, value unused
+  std::vector<ElementDesc> elements;
+};
+
+// One instance of a subsystem or part, as flattening made it.
+struct InstanceDesc {
+  std::string path;       // "d[1]", "chain.s[2]"; a part's starts with its mechanism's block name
+  std::string kind;       // "subsystem" or "part"
+  std::string component;  // the file
+  SourceLoc loc;          // the including line
+};
+
 struct DiagramDescription {
   std::string name;     // <diagram name=...>, default: the file's stem
   std::string comment;
@@ -110,6 +165,20 @@ struct DiagramDescription {
   std::vector<ReportDesc> spectra;   // <spectrum>: attributes as written
   std::vector<ReportDesc> xy_plots;  // <xy>: attributes as written
   ScriptDesc script;
+  // every <subsystem> and <part> file the diagram uses, by the path read
+  // (the reader fills it; the loader's flattening uses it)
+  std::vector<ComponentDesc> components;
+  // filled when the loader flattens: the instances (a tree by their paths)
+  // and the names a subsystem's output port is reached by ("d[1].F" ->
+  // "d[1].fr.F"): logs, reports and sim:get take either
+  std::vector<InstanceDesc> instances;
+  std::vector<std::pair<std::string, std::string>> signal_aliases;
+
+  const ComponentDesc* FindComponent(const std::string& file) const {
+    for (const ComponentDesc& c : components)
+      if (c.file == file) return &c;
+    return nullptr;
+  }
 };
 
 }  // namespace mechflow::diagrams

@@ -347,7 +347,7 @@ LoadedDiagram LoadDiagramDescription(DiagramDescription d, const LoadOptions& op
 }
 
 LoadedDiagram LoadDiagram(const std::string& path, const LoadOptions& options) {
-  return LoadDiagramDescription(ReadDiagramFile(path, options.allow_read), options);
+  return LoadDiagramDescription(ReadDiagramFile(path, options.allow_read, options.library), options);
 }
 
 }  // namespace mechflow::diagrams

@@ -37,6 +37,9 @@ struct LoadOptions {
   // --allow-read DIR: folders whose trees the files the diagram names may lie
   // in, besides its own folder's (blocks/support/input_file.h)
   std::vector<std::string> allow_read;
+  // --library DIR: folders subsystem and part files are looked up in when
+  // they are not beside the file that names them
+  std::vector<std::string> library;
 };
 
 // Logged columns shown in one plot panel.

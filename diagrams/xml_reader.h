@@ -18,10 +18,15 @@ namespace mechflow::diagrams {
 // `allow_read`: folders whose trees the files the diagram names (<mechanism
 // src>, <script src>) may lie in besides the diagram's own folder tree
 // (--allow-read; blocks/support/input_file.h).
-DiagramDescription ReadDiagramFile(const std::string& path, const std::vector<std::string>& allow_read = {});
+// `library` (--library DIR): folders the subsystem and part files it names
+// are looked up in when they are not found beside the naming file (they may
+// be read from, too). Every such file is read once, into `components`.
+DiagramDescription ReadDiagramFile(const std::string& path, const std::vector<std::string>& allow_read = {},
+                                   const std::vector<std::string>& library = {});
 
 // Same, from text in memory; `file` is the name used in messages.
 DiagramDescription ReadDiagramText(const std::string& text, const std::string& file,
-                                   const std::vector<std::string>& allow_read = {});
+                                   const std::vector<std::string>& allow_read = {},
+                                   const std::vector<std::string>& library = {});
 
 }  // namespace mechflow::diagrams

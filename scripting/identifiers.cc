@@ -13,6 +13,7 @@
 #include "blocks/support/excerpt.h"
 #include "blocks/support/suggest.h"
 #include "mech/errors.h"
+#include "scripting/instance_path.h"
 #include "scripting/lua_guards.h"
 #include "scripting/lua_state.h"
 
@@ -141,15 +142,25 @@ bool IsLuaName(const std::string& s) {
 
 void IdentifierTable::Add(const std::string& name, const std::string& definition, const std::string& origin,
                           const std::string& comment, const std::string& unit, double to_si) {
-  const std::string lower = ToLower(name);
-  const bool keyword = Contains(kKeywords, lower);
-  if (!keyword && !IsLuaName(name))
+  // a path ("d[1].c", an instance's parameter) is known to Lua by its Lua name
+  const bool path = IsInstancePath(name);
+  if (path) {
+    if (const std::string problem = InstancePathProblem(name); !problem.empty())
+      throw InputError(origin + ": identifier name '" + name + "': " + problem);
+  }
+  const std::string lower = ToLower(path ? InstancePathLuaName(name) : name);
+  const std::string last = path ? ToLower(name.substr(name.find_last_of(".]") + 1)) : lower;
+  const bool keyword = Contains(kKeywords, last);
+  if (!keyword && !path && !IsLuaName(name))
     throw InputError(origin + ": identifier name '" + name +
                      "' must start with a letter or '_' and contain only letters, digits and '_'");
-  const char* why = keyword                           ? "a Lua keyword"
-                    : Contains(kArgumentNames, lower) ? "t is time, x and v are force-law arguments"
-                    : LuaState::IsBuiltinName(lower)  ? "a built-in function or constant"
-                    : Contains(kLuaGlobals, lower)    ? "a Lua function or library"
+  if (!path && name.find("__") != std::string::npos)
+    throw InputError(origin + ": identifier name '" + name +
+                     "' contains \"__\", which is kept for the parameters of subsystem and part instances");
+  const char* why = keyword                          ? "a Lua keyword"
+                    : Contains(kArgumentNames, last) ? "t is time, x and v are force-law arguments"
+                    : LuaState::IsBuiltinName(last)  ? "a built-in function or constant"
+                    : Contains(kLuaGlobals, last)    ? "a Lua function or library"
                                                       : nullptr;
   if (why) throw InputError(origin + ": identifier name '" + name + "' is reserved (" + why + "); choose another name");
   const int existing = Find(lower);
@@ -183,10 +194,10 @@ void IdentifierTable::Override(const std::string& name, double value) {
                      (items_.empty() ? "; the diagram defines none" : "; identifiers: " + blocks::JoinNames(Names())));
   Item& item = items_[i];
   if (item.is_expression)
-    throw InputError("identifier '" + item.name + "' is defined by an expression (" + item.name + " = " +
+    throw InputError("identifier '" + Shown(item) + "' is defined by an expression (" + Shown(item) + " = " +
                      item.definition + ", at " + item.origin + "); set the identifiers it depends on instead");
   if (!std::isfinite(value))
-    throw InputError("identifier '" + item.name + "' cannot be set to " + std::to_string(value) +
+    throw InputError("identifier '" + Shown(item) + "' cannot be set to " + std::to_string(value) +
                      "; expected a finite number");
   item.value = value;
   item.overridden = true;
@@ -277,7 +288,7 @@ void IdentifierTable::Evaluate(LuaState& lua) {
   for (int i = 0; i < size(); ++i) {
     Item& item = items_[i];
     if (!item.is_expression) continue;
-    item.value = Eval(lua, item.definition, i, i, item.origin + ": identifier '" + item.name + "'");
+    item.value = Eval(lua, item.definition, i, i, item.origin + ": identifier '" + Shown(item) + "'");
   }
 }
 
@@ -338,7 +349,9 @@ void IdentifierTable::SetValues(const std::vector<double>& values) {
   for (int i = 0; i < size(); ++i) items_[i].value = values.at(i);
 }
 
-int IdentifierTable::Find(const std::string& name) const { return FindLowerCase(ToLower(name)); }
+int IdentifierTable::Find(const std::string& name) const {
+  return FindLowerCase(ToLower(IsInstancePath(name) ? InstancePathLuaName(name) : name));
+}
 
 int IdentifierTable::FindLowerCase(std::string_view lower) const noexcept {
   const auto it = index_.find(lower);

@@ -32,7 +32,9 @@ class LuaState;
 
 class IdentifierTable {
  public:
-  // Appends an identifier. `definition` is a number (the whole text, as
+  // Appends an identifier. `name` is a Lua name, or an instance path
+  // ("d[1].c", scripting/instance_path.h) that expressions know by its Lua
+  // name ("d__1__c") and Find by either. `definition` is a number (the whole text, as
   // std::from_chars reads it: "1.5abc" is not a number) or a Lua expression;
   // `origin` is "file:line" for messages. Throws InputError for a name that is
   // not a Lua name, is reserved (a Lua keyword, t, x, v, pi, a built-in
@@ -122,6 +124,10 @@ class IdentifierTable {
     using is_transparent = void;
     std::size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>()(s); }
   };
+  // The name messages give: the path of an instance's parameter, else the lower-case name.
+  static const std::string& Shown(const Item& item) {
+    return item.spelling.find_first_of(".[") != std::string::npos ? item.spelling : item.name;
+  }
   // Evaluates `text` seeing identifiers [0, visible); `self` is the index of
   // the identifier being defined, or -1. Errors start with `what`.
   double Eval(LuaState& lua, const std::string& text, int visible, int self, const std::string& what) const;
