@@ -207,7 +207,9 @@ class Flattener {
           double w = 0;
           if (!scripting::ParseNumber(p.width, &w) || !(w >= 1 && w == std::floor(w) && w <= 1e6))
             throw InputError(p.loc.str() + ": input '" + p.name + "' width is '" + p.width + "'; expected a whole number >= 1");
-          widths_.push_back({inner.prefix() + p.name, static_cast<int>(w), p.loc});
+          SourceLoc loc = p.loc;
+          SetContext(&loc, inner.context());
+          widths_.push_back({inner.prefix() + p.name, static_cast<int>(w), loc});
         }
       }
       for (const PortDesc& p : c.outputs) virtual_[inner.prefix() + p.name] = {path, false, p.loc};

@@ -55,6 +55,11 @@ blocks::BlockParams EvaluateParams(const BlockDesc& b, const blocks::BlockType& 
         params.SetText(spec.name, text);
         break;
       case blocks::ParamKind::kPath: {
+        // code from a file is not rewritten to see an instance's parameters
+        // (diagrams/instance_scope.h): it would read the diagram's names instead
+        if (type.takes_text && !b.loc.context.empty())
+          throw InputError(what + ": inside a subsystem the code is written as the block's text, where the "
+                                  "subsystem's parameters are visible; a file would not see them");
         // read here, where the diagram's folder and --allow-read are known
         blocks::NamedFile file = blocks::ReadNamedFile(text, folder, reads, what);
         params.SetFile(spec.name, std::move(file.path), std::move(file.text));
@@ -304,6 +309,10 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
       return std::make_unique<Claim>(lua->ClaimForRun());
     });
   out.diagram = builder.Build();
+  for (const auto& w : d.input_widths)
+    if (const int width = out.diagram->ResolveSignal(w.signal).width; width != w.width)
+      throw InputError(w.loc.str() + ": this input carries " + std::to_string(w.width) + " value(s), but '" +
+                       w.signal + "', which feeds it, has width " + std::to_string(width));
   if (d.script.present())
     out.control = std::make_unique<scripting::ControlScript>(*out.lua, ids, *out.diagram,
                                                              d.script.chunk_name.substr(1));

@@ -115,9 +115,9 @@ class Reader {
   ElementDesc ReadTree(const XMLElement* e) const {
     CheckShape(e);
     ElementDesc out{e->Name(), Attributes(e), {}, Loc(e)};
-    if (out.tag == "include") out.component = ReadComponentFile(e, "part", "part");
     for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement())
       out.children.push_back(ReadTree(c));
+    if (out.tag == "include") out.component = ReadComponentFile(e, "part", "part");
     return out;
   }
 

@@ -195,7 +195,7 @@ void IdentifierTable::Override(const std::string& name, double value) {
   Item& item = items_[i];
   if (item.is_expression)
     throw InputError("identifier '" + Shown(item) + "' is defined by an expression (" + Shown(item) + " = " +
-                     item.definition + ", at " + item.origin + "); set the identifiers it depends on instead");
+                     WithInstancePaths(item.definition) + ", at " + item.origin + "); set the identifiers it depends on instead");
   if (!std::isfinite(value))
     throw InputError("identifier '" + Shown(item) + "' cannot be set to " + std::to_string(value) +
                      "; expected a finite number");

@@ -44,6 +44,18 @@ std::string OpenTag(const ElementSpec& spec, const ElementVariant* variant, cons
   return out + extra;
 }
 
+// The roots of subsystem and part files, and what only they hold: not
+// part of a diagram file (tests/diagrams/instances_test.cc reads them).
+bool OnlyInComponentFiles(const ElementSpec& spec) {
+  if (spec.tag == "diagram") return false;
+  if (spec.tag == "subsystem" || spec.tag == "part") return true;
+  for (const ElementSpec& s : diagrams::ElementTable())
+    if (s.tag != "subsystem" && s.tag != "part")
+      for (const std::string& c : s.AllChildren())
+        if (c == spec.tag) return false;
+  return true;
+}
+
 // A diagram holding `spec` (as `variant`, with `extra` attributes) on the
 // last line of its chain of parents from <diagram>; returns that line.
 int DiagramWith(const ElementSpec& spec, const ElementVariant* variant, const std::string& extra, std::string* xml) {
@@ -52,7 +64,7 @@ int DiagramWith(const ElementSpec& spec, const ElementVariant* variant, const st
     const ElementSpec* parent = nullptr;
     for (const ElementSpec& s : diagrams::ElementTable())
       for (const std::string& c : s.AllChildren())
-        if (c == chain.front()->tag && s.tag != chain.front()->tag) parent = &s;
+        if (c == chain.front()->tag && s.tag != chain.front()->tag && !OnlyInComponentFiles(s)) parent = &s;
     if (!parent) ADD_FAILURE() << "no element holds <" << chain.front()->tag << ">";
     if (!parent) return 0;
     chain.insert(chain.begin(), parent);
@@ -83,6 +95,7 @@ TEST(ElementTableTest, AStrayAttributeIsRefusedOnEveryElementType) {
   int covered = 0;
   for (const auto& [spec, variant] : EveryElementType()) {
     if (spec->open_attributes) continue;  // <block>: its type's parameters, below
+    if (OnlyInComponentFiles(*spec) || spec->tag.find(' ') != std::string::npos) continue;
     const std::string what = "<" + spec->tag + (variant ? " " + spec->selector + "=" + variant->name : "") + ">";
     std::string xml;
     const int line = DiagramWith(*spec, variant, " zz_stray=\"1\"", &xml);
