@@ -115,10 +115,43 @@ class Flattener {
       blocks_.push_back(std::move(flat));
     }
     for (const ConnectionDesc& c : connections) {
-      Edge e{scope.prefix() + c.from, scope.prefix() + c.to, c.loc, scope.path()};
-      SetContext(&e.loc, scope.context());
-      edges_.push_back(std::move(e));
+      SourceLoc loc = c.loc;
+      SetContext(&loc, scope.context());
+      for (const auto& [from, to] : EachElement(scope, c, loc))
+        edges_.push_back({scope.prefix() + from, scope.prefix() + to, loc, scope.path()});
     }
+  }
+
+  // A connection naming every element of a subsystem array with "[*]":
+  // element by element when both ends do (d[*].F to s[*].u), one source to
+  // every element when only `to` does (v.y to d[*].v).
+  std::vector<std::pair<std::string, std::string>> EachElement(const InstanceScope& scope, const ConnectionDesc& c,
+                                                               const SourceLoc& loc) const {
+    const auto star = [](const std::string& ref) { return ref.find("[*]"); };
+    if (star(c.from) == std::string::npos && star(c.to) == std::string::npos) return {{c.from, c.to}};
+    const std::string what = loc.str() + ": connection from '" + c.from + "' to '" + c.to + "'";
+    if (star(c.to) == std::string::npos)
+      throw InputError(what + ": one input cannot be fed by every element of an array; name one element ([0], [1], ...)");
+    const auto count = [&](const std::string& ref) {
+      const std::string array = scope.prefix() + ref.substr(0, star(ref));
+      const auto it = array_counts_.find(array);
+      if (it == array_counts_.end())
+        throw InputError(what + ": '" + ref.substr(0, star(ref)) + "' is no subsystem array (count=) of this file");
+      return it->second;
+    };
+    const int n = count(c.to);
+    if (star(c.from) != std::string::npos && count(c.from) != n)
+      throw InputError(what + ": the arrays have " + std::to_string(count(c.from)) + " and " + std::to_string(n) +
+                       " elements; element by element needs as many on both ends");
+    std::vector<std::pair<std::string, std::string>> out;
+    for (int k = 0; k < n; ++k) {
+      const std::string index = "[" + std::to_string(k) + "]";
+      std::string from = c.from, to = c.to;
+      if (star(from) != std::string::npos) from.replace(star(from), 3, index);
+      to.replace(star(to), 3, index);
+      out.emplace_back(from, to);
+    }
+    return out;
   }
 
   // The instance paths of an element with optional count= (in `scope`).
@@ -199,7 +232,9 @@ class Flattener {
     if (b.text.find_first_not_of(" \t\r\n") != std::string::npos)
       throw InputError(b.text_loc.str() + ": subsystem '" + b.name + "' takes no text content");
     int count = 0;
-    for (const auto& [path, index] : Paths(scope, scope.prefix() + b.name, FindAttribute(b.params, "count"), &count)) {
+    const auto paths = Paths(scope, scope.prefix() + b.name, FindAttribute(b.params, "count"), &count);
+    if (count > 0) array_counts_[scope.prefix() + b.name] = count;
+    for (const auto& [path, index] : paths) {
       InstanceScope inner = Enter(scope, path, c, b.loc, index, count, b.args);
       for (const PortDesc& p : c.inputs) {
         virtual_[inner.prefix() + p.name] = {path, true, p.loc};
@@ -412,6 +447,7 @@ class Flattener {
   std::vector<ElementDesc> mechanisms_;
   std::vector<Edge> edges_;
   std::map<std::string, Port> virtual_;  // the ports of subsystem instances, by path
+  std::map<std::string, int> array_counts_;  // subsystem arrays by path ("d"), their counts
   std::vector<DiagramDescription::InputWidth> widths_;
 };
 
