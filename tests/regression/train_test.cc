@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/cli/mechflow_command.h"
 #include "tests/test_util.h"
 
 namespace mechflow {
@@ -84,6 +85,15 @@ void ExpectMomentumAndCentreOfMass(int wagons) {
 TEST(TrainTest, MomentumIsTheTractionImpulseForTenWagons) { ExpectMomentumAndCentreOfMass(10); }
 
 TEST(TrainTest, MomentumIsTheTractionImpulseForTwentyWagons) { ExpectMomentumAndCentreOfMass(20); }
+
+// The number of wagons is the identifier N: --set N=20 on the command line
+// makes wagons w[0] .. w[19], the last 20 lengths behind the locomotive.
+TEST(TrainTest, SetNOnTheCommandLineMakesThatManyWagons) {
+  const auto check = testing::RunMechflow("check " + kTrain + " --set N=20");
+  EXPECT_EQ(check.exit_code, 0) << check.err;
+  EXPECT_NE(check.out.find("m.w[19].x0 = -220 m"), std::string::npos) << check.out;
+  EXPECT_EQ(check.out.find("m.w[20]."), std::string::npos);
+}
 
 }  // namespace
 }  // namespace mechflow
