@@ -290,16 +290,8 @@ bool ControlScript::Resolve(const std::string& name, Target* target) {
     return true;
   }
   Target t;
-  if (name.find('.') != std::string::npos) {
-    try {
-      const blocks::SignalRef ref = diagram_.ResolveSignal(name);
-      t.index = ref.offset;
-      t.width = ref.width;
-    } catch (const InputError& e) {
-      error_ = std::string("sim:get: ") + e.what();
-      return false;
-    }
-  } else if (const int id = identifiers_.Find(name); id >= 0) {
+  // an identifier first: its name may be a path with dots (d[1].mu)
+  if (const int id = identifiers_.Find(name); id >= 0) {
     t.is_identifier = true;
     t.index = id;
     // an <input> of a mechanism: what the mechanism receives is the signal
@@ -316,6 +308,15 @@ bool ControlScript::Resolve(const std::string& name, Target* target) {
       t.width = 1;
       t.fed_by = to.name() + "." + to.input_port(c.to_port).name + " <- " + from.name() + "." +
                  from.output_port(c.from_port).name;
+    }
+  } else if (name.find('.') != std::string::npos) {
+    try {
+      const blocks::SignalRef ref = diagram_.ResolveSignal(name);
+      t.index = ref.offset;
+      t.width = ref.width;
+    } catch (const InputError& e) {
+      error_ = std::string("sim:get: ") + e.what();
+      return false;
     }
   } else {
     // an output port name that one block alone has (a sensor name)

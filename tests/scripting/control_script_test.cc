@@ -112,6 +112,22 @@ TEST(ControlScriptTest, GetReadsSignalsIdentifiersAndUniquePortNames) {
   EXPECT_THAT(unknown.outcome.failure, HasSubstr("init(sim)"));
 }
 
+// An identifier whose name is an instance path (a subsystem's parameter,
+// d[1].mu) is got and set by that name, dots and all; another dotted name is
+// still a signal.
+TEST(ControlScriptTest, GetAndSetTakeIdentifiersNamedByPaths) {
+  diagrams::DiagramDescription description = diagrams::ReadDiagramText(Diagram(R"(<![CDATA[
+    function init(sim)
+      assert(sim:get("d[1].mu") == 0.25, "loaded: " .. tostring(sim:get("d[1].mu")))
+      sim:set("D[1].MU", 0.5)  -- any case, as other identifiers
+      assert(sim:get("d[1].mu") == 0.5, "after sim:set: " .. tostring(sim:get("d[1].mu")))
+      assert(sim:get("x.y") == 0, "x.y is a signal")
+    end]]>)"), "test.xml");
+  description.identifiers.push_back({"d[1].mu", "0.25", "", "", {}});
+  auto run = mechflow::testing::RunDescription(std::move(description));
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+}
+
 TEST(ControlScriptTest, AFixedIdentifierCannotChangeAndTheRunKeepsItsResults) {
   auto run = RunXml(Diagram(R"(
     function step(sim) if sim.t >= 0.5 then sim:set("k", 4) end end)"));
