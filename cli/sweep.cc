@@ -243,6 +243,7 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.common.results = args.results;
   plan.common.unsafe_lua = args.unsafe_lua;
   plan.common.allow_read = args.allow_read;
+  plan.common.library = args.library;
 
   // the diagram must load as given; its identifiers judge the --vary names
   run::Model model(args.file, plan.common);
