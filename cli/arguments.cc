@@ -159,15 +159,17 @@ std::string HelpText(const std::string& command) {
            "\n"
            "Reads and builds the diagram without running it, then prints the identifiers,\n"
            "the variants, the evaluation order of output ports, the continuous-state layout, the\n"
-           "zero-crossing functions and the sampled blocks. Exit 0 when the diagram is\n"
-           "valid, 2 otherwise.\n";
+           "zero-crossing functions and the sampled blocks, then the subsystem and part\n"
+           "instances as a tree (path, kind, file, the line including it). Exit 0 when the\n"
+           "diagram is valid, 2 otherwise.\n";
   if (command == "graph")
     return "usage: mechflow graph FILE [--set NAME=VALUE]... [--allow-read DIR]...\n"
            "                      [--library DIR]...\n"
            "\n"
            "Prints the diagram as a Graphviz DOT graph on standard output, e.g.\n"
            "  mechflow graph d.xml | dot -Tsvg > d.svg\n"
-           "Edges drawn bold carry direct feedthrough (they order the evaluation).\n";
+           "Edges drawn bold carry direct feedthrough (they order the evaluation). The\n"
+           "blocks of each subsystem instance are drawn in a box labelled with its path.\n";
   if (command == "modes")
     return "usage: mechflow modes FILE [--variant NAME]... [--set NAME=VALUE]... [--equilibrium]\n"
            "                      [--out DIR] [--unsafe-lua]\n"
