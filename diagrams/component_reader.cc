@@ -89,7 +89,18 @@ std::string Reader::ReadComponentFile(const XMLElement* e, const char* attribute
     throw InputError(key + ":" + std::to_string(root ? root->GetLineNum() : 1) + ": a " + kind +
                      " file holds one <" + kind + "> element (used by " + Loc(e).str() + ")");
   chain.push_back(key);
-  ComponentDesc c = ReadComponent(Reader(key, session_), root, kind);
+  ComponentDesc c;
+  try {
+    c = ReadComponent(Reader(key, session_), root, kind);
+  } catch (const InputError& error) {
+    // the including line, as a traceback (the instances are made later)
+    std::string message = error.what();
+    if (message.find(" (included at ") != std::string::npos && message.back() == ')') {
+      message.back() = ',';
+      throw InputError(message + " " + Loc(e).str() + ")");
+    }
+    throw InputError(message + " (included at " + Loc(e).str() + ")");
+  }
   chain.pop_back();
   session_.components->push_back(std::move(c));
   return key;

@@ -173,6 +173,13 @@ struct DiagramDescription {
   // "d[1].fr.F"): logs, reports and sim:get take either
   std::vector<InstanceDesc> instances;
   std::vector<std::pair<std::string, std::string>> signal_aliases;
+  // a subsystem <input width=...>: the signal that feeds it must have that width
+  struct InputWidth {
+    std::string signal;
+    int width = 1;
+    SourceLoc loc;
+  };
+  std::vector<InputWidth> input_widths;
 
   const ComponentDesc* FindComponent(const std::string& file) const {
     for (const ComponentDesc& c : components)

@@ -10,6 +10,7 @@
 #include "blocks/support/suggest.h"
 #include "diagrams/attribute_units.h"
 #include "diagrams/evaluator.h"
+#include "diagrams/instances.h"
 #include "diagrams/mechanism_loader.h"
 #include "diagrams/output_requests.h"
 #include "diagrams/unit_check.h"
@@ -142,16 +143,27 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
 }
 
 // A value for an identifier given as a number (--set, a variant) is in the
-// identifier's own unit, as the number of its definition is.
-void OverrideInOwnUnit(scripting::IdentifierTable* ids, const std::string& name, double value) {
-  const int i = ids->Find(name);
-  ids->Override(name, i >= 0 ? value * ids->to_si(i) : value);
-}
+// identifier's own unit, as the number of its definition is. `context`
+// starts the message when it cannot be given.
+struct NumberOverride {
+  std::string name;
+  double value = 0.0;
+  std::string context;  // "--set m: ", "d.xml:7: variant 'heavy': "
+
+  void Apply(scripting::IdentifierTable* ids) const {
+    try {
+      const int i = ids->Find(name);
+      ids->Override(name, i >= 0 ? value * ids->to_si(i) : value);
+    } catch (const InputError& e) {
+      throw InputError(context + e.what());
+    }
+  }
+};
 
 // --variant NAME: the named sets of identifier values, in the order given. A
 // name is the variant's own, or "group/variant" when two groups share it.
-void ApplyVariants(const DiagramDescription& d, const std::vector<std::string>& selected,
-                   scripting::IdentifierTable* ids) {
+void CollectVariants(const DiagramDescription& d, const std::vector<std::string>& selected,
+                     std::vector<NumberOverride>* out) {
   std::vector<std::string> names;
   for (const auto& v : d.variants) names.push_back(v.name);
   for (const std::string& wanted : selected) {
@@ -171,11 +183,7 @@ void ApplyVariants(const DiagramDescription& d, const std::vector<std::string>& 
       if (!scripting::ParseNumber(a.value, &value))
         throw InputError(a.loc.str() + ": variant '" + wanted + "': the value of '" + a.name +
                          "' must be a number (got '" + a.value + "')");
-      try {
-        OverrideInOwnUnit(ids, a.name, value);
-      } catch (const InputError& e) {
-        throw InputError(a.loc.str() + ": variant '" + wanted + "': " + e.what());
-      }
+      out->push_back({a.name, value, a.loc.str() + ": variant '" + wanted + "': "});
     }
   }
 }
@@ -198,9 +206,14 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
   scripting::IdentifierTable& ids = *out.identifiers;
 
   // identifiers: definitions (numbers taken to SI from their units), then
-  // command-line overrides, then top-to-bottom evaluation
+  // variants and command-line overrides, then top-to-bottom evaluation. An
+  // override of an instance's parameter waits until flattening has made it.
   std::vector<std::optional<Unit>> units;
-  for (const auto& id : d.identifiers) {
+  std::vector<NumberOverride> overrides;
+  CollectVariants(d, options.variants, &overrides);
+  for (const auto& [name, value] : options.overrides) overrides.push_back({name, value, "--set " + name + ": "});
+  std::vector<bool> applied(overrides.size(), false);
+  const auto add_identifier = [&](const IdentifierDesc& id) {
     std::optional<Unit> unit;
     if (!Trim(id.unit).empty()) {
       std::string error;
@@ -209,15 +222,25 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
     }
     ids.Add(id.name, id.value, id.loc.str(), id.comment, unit ? unit->text : "", unit ? unit->to_si : 1.0);
     units.push_back(std::move(unit));
-  }
-  ApplyVariants(d, options.variants, &ids);
-  for (const auto& [name, value] : options.overrides) {
-    try {
-      OverrideInOwnUnit(&ids, name, value);
-    } catch (const InputError& e) {
-      throw InputError("--set " + name + ": " + e.what());
-    }
-  }
+    const std::string& added = ids.name(ids.size() - 1);
+    for (std::size_t k = 0; k < overrides.size(); ++k)
+      if (!applied[k] && ids.Find(overrides[k].name) >= 0 && ids.name(ids.Find(overrides[k].name)) == added) {
+        overrides[k].Apply(&ids);
+        applied[k] = true;
+      }
+  };
+  for (const auto& id : d.identifiers) add_identifier(id);
+  ids.Evaluate(*out.lua);
+  MakeInstances(&d, {add_identifier,
+                     [&](const std::string& text, const std::string& what) {
+                       double number = 0.0;
+                       if (scripting::ParseNumber(text, &number)) return number;
+                       ids.Evaluate(*out.lua);
+                       return ids.EvaluateExpression(*out.lua, text, what);
+                     },
+                     &ids});
+  for (std::size_t k = 0; k < overrides.size(); ++k)
+    if (!applied[k]) overrides[k].Apply(&ids);  // names nothing: says so
   ids.Evaluate(*out.lua);
   // --set NAME=EXPR: each evaluated over the identifiers as they are then
   for (const auto& [name, text] : options.expression_overrides) {
@@ -243,7 +266,6 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
   // blocks and connections
   blocks::BlockRegistry registry;
   RegisterAllBlocks(&registry, out.lua.get(), out.identifiers.get());
-  const std::string folder = std::filesystem::path(d.file).parent_path().string();
   out.reads.emplace(d.file, options.allow_read);
   blocks::DiagramBuilder builder;
   std::vector<std::string> mechanism_warnings;
@@ -254,6 +276,8 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
       throw InputError(b.loc.str() + ": block '" + b.name + "' has unknown type '" + b.type + "'" +
                        blocks::DidYouMean(b.type, registry.Names()) + "; known types: " +
                        blocks::JoinNames(registry.Names()));
+    // a file a block names lies beside the file the block is written in
+    const std::string folder = std::filesystem::path(b.loc.file).parent_path().string();
     blocks::BlockParams params = EvaluateParams(b, *type, eval, folder, *out.reads);
     if (b.text.find_first_not_of(" \t\r\n") != std::string::npos) {
       if (!type->takes_text)

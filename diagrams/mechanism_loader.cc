@@ -55,7 +55,12 @@ std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const E
   }
   std::vector<std::string> input_names;
   for (const ElementDesc& e : m.children)
-    if (e.tag == "input") input_names.push_back(e.Text("name"));
+    if (e.tag == "input") {
+      // the port is named as the subsystem holding the mechanism names the
+      // identifier: "F", not its path "d[1].F"
+      const std::string name = e.Text("name");
+      input_names.push_back(name.substr(name.find_last_of('.') + 1));
+    }
   auto mechanism = std::make_shared<mech::Mechanism>(model, std::move(elements), input_names);
   const bool prescribed = std::any_of(model->segments().begin(), model->segments().end(),
                                       [](const mech::Segment& s) { return s.drive == mech::SegmentDrive::kTime; });

@@ -41,7 +41,8 @@ class MechanismReader {
         throw InputError(e.loc.str() + ": input '" + name + "' must name an identifier of the diagram" +
                          blocks::DidYouMean(name, eval.identifiers()->Names()) +
                          " (its value there is the value before the first evaluation)");
-      inputs_.push_back(scripting::ToLower(name));
+      // the name expressions know it by (an instance's parameter: its Lua name)
+      inputs_.push_back(eval.identifiers()->name(eval.identifiers()->Find(name)));
     }
     // Expressions that follow inputs take them as arguments; Lua arguments may
     // not share a name with an identifier, so those expressions see the
@@ -51,7 +52,7 @@ class MechanismReader {
       if (std::find(inputs_.begin(), inputs_.end(), ids.name(i)) != inputs_.end()) continue;
       char value[32];
       std::snprintf(value, sizeof value, "%.17g", ids.value(i));
-      non_inputs_.Add(ids.name(i), value, ids.origin(i));
+      non_inputs_.Add(ids.spelling(i), value, ids.origin(i));
     }
     non_inputs_.Evaluate(*eval.lua());
   }

@@ -190,8 +190,8 @@ void IdentifierTable::Add(const std::string& name, const std::string& definition
 void IdentifierTable::Override(const std::string& name, double value) {
   const int i = Find(name);
   if (i < 0)
-    throw InputError("no identifier named '" + name + "'" + blocks::DidYouMean(ToLower(name), Names()) +
-                     (items_.empty() ? "; the diagram defines none" : "; identifiers: " + blocks::JoinNames(Names())));
+    throw InputError("no identifier named '" + name + "'" + blocks::DidYouMean(ToLower(name), ShownNames()) +
+                     (items_.empty() ? "; the diagram defines none" : "; identifiers: " + blocks::JoinNames(ShownNames())));
   Item& item = items_[i];
   if (item.is_expression)
     throw InputError("identifier '" + Shown(item) + "' is defined by an expression (" + Shown(item) + " = " +
@@ -362,6 +362,12 @@ double IdentifierTable::Value(const std::string& name) const {
   const int i = Find(name);
   if (i < 0) throw std::out_of_range("no identifier '" + name + "'");
   return items_[i].value;
+}
+
+std::vector<std::string> IdentifierTable::ShownNames() const {
+  std::vector<std::string> names;
+  for (const auto& item : items_) names.push_back(Shown(item));
+  return names;
 }
 
 std::vector<std::string> IdentifierTable::Names() const {

@@ -93,7 +93,9 @@ class IdentifierTable {
   int FindLowerCase(std::string_view lower) const noexcept;  // index or -1, for a name already lower-case
   bool Has(const std::string& name) const { return Find(name) >= 0; }
   double Value(const std::string& name) const;  // throws std::out_of_range when unknown
-  std::vector<std::string> Names() const;       // lower-case, in order
+  std::vector<std::string> Names() const;       // lower-case, in order (Lua names)
+  // As messages show them: paths for instances' parameters ("d[1].mu").
+  std::vector<std::string> ShownNames() const;
 
   // The i-th identifier, 0 <= i < size(). Names are lower-case.
   const std::string& name(int i) const { return items_.at(i).name; }

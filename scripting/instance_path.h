@@ -47,4 +47,36 @@ inline std::string InstancePathLuaName(const std::string& path) {
   return out;
 }
 
+// `text` (an expression) with the Lua names of paths written as the paths
+// ("1.25*d__1__mu" -> "1.25*d[1].mu"), for what a user reads.
+inline std::string WithInstancePaths(const std::string& text) {
+  if (text.find("__") == std::string::npos) return text;
+  std::string out;
+  for (std::size_t i = 0; i < text.size();) {
+    const bool starts_name = (std::isalpha(static_cast<unsigned char>(text[i])) || text[i] == '_') &&
+                             (i == 0 || !(std::isalnum(static_cast<unsigned char>(text[i - 1])) || text[i - 1] == '_'));
+    if (!starts_name) {
+      out += text[i++];
+      continue;
+    }
+    std::size_t end = i;
+    while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_')) ++end;
+    const std::string name = text.substr(i, end - i);
+    i = end;
+    if (name.find("__") == std::string::npos || name.front() == '_') {
+      out += name;
+      continue;
+    }
+    for (std::size_t start = 0;;) {
+      const std::size_t cut = name.find("__", start);
+      const std::string segment = name.substr(start, cut == std::string::npos ? std::string::npos : cut - start);
+      const bool index = !segment.empty() && std::isdigit(static_cast<unsigned char>(segment[0]));
+      out += index ? "[" + segment + "]" : (start == 0 ? "" : ".") + segment;
+      if (cut == std::string::npos) break;
+      start = cut + 2;
+    }
+  }
+  return out;
+}
+
 }  // namespace mechflow::scripting
