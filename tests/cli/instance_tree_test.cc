@@ -17,6 +17,7 @@
 
 #include "cli/report.h"
 #include "tests/blocks/block_test_util.h"
+#include "tests/cli/mechflow_command.h"
 
 namespace mechflow::cli {
 namespace {
@@ -117,6 +118,54 @@ TEST(InstanceTreeTest, CheckEndsWithTheInstances) {
                                              "  d[1]  subsystem d.xml  (included at top.xml:3)\n"
                                              "    d[1].e  subsystem e.xml  (included at top.xml:4)\n"
                                              "  m.arm[0]  part arm.xml  (included at top.xml:6)\n"));
+}
+
+// The same from a diagram file: an array of subsystems inside a subsystem,
+// found through --library.
+TEST(InstanceTreeTest, CheckAndGraphShowTheInstancesOfASubsystemDiagram) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "instance_tree_cli";
+  fs::create_directories(dir / "d");
+  fs::create_directories(dir / "lib");
+  std::ofstream(dir / "lib" / "stage.xml") << R"(<subsystem name="stage">
+  <input name="u"/><output name="y"/>
+  <blocks><block type="gain" name="g" k="2"/></blocks>
+  <connections><connect from="u" to="g.u"/><connect from="g.y" to="y"/></connections>
+</subsystem>
+)";
+  std::ofstream(dir / "lib" / "chain.xml") << R"(<subsystem name="chain">
+  <input name="u"/><output name="y"/>
+  <blocks><block type="subsystem" name="s" src="stage.xml" count="2"/></blocks>
+  <connections><connect from="u" to="s[0].u"/><connect from="s[0].y" to="s[1].u"/><connect from="s[1].y" to="y"/>
+  </connections>
+</subsystem>
+)";
+  const std::string diagram = (dir / "d" / "top.xml").string();
+  std::ofstream(diagram) << R"(<diagram name="top">
+  <blocks>
+    <block type="constant" name="c" value="1"/>
+    <block type="subsystem" name="chain" src="chain.xml"/>
+    <block type="gain" name="out" k="1"/>
+  </blocks>
+  <connections><connect from="c.y" to="chain.u"/><connect from="chain.y" to="out.u"/></connections>
+</diagram>
+)";
+  const std::string library = " --library " + (dir / "lib").string();
+  const auto check = testing::RunMechflow("check " + diagram + library);
+  ASSERT_EQ(check.exit_code, 0) << check.err;
+  const std::string lib = (dir / "lib").string() + "/";
+  EXPECT_THAT(check.out, HasSubstr("\ninstances:\n"
+                                   "  chain  subsystem " + lib + "chain.xml  (included at " + diagram + ":4)\n"
+                                   "    chain.s[0]  subsystem " + lib + "stage.xml  (included at " + lib + "chain.xml:3)\n"
+                                   "    chain.s[1]  subsystem " + lib + "stage.xml  (included at " + lib + "chain.xml:3)\n"
+                                   "\n" + diagram + ": ok\n"));
+  const auto graph = testing::RunMechflow("graph " + diagram + library);
+  ASSERT_EQ(graph.exit_code, 0) << graph.err;
+  EXPECT_THAT(graph.out, HasSubstr("  subgraph cluster_0 {\n    label=\"chain\";\n"
+                                   "    subgraph cluster_1 {\n      label=\"chain.s[0]\";\n"
+                                   "      b1 [label=\"{{<i0> u}|chain.s[0].g\\n(gain)|{<o0> y}}\"];\n    }\n"
+                                   "    subgraph cluster_2 {\n      label=\"chain.s[1]\";\n"
+                                   "      b2 [label=\"{{<i0> u}|chain.s[1].g\\n(gain)|{<o0> y}}\"];\n    }\n  }\n"));
 }
 
 }  // namespace

@@ -275,22 +275,23 @@ TEST(SweepTest, AStarInANameStandsForEveryIndex) {
 TEST(SweepTest, APatternVariesEveryMatchingIdentifierAlike) {
   const fs::path dir = FreshDir("pattern");
   fs::create_directories(dir);
+  // s[0].mu, s[1].mu and t[0].mu (= 2*k) are the parameters of subsystem instances
+  std::ofstream(dir / "fr.xml") << R"(<subsystem name="fr">
+  <parameter name="mu" default="0.1"/>
+  <output name="y"/>
+  <blocks><block type="constant" name="c" value="mu"/></blocks>
+  <connections><connect from="c.y" to="y"/></connections>
+</subsystem>
+)";
   const fs::path diagram = dir / "p.xml";
   std::ofstream(diagram) << R"(<diagram name="p">
-  <identifiers>
-    <identifier name="s[0].mu" value="0.1"/>
-    <identifier name="s[1].mu" value="0.1"/>
-    <identifier name="s[0].k" value="7"/>
-    <identifier name="k" value="1"/>
-    <identifier name="t[0].mu" value="2*k"/>
-  </identifiers>
+  <identifiers><identifier name="k" value="1"/></identifiers>
   <blocks>
-    <block type="identifier" name="a" identifier="s[0].mu"/>
-    <block type="identifier" name="b" identifier="s[1].mu"/>
-    <block type="identifier" name="c" identifier="s[0].k"/>
+    <block type="subsystem" name="s" src="fr.xml" count="2"/>
+    <block type="subsystem" name="t" src="fr.xml" count="1"><param name="mu" value="2*k"/></block>
   </blocks>
   <solver t_end="0.1"/>
-  <output interval="0.1"><log signal="a.y"/><log signal="b.y"/><log signal="c.y"/></output>
+  <output interval="0.1"><log signal="s[0].c.y"/><log signal="s[1].c.y"/><log signal="t[0].c.y"/></output>
 </diagram>
 )";
   const fs::path out = dir / "out";
@@ -300,7 +301,7 @@ TEST(SweepTest, APatternVariesEveryMatchingIdentifierAlike) {
   EXPECT_EQ(ReadFile(out / "p.sweep.csv"), "run,s[*].mu,status,t_reached,error,results\n"
                                            "1,0.2,ok,0.1,,p.run1.s[*].mu=0.2.csv\n"
                                            "2,0.3,ok,0.1,,p.run2.s[*].mu=0.3.csv\n");
-  EXPECT_EQ(ReadFile(out / "p.run2.s[*].mu=0.3.csv"), "time,a.y,b.y,c.y\n0,0.3,0.3,7\n0.1,0.3,0.3,7\n");
+  EXPECT_EQ(ReadFile(out / "p.run2.s[*].mu=0.3.csv"), "time,s[0].c.y,s[1].c.y,t[0].c.y\n0,0.3,0.3,2\n0.1,0.3,0.3,2\n");
 
   struct Case {
     std::string args, message;
@@ -309,7 +310,7 @@ TEST(SweepTest, APatternVariesEveryMatchingIdentifierAlike) {
       {"--vary 's[*].muu=1'", "--vary s[*].muu: " + diagram.string() +
                                   " has no identifier 's[*].muu' for any index ([*] stands for [0], [1], ...) "
                                   "(did you mean 's[*].mu'?)"},
-      {"--vary 't[*].mu=1'", "--vary t[*].mu: identifier 't[0].mu' (" + diagram.string() + ":7) is derived"},
+      {"--vary 't[*].mu=1'", "--vary t[*].mu: identifier 't[0].mu' (" + diagram.string() + ":5) is derived (= 2*k)"},
       {"--vary 's[*].mu=1' --vary 'S[1].MU=2'", "--vary S[1].MU: identifier 's[1].mu' is varied twice"},
       {"--vary 's[*].mu=1' --set 's[0].mu=2'", "--vary s[*].mu: identifier 's[0].mu' is also given by --set"},
   };
