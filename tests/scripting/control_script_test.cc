@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -126,6 +128,34 @@ TEST(ControlScriptTest, GetAndSetTakeIdentifiersNamedByPaths) {
   description.identifiers.push_back({"d[1].mu", "0.25", "", "", {}});
   auto run = mechflow::testing::RunDescription(std::move(description));
   ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+}
+
+// A part's sensor has a dotted name (s[1].z, an output of mechanism m):
+// sim:get takes it alone, as other sensor names, or as m.s[1].z.
+TEST(ControlScriptTest, GetTakesTheDottedSensorNameOfAPart) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "control_script_parts";
+  fs::create_directories(dir);
+  std::ofstream(dir / "slider.xml") << R"(<part name="slider">
+  <attach name="base"/>
+  <body name="Box" mass="1" inertia="1 1 1"/>
+  <joint name="j" type="translational" body1="base" body2="Box" axis="0 0 1"/>
+  <sensor name="z" kind="coordinate" dof="j"/>
+</part>
+)";
+  std::ofstream(dir / "parts.xml") << R"(<diagram name="parts">
+  <mechanism name="m"><include part="slider.xml" name="s" count="2" attach="base=Base0"/></mechanism>
+  <script><![CDATA[
+    function finish(sim)
+      local z = sim:get("m.s[1].z")
+      assert(z < -0.04, "fallen: " .. tostring(z))
+      assert(sim:get("s[1].z") == z, "by the sensor name alone")
+    end]]></script>
+  <solver t_end="0.1"/>
+</diagram>
+)";
+  const auto run = mechflow::testing::RunDescription(diagrams::ReadDiagramFile((dir / "parts.xml").string()));
+  EXPECT_TRUE(run.outcome.ok) << run.outcome.failure;
 }
 
 TEST(ControlScriptTest, AFixedIdentifierCannotChangeAndTheRunKeepsItsResults) {
