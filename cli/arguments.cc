@@ -144,6 +144,8 @@ std::string HelpText(const std::string& command) {
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
            "  --allow-read DIR  the diagram may read files (tables, Lua, mechanisms) in DIR's\n"
            "                    folder tree too, not only in its own folder's (repeatable)\n"
+           "  --library DIR     subsystem and part files not found beside the file naming\n"
+           "                    them are looked up in DIR (repeatable, searched in order)\n"
            "  --max-output SIZE the budget per output file, bytes or with K, M, G, T (default 1G)\n"
            "Every option takes its value as --opt VALUE or --opt=VALUE; a number is the\n"
            "whole value in decimal (1e-3, -2.5, .5; not 0x10, inf or 1abc).\n"
@@ -153,17 +155,21 @@ std::string HelpText(const std::string& command) {
            "SIGHUP (the rows up to there are written).\n";
   if (command == "check")
     return "usage: mechflow check FILE [--variant NAME]... [--set NAME=VALUE]... [--allow-read DIR]...\n"
+           "                      [--library DIR]...\n"
            "\n"
            "Reads and builds the diagram without running it, then prints the identifiers,\n"
            "the variants, the evaluation order of output ports, the continuous-state layout, the\n"
-           "zero-crossing functions and the sampled blocks. Exit 0 when the diagram is\n"
-           "valid, 2 otherwise.\n";
+           "zero-crossing functions and the sampled blocks, then the subsystem and part\n"
+           "instances as a tree (path, kind, file, the line including it). Exit 0 when the\n"
+           "diagram is valid, 2 otherwise.\n";
   if (command == "graph")
     return "usage: mechflow graph FILE [--set NAME=VALUE]... [--allow-read DIR]...\n"
+           "                      [--library DIR]...\n"
            "\n"
            "Prints the diagram as a Graphviz DOT graph on standard output, e.g.\n"
            "  mechflow graph d.xml | dot -Tsvg > d.svg\n"
-           "Edges drawn bold carry direct feedthrough (they order the evaluation).\n";
+           "Edges drawn bold carry direct feedthrough (they order the evaluation). The\n"
+           "blocks of each subsystem instance are drawn in a box labelled with its path.\n";
   if (command == "modes")
     return "usage: mechflow modes FILE [--variant NAME]... [--set NAME=VALUE]... [--equilibrium]\n"
            "                      [--out DIR] [--unsafe-lua]\n"
@@ -188,7 +194,7 @@ std::string HelpText(const std::string& command) {
            "  --out DIR         output folder for NAME.modes.csv (created if missing; default:\n"
            "                    current folder)\n"
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
-           "  --allow-read DIR  as for mechflow run\n"
+           "  --allow-read DIR, --library DIR  as for mechflow run\n"
            "\n"
            "Exit codes: 0 done, 1 no equilibrium found (modes that do not settle, or rates\n"
            "that are not finite), 2 bad input.\n";
@@ -215,10 +221,11 @@ std::string HelpText(const std::string& command) {
            "\n"
            "  --vary NAME=V1,V2,...  values of an identifier defined by a number (repeatable);\n"
            "                    NAME=A:B:N gives N values evenly from A to B, NAME=A:B:N:log\n"
-           "                    evenly on a log scale\n"
+           "                    evenly on a log scale; [*] in NAME stands for every index, so\n"
+           "                    s[*].mu=... gives s[0].mu, s[1].mu, ... each run's value alike\n"
            "  --jobs N          runs at a time (default: the number of cores)\n"
            "  --variant, --set, --t-end, --rtol, --atol, --interval, --results, --quiet,\n"
-           "  --unsafe-lua, --allow-read  as for mechflow run, for every run\n"
+           "  --unsafe-lua, --allow-read, --library  as for mechflow run, for every run\n"
            "  --verbose         write each run's event log beside its results\n"
            "                    (NAME.runK.ID=VALUE....events.txt)\n"
            "  --max-output SIZE the budget per output file (each run's results), as for run\n"
@@ -352,6 +359,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.unsafe_lua = true;
     } else if (arg == "--allow-read" && a.command != "psd") {
       a.allow_read.push_back(value(arg));
+    } else if (arg == "--library" && a.command != "psd") {
+      a.library.push_back(value(arg));
     } else if (const auto& own = CommandOptions(a.command); std::find(own.begin(), own.end(), arg) != own.end()) {
       a.command_options.emplace_back(arg, value(arg));
     } else if (arg == "--vary" && (a.command == "sweep" || a.command == "force-analysis")) {
@@ -361,7 +370,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
     } else if (arg.rfind("--", 0) == 0) {
       std::vector<std::string> options = {"--set", "--set-file", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
       if (runs) options.insert(options.end(), {"--rtol", "--atol", "--interval", "--results", "--quiet"});
-      if (a.command != "psd") options.push_back("--allow-read");
+      if (a.command != "psd") options.insert(options.end(), {"--allow-read", "--library"});
       if (runs) options.push_back("--max-output");
       if (a.command == "modes") options.push_back("--equilibrium");
       if (a.command == "run") options.insert(options.end(), {"--animate", "--gltf", "--no-animate"});

@@ -27,6 +27,7 @@ struct Arguments {
   std::string out_dir = ".";                              // --out DIR
   bool unsafe_lua = false;                                // --unsafe-lua
   std::vector<std::string> allow_read;                    // --allow-read DIR: the diagram may read files there too
+  std::vector<std::string> library;                       // --library DIR: subsystem and part files looked up there
   bool equilibrium = false;                               // modes --equilibrium
   std::vector<std::pair<std::string, std::vector<double>>> vary;  // sweep --vary NAME=V1,V2,...
   std::optional<int> jobs;                                // sweep --jobs N (>= 1)

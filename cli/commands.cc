@@ -44,6 +44,7 @@ diagrams::LoadOptions ToLoadOptions(const Arguments& args) {
   o.results = args.results;
   o.unsafe_lua = args.unsafe_lua;
   o.allow_read = args.allow_read;
+  o.library = args.library;
   return o;
 }
 

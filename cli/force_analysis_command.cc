@@ -75,7 +75,7 @@ std::string ForceAnalysisHelp() {
          "                      largest force (else the case is marked not periodic)\n"
          "  --samples N         rows per period (default 1000, 16 to 1000000; at most 10^7\n"
          "                      rows per case in all)\n"
-         "  --variant, --set, --unsafe-lua, --allow-read   as for mechflow run\n"
+         "  --variant, --set, --unsafe-lua, --allow-read, --library   as for mechflow run\n"
          "  --out DIR           output folder (created if missing; default: current folder)\n"
          "\n"
          "Example: mechflow force-analysis diagrams/examples/elast_friction2.xml --element friction\n"
@@ -94,6 +94,7 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
   request.options.expression_overrides = args.set_expressions;
   request.options.unsafe_lua = args.unsafe_lua;
   request.options.allow_read = args.allow_read;
+  request.options.library = args.library;
   for (const auto& [option, value] : args.command_options) {
     if (option == "--element") request.element = value;
     else if (option == "--component") request.component = value;

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 #include "blocks/support/excerpt.h"
 #include "blocks/support/input_file.h"
 #include "blocks/support/suggest.h"
+#include "cli/instance_tree.h"
 #include "diagrams/units.h"
 #include "mech/mechanism.h"
 #include "scripting/global_reads.h"
@@ -315,6 +317,7 @@ void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
   out << "\nsolver: CVODE BDF, t = " << s.t_start << " .. " << s.t_end << " s, rtol " << s.rtol << ", atol "
       << s.atol << ", output every " << s.output_interval << " s\n";
   out << "logged columns: " << loaded.logged.size() << "\n";
+  PrintInstanceTree(loaded.description.instances, out);
 }
 
 void PrintDot(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
@@ -322,7 +325,18 @@ void PrintDot(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
   out << "digraph " << DotQuote(DotText(loaded.description.name)) << " {\n"
       << "  rankdir=LR;\n  node [shape=record, fontname=\"sans\", fontsize=10];\n"
       << "  edge [fontname=\"sans\", fontsize=9];\n";
+  // each subsystem instance a cluster of the blocks it holds, nested as they are
+  std::vector<std::string> subsystems;
+  for (const diagrams::InstanceDesc& instance : loaded.description.instances)
+    if (instance.kind == "subsystem") subsystems.push_back(instance.path);
+  const InstanceTree tree(std::move(subsystems));
+  std::vector<std::vector<int>> held(tree.paths().size());  // blocks per instance
+  std::vector<int> outside;
   for (int bi = 0; bi < d.num_blocks(); ++bi) {
+    const int in = tree.Enclosing(d.block(bi).name());
+    (in < 0 ? outside : held[in]).push_back(bi);
+  }
+  const auto node = [&](int bi, const std::string& indent) {
     const blocks::Block& b = d.block(bi);
     std::ostringstream inputs, outputs;
     for (int p = 0; p < b.num_inputs(); ++p)
@@ -334,8 +348,17 @@ void PrintDot(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
     label += RecordText(b.name()) + "\\n(" + RecordText(b.type()) + ")";
     if (b.num_outputs() > 0) label += "|{" + outputs.str() + "}";
     label += "}";
-    out << "  b" << bi << " [label=" << DotQuote(label) << "];\n";
-  }
+    out << indent << "b" << bi << " [label=" << DotQuote(label) << "];\n";
+  };
+  for (const int bi : outside) node(bi, "  ");
+  const std::function<void(int, const std::string&)> cluster = [&](int i, const std::string& indent) {
+    out << indent << "subgraph cluster_" << i << " {\n" << indent << "  label=" << DotQuote(DotText(tree.paths()[i]))
+        << ";\n";
+    for (const int bi : held[i]) node(bi, indent + "  ");
+    for (const int child : tree.children(i)) cluster(child, indent + "  ");
+    out << indent << "}\n";
+  };
+  for (const int root : tree.roots()) cluster(root, "  ");
   for (const auto& c : d.connections()) {
     const blocks::Block& to = d.block(c.to_block);
     bool feedthrough = false;

@@ -50,10 +50,12 @@ void PrintScriptChanges(const scripting::ControlScript& script, const scripting:
 void WriteScriptChanges(const scripting::ControlScript& script, const scripting::IdentifierTable& identifiers,
                         std::ostream& out);
 
-// `mechflow check`: identifiers, schedule, state layout, crossings, sampled blocks.
+// `mechflow check`: identifiers, schedule, state layout, crossings, sampled
+// blocks, and the tree of subsystem and part instances when there are any.
 void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out);
 
-// `mechflow graph`: Graphviz DOT of blocks (with ports) and connections.
+// `mechflow graph`: Graphviz DOT of blocks (with ports) and connections, the
+// blocks of each subsystem instance in a cluster labelled with its path.
 void PrintDot(const diagrams::LoadedDiagram& loaded, std::ostream& out);
 
 }  // namespace mechflow::cli

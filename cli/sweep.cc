@@ -31,6 +31,7 @@
 #include "cli/ranks.h"
 #include "cli/report.h"
 #include "cli/results_file.h"
+#include "cli/vary_pattern.h"
 #include "diagrams/loader.h"
 #include "mech/errors.h"
 #include "run/columns.h"
@@ -74,7 +75,8 @@ struct Plan {
   std::string file;
   diagrams::DiagramDescription description;  // read once; every worker builds its own model from it
   diagrams::LoadOptions common;            // variants, --set, t_end, unsafe_lua
-  std::vector<std::string> names;          // varied identifiers (lower-case)
+  std::vector<std::string> names;          // per --vary: its name in the table, file names and labels
+  std::vector<std::vector<std::string>> targets;  // per --vary: the identifiers it sets (s[*].mu: several)
   std::vector<std::vector<double>> values; // per varied identifier
   int runs = 1;
   std::shared_ptr<const OutputFolder> folder;  // shared by the threads
@@ -161,7 +163,8 @@ RunRow RunOne(const Plan& plan, int index, std::unique_ptr<run::Model>* model) {
   std::vector<blocks::ReportFigure> figures;
   try {
     if (!*model) *model = std::make_unique<run::Model>(plan.description, plan.common);
-    for (std::size_t k = 0; k < values.size(); ++k) (*model)->Set(plan.names[k], values[k]);
+    for (std::size_t k = 0; k < values.size(); ++k)
+      for (const std::string& target : plan.targets[k]) (*model)->Set(target, values[k]);
     std::unique_ptr<ResultsFile> file;
     run::RunOptions options;
     options.interrupt = InterruptFlag();
@@ -243,6 +246,7 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.common.results = args.results;
   plan.common.unsafe_lua = args.unsafe_lua;
   plan.common.allow_read = args.allow_read;
+  plan.common.library = args.library;
 
   // the diagram must load as given; its identifiers judge the --vary names
   run::Model model(args.file, plan.common);
@@ -250,20 +254,39 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.description = model.description();
   const scripting::IdentifierTable& ids = *base.identifiers;
   for (const auto& [name, values] : args.vary) {
-    const int i = ids.Find(name);
-    if (i < 0)
+    std::vector<int> matched;
+    if (IsVaryPattern(name)) {
+      matched = MatchVaryPattern(ids, name);
+      if (matched.empty()) {
+        std::vector<std::string> patterns;
+        for (int i = 0; i < ids.size(); ++i) patterns.push_back(AsVaryPattern(ids.spelling(i)));
+        throw InputError("--vary " + name + ": " + args.file + " has no identifier '" + name +
+                         "' for any index ([*] stands for [0], [1], ...)" + blocks::DidYouMean(name, patterns));
+      }
+    } else if (const int i = ids.Find(name); i >= 0) {
+      matched = {i};
+    } else {
       throw InputError("--vary " + name + ": " + args.file + " has no identifier '" + name + "'" +
                        blocks::DidYouMean(name, ids.Names()));
-    if (ids.is_expression(i))
-      throw InputError("--vary " + name + ": identifier '" + ids.spelling(i) + "' (" + ids.origin(i) +
-                       ") is derived (= " + ids.definition(i) +
-                       "); it follows the identifiers it uses, vary one of those");
-    for (const std::string& seen : plan.names)
-      if (seen == ids.spelling(i)) throw InputError("--vary " + name + ": identifier '" + seen + "' is varied twice");
-    for (const auto& [set_name, unused] : args.overrides)
-      if (ids.Find(set_name) == i)
-        throw InputError("--vary " + name + ": identifier '" + ids.spelling(i) + "' is also given by --set");
-    plan.names.push_back(ids.spelling(i));  // as the diagram writes it, in the table and file names
+    }
+    std::vector<std::string> targets;
+    for (const int i : matched) {
+      if (ids.is_expression(i))
+        throw InputError("--vary " + name + ": identifier '" + ids.spelling(i) + "' (" + ids.origin(i) +
+                         ") is derived (= " + ids.definition(i) +
+                         "); it follows the identifiers it uses, vary one of those");
+      for (const auto& earlier : plan.targets)
+        for (const std::string& seen : earlier)
+          if (seen == ids.spelling(i))
+            throw InputError("--vary " + name + ": identifier '" + seen + "' is varied twice");
+      for (const auto& [set_name, unused] : args.overrides)
+        if (ids.Find(set_name) == i)
+          throw InputError("--vary " + name + ": identifier '" + ids.spelling(i) + "' is also given by --set");
+      targets.push_back(ids.spelling(i));
+    }
+    // a pattern as the user wrote it; a name as the diagram writes it
+    plan.names.push_back(IsVaryPattern(name) ? name : targets.front());
+    plan.targets.push_back(std::move(targets));
     plan.values.push_back(values);
   }
   double runs = 1;

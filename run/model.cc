@@ -26,13 +26,16 @@ void Override(const scripting::IdentifierTable& ids, int i, const std::string& n
 bool Same(const LoadOptions& a, const LoadOptions& b) {
   return a.variants == b.variants && a.overrides == b.overrides && a.expression_overrides == b.expression_overrides &&
          a.t_end == b.t_end && a.rtol == b.rtol && a.atol == b.atol && a.interval == b.interval &&
-         a.results == b.results && a.unsafe_lua == b.unsafe_lua && a.allow_read == b.allow_read;
+         a.results == b.results && a.unsafe_lua == b.unsafe_lua && a.allow_read == b.allow_read &&
+         a.library == b.library;
 }
 
 }  // namespace
 
+// `options` is copied, not moved: the order in which the two arguments are
+// made is unspecified, and the read needs its folders
 Model::Model(const std::string& path, LoadOptions options)
-    : Model(diagrams::ReadDiagramFile(path, options.allow_read), std::move(options)) {}
+    : Model(diagrams::ReadDiagramFile(path, options.allow_read, options.library), options) {}
 
 Model::Model(diagrams::DiagramDescription description, LoadOptions options)
     : description_(std::move(description)), options_(std::move(options)) {

@@ -290,16 +290,22 @@ bool ControlScript::Resolve(const std::string& name, Target* target) {
     return true;
   }
   Target t;
-  if (name.find('.') != std::string::npos) {
-    try {
-      const blocks::SignalRef ref = diagram_.ResolveSignal(name);
-      t.index = ref.offset;
-      t.width = ref.width;
-    } catch (const InputError& e) {
-      error_ = std::string("sim:get: ") + e.what();
-      return false;
-    }
-  } else if (const int id = identifiers_.Find(name); id >= 0) {
+  // an output port name that one block alone has (a sensor name); its owners
+  std::vector<std::string> owners, all;
+  const auto find_owner = [&] {
+    for (int b = 0; b < diagram_.num_blocks(); ++b)
+      for (int p = 0; p < diagram_.block(b).num_outputs(); ++p) {
+        const std::string full = diagram_.block(b).name() + "." + diagram_.block(b).output_port(p).name;
+        all.push_back(full);
+        if (diagram_.block(b).output_port(p).name != name) continue;
+        owners.push_back(full);
+        t.index = diagram_.layout(b).output_offset[p];
+        t.width = diagram_.layout(b).output_width[p];
+      }
+    return owners.size() == 1;
+  };
+  // an identifier first: its name may be a path with dots (d[1].mu)
+  if (const int id = identifiers_.Find(name); id >= 0) {
     t.is_identifier = true;
     t.index = id;
     // an <input> of a mechanism: what the mechanism receives is the signal
@@ -317,26 +323,26 @@ bool ControlScript::Resolve(const std::string& name, Target* target) {
       t.fed_by = to.name() + "." + to.input_port(c.to_port).name + " <- " + from.name() + "." +
                  from.output_port(c.from_port).name;
     }
-  } else {
-    // an output port name that one block alone has (a sensor name)
-    std::vector<std::string> owners, all;
-    for (int b = 0; b < diagram_.num_blocks(); ++b)
-      for (int p = 0; p < diagram_.block(b).num_outputs(); ++p) {
-        const std::string full = diagram_.block(b).name() + "." + diagram_.block(b).output_port(p).name;
-        all.push_back(full);
-        if (diagram_.block(b).output_port(p).name != name) continue;
-        owners.push_back(full);
-        t.index = diagram_.layout(b).output_offset[p];
-        t.width = diagram_.layout(b).output_width[p];
+  } else if (name.find('.') != std::string::npos) {
+    try {
+      const blocks::SignalRef ref = diagram_.ResolveSignal(name);
+      t.index = ref.offset;
+      t.width = ref.width;
+    } catch (const InputError& e) {
+      // a sensor of a part is named with dots (s[2].x): the one block with
+      // that output is meant, as for other sensor names
+      if (!find_owner()) {
+        error_ = std::string("sim:get: ") + e.what();
+        return false;
       }
-    if (owners.size() != 1) {
-      error_ = "sim:get: '" + name + "' " +
-               (owners.empty() ? "is no identifier and no block's output" + blocks::DidYouMean(name, all) +
-                                     "; signals are written block.port"
-                               : "is an output of several blocks (" + blocks::JoinNames(owners) +
-                                     "); write block.port");
-      return false;
     }
+  } else if (!find_owner()) {
+    error_ = "sim:get: '" + name + "' " +
+             (owners.empty() ? "is no identifier and no block's output" + blocks::DidYouMean(name, all) +
+                                   "; signals are written block.port"
+                             : "is an output of several blocks (" + blocks::JoinNames(owners) +
+                                   "); write block.port");
+    return false;
   }
   targets_.emplace(name, t);
   *target = t;

@@ -237,5 +237,30 @@ TEST(CommandLineTest, VerboseNamesBlockEvents) {
   EXPECT_THAT(testing::ReadFile(dir / "sweep" / "d.run2.A=2.events.txt"), HasSubstr("s: a: u falls past 0\n"));
 }
 
+// --library DIR reaches the read of every command that reads a diagram (each
+// passes its options on its own way): a subsystem file found only there is
+// found. psd reads a results file and takes no --library.
+TEST(CommandLineTest, EveryCommandReadingADiagramLooksInTheLibrary) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "library_option";
+  fs::create_directories(dir / "d");
+  fs::create_directories(dir / "lib");
+  std::ofstream(dir / "lib" / "sub.xml") << "<subsystem name=\"sub\"><output name=\"y\"/></subsystem>\n";
+  const std::string diagram = (dir / "d" / "top.xml").string();
+  std::ofstream(diagram) << "<diagram><blocks><block type=\"subsystem\" name=\"s\" src=\"sub.xml\"/></blocks>"
+                            "<solver t_end=\"0.1\"/></diagram>\n";
+  const std::string out = " --out " + (dir / "out").string();
+  const auto missing = testing::RunMechflow("run " + diagram + out);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_THAT(missing.err, HasSubstr("file 'sub.xml' not found"));
+  for (const std::string command : {"run", "check", "graph", "modes", "sweep --vary k=1,2",
+                                    "force-analysis --element f --amplitude 0.1 --frequency 1"}) {
+    const auto found = testing::RunMechflow(command + " " + diagram + " --library " + (dir / "lib").string() + out);
+    EXPECT_THAT(found.err, ::testing::Not(HasSubstr("not found"))) << command;
+    EXPECT_THAT(found.err, ::testing::Not(HasSubstr("unknown option"))) << command;
+  }
+  EXPECT_THAT(ParseArguments({"check", "d.xml", "--library", "a", "--library=b"}).library, ElementsAre("a", "b"));
+  EXPECT_THROW(ParseArguments({"psd", "r.csv", "--library", "a"}), UsageError);
+}
+
 }  // namespace
 }  // namespace mechflow::cli

@@ -27,6 +27,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/sweep.h"
+#include "cli/vary_pattern.h"
 #include "tests/cli/mechflow_command.h"
 
 namespace mechflow::cli {
@@ -258,6 +259,66 @@ TEST(SweepTest, BadVaryIsBadInput) {
     EXPECT_EQ(o.exit_code, 2);
     EXPECT_THAT(o.err, HasSubstr(c.message));
     EXPECT_FALSE(fs::exists(dir));
+  }
+}
+
+TEST(SweepTest, AStarInANameStandsForEveryIndex) {
+  EXPECT_TRUE(MatchesVaryPattern("s[*].mu", "S[12].MU"));
+  EXPECT_TRUE(MatchesVaryPattern("chain.s[*].d[*].c", "chain.s[0].d[3].c"));
+  for (const char* other : {"s[].mu", "s[1a].mu", "s.mu", "s[1].mu.x", "s[1]mu", "s[1].m", "t[1].mu"})
+    EXPECT_FALSE(MatchesVaryPattern("s[*].mu", other)) << other;
+  EXPECT_EQ(AsVaryPattern("chain.s[2].d[10].c"), "chain.s[*].d[*].c");
+}
+
+// --vary s[*].mu sets every s[k].mu to the run's value; the table, the
+// terminal and the file names show the name as written.
+TEST(SweepTest, APatternVariesEveryMatchingIdentifierAlike) {
+  const fs::path dir = FreshDir("pattern");
+  fs::create_directories(dir);
+  // s[0].mu, s[1].mu and t[0].mu (= 2*k) are the parameters of subsystem instances
+  std::ofstream(dir / "fr.xml") << R"(<subsystem name="fr">
+  <parameter name="mu" default="0.1"/>
+  <output name="y"/>
+  <blocks><block type="constant" name="c" value="mu"/></blocks>
+  <connections><connect from="c.y" to="y"/></connections>
+</subsystem>
+)";
+  const fs::path diagram = dir / "p.xml";
+  std::ofstream(diagram) << R"(<diagram name="p">
+  <identifiers><identifier name="k" value="1"/></identifiers>
+  <blocks>
+    <block type="subsystem" name="s" src="fr.xml" count="2"/>
+    <block type="subsystem" name="t" src="fr.xml" count="1"><param name="mu" value="2*k"/></block>
+  </blocks>
+  <solver t_end="0.1"/>
+  <output interval="0.1"><log signal="s[0].c.y"/><log signal="s[1].c.y"/><log signal="t[0].c.y"/></output>
+</diagram>
+)";
+  const fs::path out = dir / "out";
+  const Outcome o = Mechflow("sweep " + diagram.string() + " --vary 's[*].mu=0.2,0.3' --jobs 1 --out " + out.string());
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_THAT(o.out, HasSubstr("run 2/2 (s[*].mu=0.3): ok"));
+  EXPECT_EQ(ReadFile(out / "p.sweep.csv"), "run,s[*].mu,status,t_reached,error,results\n"
+                                           "1,0.2,ok,0.1,,p.run1.s[*].mu=0.2.csv\n"
+                                           "2,0.3,ok,0.1,,p.run2.s[*].mu=0.3.csv\n");
+  EXPECT_EQ(ReadFile(out / "p.run2.s[*].mu=0.3.csv"), "time,s[0].c.y,s[1].c.y,t[0].c.y\n0,0.3,0.3,2\n0.1,0.3,0.3,2\n");
+
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {"--vary 's[*].muu=1'", "--vary s[*].muu: " + diagram.string() +
+                                  " has no identifier 's[*].muu' for any index ([*] stands for [0], [1], ...) "
+                                  "(did you mean 's[*].mu'?)"},
+      {"--vary 't[*].mu=1'", "--vary t[*].mu: identifier 't[0].mu' (" + diagram.string() + ":5) is derived (= 2*k)"},
+      {"--vary 's[*].mu=1' --vary 'S[1].MU=2'", "--vary S[1].MU: identifier 's[1].mu' is varied twice"},
+      {"--vary 's[*].mu=1' --set 's[0].mu=2'", "--vary s[*].mu: identifier 's[0].mu' is also given by --set"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.args);
+    const Outcome bad = Mechflow("sweep " + diagram.string() + " " + c.args + " --out " + (dir / "bad").string());
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_THAT(bad.err, HasSubstr(c.message));
   }
 }
 

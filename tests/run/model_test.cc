@@ -4,6 +4,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -172,6 +173,42 @@ TEST(RunModel, RefusesWhatItCannotDo) {
   EXPECT_THROW(model.Run(Short(0.1)), InputError);
   model.Set("mass", 1000.0);
   EXPECT_EQ(model.Run(Short(0.1)).status, run::Status::kOk);
+}
+
+// The file is read with the folders the options give: --allow-read for a
+// mechanism's src= outside the diagram's folder, --library for a subsystem
+// file found there only.
+TEST(RunModel, ReadsWithTheFoldersOfItsOptions) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / ("run_model_folders_" + std::to_string(getpid()));
+  fs::create_directories(dir / "d");
+  fs::create_directories(dir / "other");
+  fs::create_directories(dir / "lib");
+  std::ofstream(dir / "other" / "m.xml") << "<mechanism name=\"m\"><body name=\"B\" mass=\"1\" inertia=\"1 1 1\"/>"
+                                            "<joint name=\"j\" type=\"translational\" body1=\"Base0\" body2=\"B\" "
+                                            "axis=\"0 0 1\"/></mechanism>\n";
+  std::ofstream(dir / "d" / "mech.xml") << "<diagram><mechanism name=\"m\" src=\"../other/m.xml\"/>"
+                                           "<solver t_end=\"0.1\"/></diagram>\n";
+  std::ofstream(dir / "lib" / "sub.xml") << "<subsystem name=\"sub\"><output name=\"y\"/></subsystem>\n";
+  std::ofstream(dir / "d" / "top.xml") << "<diagram><blocks><block type=\"subsystem\" name=\"s\" src=\"sub.xml\"/>"
+                                          "</blocks></diagram>\n";
+
+  run::LoadOptions allow;
+  allow.allow_read = {(dir / "other").string()};
+  EXPECT_EQ(run::Model((dir / "d" / "mech.xml").string(), allow).Loaded().diagram->num_states(), 2);
+  const auto error = [&](const std::vector<std::string>& library) {
+    run::LoadOptions options;
+    options.library = library;
+    try {
+      run::Model((dir / "d" / "top.xml").string(), options);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(loaded)");
+  };
+  EXPECT_THAT(error({}), HasSubstr("file 'sub.xml' not found"));
+  // found: whatever the loader then says of it, the file is not missing
+  EXPECT_THAT(error({(dir / "lib").string()}), ::testing::Not(HasSubstr("not found")));
 }
 
 }  // namespace

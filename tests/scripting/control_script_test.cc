@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -110,6 +112,50 @@ TEST(ControlScriptTest, GetReadsSignalsIdentifiersAndUniquePortNames) {
   ASSERT_FALSE(unknown.outcome.ok);
   EXPECT_THAT(unknown.outcome.failure, HasSubstr("test.xml:"));
   EXPECT_THAT(unknown.outcome.failure, HasSubstr("init(sim)"));
+}
+
+// An identifier whose name is an instance path (a subsystem's parameter,
+// d[1].mu) is got and set by that name, dots and all; another dotted name is
+// still a signal.
+TEST(ControlScriptTest, GetAndSetTakeIdentifiersNamedByPaths) {
+  diagrams::DiagramDescription description = diagrams::ReadDiagramText(Diagram(R"(<![CDATA[
+    function init(sim)
+      assert(sim:get("d[1].mu") == 0.25, "loaded: " .. tostring(sim:get("d[1].mu")))
+      sim:set("D[1].MU", 0.5)  -- any case, as other identifiers
+      assert(sim:get("d[1].mu") == 0.5, "after sim:set: " .. tostring(sim:get("d[1].mu")))
+      assert(sim:get("x.y") == 0, "x.y is a signal")
+    end]]>)"), "test.xml");
+  description.identifiers.push_back({"d[1].mu", "0.25", "", "", {}});
+  auto run = mechflow::testing::RunDescription(std::move(description));
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+}
+
+// A part's sensor has a dotted name (s[1].z, an output of mechanism m):
+// sim:get takes it alone, as other sensor names, or as m.s[1].z.
+TEST(ControlScriptTest, GetTakesTheDottedSensorNameOfAPart) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "control_script_parts";
+  fs::create_directories(dir);
+  std::ofstream(dir / "slider.xml") << R"(<part name="slider">
+  <attach name="base"/>
+  <body name="Box" mass="1" inertia="1 1 1"/>
+  <joint name="j" type="translational" body1="base" body2="Box" axis="0 0 1"/>
+  <sensor name="z" kind="coordinate" dof="j"/>
+</part>
+)";
+  std::ofstream(dir / "parts.xml") << R"(<diagram name="parts">
+  <mechanism name="m"><include part="slider.xml" name="s" count="2" attach="base=Base0"/></mechanism>
+  <script><![CDATA[
+    function finish(sim)
+      local z = sim:get("m.s[1].z")
+      assert(z < -0.04, "fallen: " .. tostring(z))
+      assert(sim:get("s[1].z") == z, "by the sensor name alone")
+    end]]></script>
+  <solver t_end="0.1"/>
+</diagram>
+)";
+  const auto run = mechflow::testing::RunDescription(diagrams::ReadDiagramFile((dir / "parts.xml").string()));
+  EXPECT_TRUE(run.outcome.ok) << run.outcome.failure;
 }
 
 TEST(ControlScriptTest, AFixedIdentifierCannotChangeAndTheRunKeepsItsResults) {
