@@ -23,6 +23,7 @@
 #include "diagrams/units.h"
 #include "mech/mechanism.h"
 #include "scripting/global_reads.h"
+#include "scripting/instance_path.h"
 
 namespace mechflow::cli {
 namespace {
@@ -247,7 +248,7 @@ void PrintCheck(const diagrams::LoadedDiagram& loaded, std::ostream& out) {
     out << "\nidentifiers:\n";
     for (int i = 0; i < ids.size(); ++i)
       out << "  " << ids.spelling(i) << " = " << IdentifierValue(ids, i)
-          << (ids.is_expression(i) ? "  (= " + ids.definition(i) + ")" : "")
+          << (ids.is_expression(i) ? "  (= " + scripting::WithInstancePaths(ids.definition(i)) + ")" : "")
           << (ids.comment(i).empty() ? "" : "  " + ids.comment(i)) << "\n";
   }
   if (!loaded.description.variants.empty()) {

@@ -36,6 +36,7 @@
 #include "mech/errors.h"
 #include "run/columns.h"
 #include "run/model.h"
+#include "scripting/instance_path.h"
 
 namespace mechflow::cli {
 namespace {
@@ -267,13 +268,13 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
       matched = {i};
     } else {
       throw InputError("--vary " + name + ": " + args.file + " has no identifier '" + name + "'" +
-                       blocks::DidYouMean(name, ids.Names()));
+                       blocks::DidYouMean(name, ids.ShownNames()));
     }
     std::vector<std::string> targets;
     for (const int i : matched) {
       if (ids.is_expression(i))
         throw InputError("--vary " + name + ": identifier '" + ids.spelling(i) + "' (" + ids.origin(i) +
-                         ") is derived (= " + ids.definition(i) +
+                         ") is derived (= " + scripting::WithInstancePaths(ids.definition(i)) +
                          "); it follows the identifiers it uses, vary one of those");
       for (const auto& earlier : plan.targets)
         for (const std::string& seen : earlier)

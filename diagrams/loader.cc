@@ -300,6 +300,8 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
     builder.AddBlock(std::move(block), b.loc.str());
   }
   for (const auto& c : d.connections) builder.Connect(c.from, c.to, c.loc.str());
+  // a subsystem's output is reached by its path too (logs, reports, sim:get)
+  for (const auto& [alias, target] : d.signal_aliases) builder.AddSignalAlias(alias, target, "output '" + alias + "'");
   if (out.lua->has_run_time_code() || d.script.present())  // one Lua state: one thread at a time runs it
     builder.SetRunClaim([lua = out.lua.get()]() -> std::unique_ptr<blocks::BlockScratch> {
       struct Claim final : blocks::BlockScratch {

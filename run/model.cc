@@ -6,6 +6,7 @@
 #include "blocks/support/suggest.h"
 #include "diagrams/xml_reader.h"
 #include "mech/errors.h"
+#include "scripting/instance_path.h"
 
 namespace mechflow::run {
 namespace {
@@ -79,12 +80,16 @@ int Model::FindIdentifier(const std::string& name) {
   if (i < 0) {
     std::string lower = name;
     for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    throw InputError("--set " + name + ": no identifier named '" + name + "'" + blocks::DidYouMean(lower, ids.Names()) +
-                     (ids.size() == 0 ? "; the diagram defines none" : "; identifiers: " + blocks::JoinNames(ids.Names())));
+    const std::vector<std::string> names = ids.ShownNames();
+    throw InputError("--set " + name + ": no identifier named '" + name + "'" + blocks::DidYouMean(lower, names) +
+                     (ids.size() == 0 ? "; the diagram defines none" : "; identifiers: " + blocks::JoinNames(names)));
   }
-  if (ids.is_expression(i))
-    throw InputError("--set " + name + ": identifier '" + ids.name(i) + "' is defined by an expression (" + ids.name(i) +
-                     " = " + ids.definition(i) + ", at " + ids.origin(i) + "); set the identifiers it depends on instead");
+  if (ids.is_expression(i)) {
+    const std::string shown = scripting::WithInstancePaths(ids.name(i));
+    throw InputError("--set " + name + ": identifier '" + shown + "' is defined by an expression (" + shown + " = " +
+                     scripting::WithInstancePaths(ids.definition(i)) + ", at " + ids.origin(i) +
+                     "); set the identifiers it depends on instead");
+  }
   return i;
 }
 
