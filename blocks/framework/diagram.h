@@ -17,6 +17,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "blocks/framework/algebraic_loop.h"
@@ -80,17 +81,31 @@ class Diagram {
   // Context (and thread).
   const RunClaimMaker& run_claim() const { return run_claim_; }
 
-  // Resolves "block.port" (or "block" for a block with one output). Throws
+  // Resolves "block.port" (or "block" for a block with one output), or a
+  // signal alias (DiagramBuilder::AddSignalAlias; the SignalRef is named as
+  // the alias). Block names and port names may hold dots (instance paths,
+  // "d[1].fr", sensor ports "s[2].x"): the block is the longest prefix of the
+  // reference, up to a '.', that names one, the rest is the port. Throws
   // InputError naming what exists when it does not resolve.
   SignalRef ResolveSignal(std::string_view reference) const;
 
  private:
   friend class DiagramBuilder;
   Diagram() = default;
+  // The block that `reference` starts with (see ResolveSignal), its port part
+  // in *port ("" for the block alone); -1 when no prefix names a block, with
+  // *port then what follows the last '.'. As many lookups as the reference
+  // has dots, whatever the number of blocks.
+  int FindBlockOf(std::string_view reference, std::string_view* port) const;
+  // The output port `reference` names: its block and port. Throws InputError
+  // ("signal 'REF': ...") naming what exists when it names none.
+  std::pair<int, int> FindOutput(std::string_view reference) const;
 
   std::vector<std::unique_ptr<Block>> blocks_;
   std::vector<std::string> origins_;
   std::map<std::string, int, std::less<>> block_index_;  // name -> block, for FindBlock
+  // signal alias -> the "block.port" it stands for (chains of aliases followed)
+  std::map<std::string, std::string, std::less<>> aliases_;
   std::vector<BlockLayout> layouts_;
   std::vector<Connection> connections_;
   std::vector<OutputNode> schedule_, dynamics_schedule_, rest_schedule_;

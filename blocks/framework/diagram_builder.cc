@@ -20,11 +20,14 @@ std::vector<std::string> PortNames(const Block& b, bool outputs) {
   return names;
 }
 
-// Splits "block.port" at the last dot ("block" alone gives an empty port).
-std::pair<std::string_view, std::string_view> SplitReference(std::string_view ref) {
-  const auto dot = ref.rfind('.');
-  if (dot == std::string_view::npos) return {ref, {}};
-  return {ref.substr(0, dot), ref.substr(dot + 1)};
+// What makes `name` unfit for a block, or "": a block is named by instance
+// path parts joined by '.', none empty, so that "name.port" splits back into
+// the block and its port.
+std::string BlockNameProblem(const std::string& name) {
+  if (name.empty()) return "is empty";
+  if (name.front() == '.' || name.back() == '.' || name.find("..") != std::string::npos)
+    return "has an empty part between dots";
+  return "";
 }
 
 }  // namespace
@@ -34,31 +37,59 @@ int Diagram::FindBlock(std::string_view name) const {
   return it == block_index_.end() ? -1 : it->second;
 }
 
-SignalRef Diagram::ResolveSignal(std::string_view reference) const {
-  const auto [block_name, port_name] = SplitReference(reference);
-  const int b = FindBlock(block_name);
+int Diagram::FindBlockOf(std::string_view reference, std::string_view* port) const {
+  // the longest prefix first: the whole reference, then up to each '.' from the right
+  for (std::size_t end = reference.size();; --end) {
+    if (end == reference.size() || reference[end] == '.') {
+      const int b = FindBlock(reference.substr(0, end));
+      if (b >= 0) {
+        *port = end == reference.size() ? std::string_view() : reference.substr(end + 1);
+        return b;
+      }
+    }
+    if (end == 0) break;
+  }
+  const auto dot = reference.rfind('.');
+  *port = dot == std::string_view::npos ? std::string_view() : reference.substr(dot + 1);
+  return -1;
+}
+
+std::pair<int, int> Diagram::FindOutput(std::string_view reference) const {
+  std::string_view port_name;
+  const int b = FindBlockOf(reference, &port_name);
   if (b < 0) {
+    // the block as the reference was written before ports could hold dots
+    const std::string_view block_name = reference.substr(0, reference.rfind('.'));
     std::vector<std::string> names;
     for (const auto& blk : blocks_) names.push_back(blk->name());
     throw InputError("signal '" + std::string(reference) + "': no block named '" +
                      std::string(block_name) + "'" + DidYouMean(block_name, names));
   }
   const Block& blk = *blocks_[b];
-  int port = -1;
   if (port_name.empty()) {
     if (blk.num_outputs() != 1)
       throw InputError("signal '" + std::string(reference) + "': block '" + blk.name() + "' has " +
                        std::to_string(blk.num_outputs()) + " outputs; name one of: " +
                        JoinNames(PortNames(blk, true)));
-    port = 0;
-  } else {
-    port = blk.FindOutput(port_name);
-    if (port < 0)
-      throw InputError("signal '" + std::string(reference) + "': block '" + blk.name() +
-                       "' has no output '" + std::string(port_name) + "'" +
-                       DidYouMean(port_name, PortNames(blk, true)) +
-                       "; its outputs: " + JoinNames(PortNames(blk, true)));
+    return {b, 0};
   }
+  const int port = blk.FindOutput(port_name);
+  if (port < 0)
+    throw InputError("signal '" + std::string(reference) + "': block '" + blk.name() +
+                     "' has no output '" + std::string(port_name) + "'" +
+                     DidYouMean(port_name, PortNames(blk, true)) +
+                     "; its outputs: " + JoinNames(PortNames(blk, true)));
+  return {b, port};
+}
+
+SignalRef Diagram::ResolveSignal(std::string_view reference) const {
+  if (const auto alias = aliases_.find(reference); alias != aliases_.end()) {
+    SignalRef ref = ResolveSignal(alias->second);
+    ref.name = alias->first;  // a logged d[1].F is called that, not d[1].fr.F
+    return ref;
+  }
+  const auto [b, port] = FindOutput(reference);
+  const Block& blk = *blocks_[b];
   return {PortName(blk, blk.output_port(port)), layouts_[b].output_offset[port],
           layouts_[b].output_width[port]};
 }
@@ -78,9 +109,11 @@ Block& DiagramBuilder::AddBlock(std::unique_ptr<Block> block, std::string origin
     throw InputError(Where(origin) + "block name '" + block->name() + "' is used twice" +
                      (first.empty() ? "" : " (first at " + first + ")"));
   }
-  if (block->name().empty() || block->name().find('.') != std::string::npos)
-    throw InputError(Where(origin) + "block name '" + block->name() +
-                     "' must be non-empty and contain no '.'");
+  // names a diagram's author writes are checked where they are read (no '.'
+  // there); these are a program's, or instance paths made by flattening
+  if (const std::string problem = BlockNameProblem(block->name()); !problem.empty())
+    throw InputError(Where(origin) + "block name '" + block->name() + "' " + problem +
+                     ": a block name is one or more parts joined by '.' (an instance path such as d[1].fr)");
   diagram_->block_index_.emplace(block->name(), diagram_->num_blocks());
   diagram_->blocks_.push_back(std::move(block));
   diagram_->origins_.push_back(std::move(origin));
@@ -90,6 +123,44 @@ Block& DiagramBuilder::AddBlock(std::unique_ptr<Block> block, std::string origin
 void DiagramBuilder::Connect(std::string_view from, std::string_view to, std::string origin) {
   ThrowIfBuilt("Connect");
   pending_.push_back({std::string(from), std::string(to), std::move(origin)});
+}
+
+void DiagramBuilder::AddSignalAlias(std::string_view alias, std::string_view target, std::string origin) {
+  ThrowIfBuilt("AddSignalAlias");
+  const auto [it, fresh] = pending_aliases_.emplace(std::string(alias), PendingAlias{std::string(target), origin});
+  if (!fresh)
+    throw InputError(Where(origin) + "signal alias '" + std::string(alias) + "' is given twice" +
+                     (it->second.origin.empty() ? "" : " (first at " + it->second.origin + ")"));
+  alias_order_.push_back(std::string(alias));
+}
+
+// Follows each alias to the output it stands for and checks that output
+// exists; before connections are resolved, which may name aliases.
+void DiagramBuilder::ResolveAliases() {
+  Diagram& d = *diagram_;
+  for (const std::string& alias : alias_order_) {
+    const PendingAlias& given = pending_aliases_.find(alias)->second;
+    const std::string what = Where(given.origin) + "signal alias '" + alias + "' for '" + given.target + "': ";
+    std::string_view port;
+    if (const int b = d.FindBlockOf(alias, &port);
+        b >= 0 && (port.empty() ? d.blocks_[b]->num_outputs() == 1 : d.blocks_[b]->FindOutput(port) >= 0))
+      throw InputError(what + "'" + alias + "' already names an output of block '" + d.blocks_[b]->name() +
+                       "'; give the alias a name of its own");
+    std::string target = given.target;
+    for (std::size_t steps = 0;; ++steps) {
+      const auto next = pending_aliases_.find(target);
+      if (next == pending_aliases_.end()) break;
+      if (steps == pending_aliases_.size())
+        throw InputError(what + "the aliases go round in a circle; one of them must name a block's output");
+      target = next->second.target;
+    }
+    try {
+      d.FindOutput(target);
+    } catch (const InputError& e) {
+      throw InputError(what + e.what());
+    }
+    d.aliases_.emplace(alias, std::move(target));
+  }
 }
 
 Connection DiagramBuilder::Resolve(const PendingConnection& c) const {
@@ -104,13 +175,20 @@ Connection DiagramBuilder::Resolve(const PendingConnection& c) const {
     return names;
   };
 
-  auto find_port = [&](const std::string& ref, bool output, int* block, int* port) {
-    const auto [block_name, port_name] = SplitReference(ref);
+  auto find_port = [&](const std::string& written, bool output, int* block, int* port) {
+    const auto alias = d.aliases_.find(written);
+    if (alias != d.aliases_.end() && !output)
+      throw InputError(what + "'" + written + "' is another name for the output " + alias->second +
+                       ", not an input; connect to an input");
+    const std::string_view ref = alias != d.aliases_.end() ? std::string_view(alias->second) : written;
+    std::string_view port_name;
     const char* side = output ? "output" : "input";
-    *block = d.FindBlock(block_name);
-    if (*block < 0)
+    *block = d.FindBlockOf(ref, &port_name);
+    if (*block < 0) {
+      const std::string_view block_name = ref.substr(0, ref.rfind('.'));
       throw InputError(what + "there is no block named '" + std::string(block_name) + "'" +
                        DidYouMean(block_name, block_names()));
+    }
     const Block& b = *d.blocks_[*block];
     const auto names = PortNames(b, output);
     const int count = output ? b.num_outputs() : b.num_inputs();
@@ -487,6 +565,7 @@ void DiagramBuilder::SplitSchedule(Diagram* d) {
 
 std::unique_ptr<Diagram> DiagramBuilder::Build() {
   ThrowIfBuilt("Build");
+  ResolveAliases();
   std::vector<Connection> resolved;
   for (const auto& c : pending_) resolved.push_back(Resolve(c));
   CheckInputs(resolved);
@@ -494,6 +573,8 @@ std::unique_ptr<Diagram> DiagramBuilder::Build() {
   Schedule(diagram_.get());
   SplitSchedule(diagram_.get());
   pending_.clear();
+  pending_aliases_.clear();
+  alias_order_.clear();
   return std::move(diagram_);
 }
 
