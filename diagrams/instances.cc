@@ -44,6 +44,12 @@ void SetContext(SourceLoc* loc, const std::string& context) {
 void SetContext(std::vector<Attribute>* attributes, const std::string& context) {
   for (Attribute& a : *attributes) SetContext(&a.loc, context);
 }
+// An element and all its children, as written in an instance's file.
+void SetContext(ElementDesc* e, const std::string& context) {
+  SetContext(&e->loc, context);
+  SetContext(&e->attributes, context);
+  for (ElementDesc& child : e->children) SetContext(&child, context);
+}
 
 // How a part instance's elements are named in its mechanism: "s[1]." before
 // its own names, attach points replaced by bodies of the including scope.
@@ -77,8 +83,10 @@ class Flattener {
   // null) or of a subsystem instance, appended flat.
   void Content(InstanceScope& scope, const ComponentDesc* component, const std::vector<ElementDesc>& mechanisms,
                const std::vector<BlockDesc>& blocks, const std::vector<ConnectionDesc>& connections) {
-    std::set<std::string> names;  // of blocks, mechanisms and instances here
-    const auto claim = [&](const std::string& name, const SourceLoc& loc, const std::string& what) {
+    // blocks, mechanisms and instances share one name space: "d.y" must name one thing
+    std::map<std::string, SourceLoc> names;
+    const auto claim = [&](const std::string& name, SourceLoc loc, const std::string& what) {
+      SetContext(&loc, scope.context());
       if (const std::string problem = WrittenNameProblem(name); !problem.empty())
         throw InputError(loc.str() + ": " + what + " name '" + name + "' " + problem);
       if (component)
@@ -87,7 +95,9 @@ class Flattener {
             if (p.name == name)
               throw InputError(loc.str() + ": " + what + " '" + name + "' has the name of a port of " +
                                scope.description() + " (" + p.loc.str() + "); rename one of them");
-      names.insert(name);
+      if (const auto [first, fresh] = names.emplace(name, loc); !fresh)
+        throw InputError(loc.str() + ": " + what + " name '" + name + "' is taken (" + first->second.str() +
+                         "); blocks, mechanisms and subsystems of one file need names of their own");
     };
     for (const ElementDesc& m : mechanisms) {
       claim(m.Text("name"), m.loc, "mechanism");
@@ -167,7 +177,8 @@ class Flattener {
       IdentifierDesc id{scope.PathOf(p.name), "", p.comment, p.unit, p.loc};
       if (arg) {
         // written where the instance is used, seeing that scope (and the new instance's index)
-        id.value = parent.WithIndex(index, n).Rewrite(arg->value, arg->loc.str() + ": parameter '" + p.name + "'");
+        const InstanceScope here = index ? parent.WithIndex(index, n) : parent;
+        id.value = here.Rewrite(arg->value, arg->loc.str() + ": parameter '" + p.name + "'");
         id.loc = arg->loc;
       } else if (p.has_default) {
         id.value = scope.Rewrite(p.default_value, p.loc.str() + ": parameter '" + p.name + "' default");
@@ -190,8 +201,14 @@ class Flattener {
     return scope;
   }
 
-  void Subsystem(const InstanceScope& scope, const BlockDesc& b) {
-    const ComponentDesc& c = *d_.FindComponent(b.component);
+  void Subsystem(const InstanceScope& scope, const BlockDesc& written) {
+    const ComponentDesc& c = *d_.FindComponent(written.component);
+    // its lines in messages carry the instance whose file holds it
+    BlockDesc b = written;
+    SetContext(&b.loc, scope.context());
+    SetContext(&b.text_loc, scope.context());
+    SetContext(&b.params, scope.context());
+    SetContext(&b.args, scope.context());
     for (const Attribute& a : b.params)
       if (a.name != "src" && a.name != "count")
         throw InputError(a.loc.str() + ": subsystem '" + b.name + "' takes src=, count= and <param> children; give '" +
@@ -201,8 +218,10 @@ class Flattener {
     int count = 0;
     for (const auto& [path, index] : Paths(scope, scope.prefix() + b.name, FindAttribute(b.params, "count"), &count)) {
       InstanceScope inner = Enter(scope, path, c, b.loc, index, count, b.args);
-      for (const PortDesc& p : c.inputs) {
-        virtual_[inner.prefix() + p.name] = {path, true, p.loc};
+      for (const PortDesc& written_port : c.inputs) {
+        PortDesc p = written_port;
+        SetContext(&p.loc, inner.context());
+        virtual_[inner.prefix() + p.name] = {path, true, p.loc, p.name, inner.description()};
         if (!p.width.empty()) {
           double w = 0;
           if (!scripting::ParseNumber(p.width, &w) || !(w >= 1 && w == std::floor(w) && w <= 1e6))
@@ -210,7 +229,11 @@ class Flattener {
           widths_.push_back({inner.prefix() + p.name, static_cast<int>(w), p.loc});
         }
       }
-      for (const PortDesc& p : c.outputs) virtual_[inner.prefix() + p.name] = {path, false, p.loc};
+      for (const PortDesc& p : c.outputs) {
+        SourceLoc at = p.loc;
+        SetContext(&at, inner.context());
+        virtual_[inner.prefix() + p.name] = {path, false, at, p.name, inner.description()};
+      }
       Content(inner, &c, c.mechanisms, c.blocks, c.connections);
     }
   }
@@ -226,6 +249,7 @@ class Flattener {
     std::string instance;
     bool input = false;
     SourceLoc loc;
+    std::string name, owner;  // as declared; the instance described
   };
 
   std::vector<ConnectionDesc> ResolveConnections() {
@@ -246,11 +270,25 @@ class Flattener {
                          (it->second.input ? "an input of a subsystem is read inside it"
                                            : "an output of a subsystem is read in the file that uses it"));
     }
+    // an output nothing inside feeds is a mistake in the subsystem's file, read or not
+    for (const auto& [name, port] : virtual_)
+      if (!port.input && !source_of.count(name))
+        throw InputError(port.loc.str() + ": output '" + port.name + "' of " + port.owner +
+                         ": nothing inside feeds it; connect a block's output to it (<connect from=\"BLOCK.PORT\" "
+                         "to=\"" + port.name + "\"/>) or remove it");
     // the block output behind a port, through any number of ports
     const auto real_source = [&](std::string name, const SourceLoc& loc) {
-      for (std::size_t hops = 0; virtual_.count(name); ++hops) {
+      std::vector<std::string> passed;
+      for (; virtual_.count(name);) {
+        if (std::find(passed.begin(), passed.end(), name) != passed.end()) {
+          std::string loop;
+          for (auto it = std::find(passed.begin(), passed.end(), name); it != passed.end(); ++it) loop += *it + " <- ";
+          throw InputError(loc.str() + ": ports joined in a loop with no block between (" + loop + name +
+                           "); a signal needs a block's output for its source");
+        }
+        passed.push_back(name);
         const auto it = source_of.find(name);
-        if (it == source_of.end() || hops > virtual_.size()) {
+        if (it == source_of.end()) {
           const Port& p = virtual_.at(name);
           throw InputError(loc.str() + ": '" + name + "' is " +
                            (p.input ? "an input of " + p.instance + " that nothing feeds; connect it where " +
@@ -339,9 +377,11 @@ class Flattener {
   }
 
   // <include part=... name=... [count first] attach=...>: the part's elements, once per instance.
-  void Include(const InstanceScope& scope, const ElementDesc& e, const PartNaming& naming,
+  void Include(const InstanceScope& scope, const ElementDesc& written, const PartNaming& naming,
                const std::string& mechanism, std::vector<ElementDesc>* out) {
-    const ComponentDesc& c = *d_.FindComponent(e.component);
+    const ComponentDesc& c = *d_.FindComponent(written.component);
+    ElementDesc e = written;  // its lines in messages carry the instance whose file holds it
+    SetContext(&e, scope.context());
     const std::string name = e.Text("name");
     if (const std::string problem = WrittenNameProblem(name); !problem.empty())
       throw InputError(e.loc.str() + ": include name '" + name + "' " + problem);
@@ -356,7 +396,7 @@ class Flattener {
       PartNaming inner_naming{local + ".", {}};
       const Attribute* attach = index == 0 && first ? first : e.Find("attach");
       if (attach) {
-        const InstanceScope here = scope.WithIndex(index, index ? std::optional<int>(count) : std::nullopt);
+        const InstanceScope here = index ? scope.WithIndex(index, count) : scope;
         for (const std::string& item : Split(attach->value, " \t\r\n,")) {
           const auto eq = item.find('=');
           const std::string point = Trim(item.substr(0, eq));
