@@ -25,6 +25,8 @@ const std::set<std::string> kWordAttributes = {"name",   "type",          "kind"
 // Attributes naming a body, and those naming a joint, coordinate or element.
 const std::set<std::string> kBodyReferences = {"body", "body1", "body2"};
 const std::set<std::string> kOtherReferences = {"joint", "dof", "element"};
+// Attributes that are coordinates "x y z" or the name of a point of the body.
+const std::set<std::string> kPointAttributes = {"point", "point1", "point2", "centre"};
 
 std::string Format(double v) {
   char text[32];
@@ -346,8 +348,14 @@ class Flattener {
   // and references as the mechanism knows them.
   void Elements(const InstanceScope& scope, const std::vector<ElementDesc>& in, const PartNaming& naming,
                 const std::string& mechanism, std::vector<ElementDesc>* out) {
+    std::map<std::string, SourceLoc> includes;  // two of one name would make the same elements
     for (const ElementDesc& e : in) {
       if (e.tag == "include") {
+        SourceLoc at = e.loc;
+        SetContext(&at, scope.context());
+        if (const auto [first, fresh] = includes.emplace(e.Text("name"), at); !fresh)
+          throw InputError(at.str() + ": include name '" + e.Text("name") + "' is taken (" + first->second.str() +
+                           "); give each <include> a name of its own");
         Include(scope, e, naming, mechanism, out);
         continue;
       }
@@ -368,6 +376,9 @@ class Flattener {
         a.value = naming.Body(a.value);
       } else if (kOtherReferences.count(a.name)) {
         a.value = naming.Other(a.value);
+      } else if (kPointAttributes.count(a.name) && scripting::IsLuaName(Trim(a.value)) &&
+                 !scope.Declares(Trim(a.value))) {
+        // a point's name: points are named within their body, whatever the diagram's identifiers are
       } else if (!kWordAttributes.count(a.name)) {
         a.value = scope.Rewrite(a.value, a.loc.str() + ": " + who + " attribute '" + a.name + "'");
       }

@@ -369,5 +369,173 @@ TEST_F(InstancesTest, ErrorInANestedParamCarriesTheInstance) {
   EXPECT_THAT(Error(), StartsWith("outer.xml:3: in o[0] (main.xml:5): count"));
 }
 
+
+// --- mechanisms in subsystems ----------------------------------------------------------
+
+// A body of mass `mass` pushed by the force at input u: y = its position.
+const char* kPushed =
+    "<subsystem name='pushed'>\n"
+    "<parameter name='mass' default='1' unit='kg'/>\n"
+    "<parameter name='force' default='0' unit='N'/>\n"
+    "<input name='u'/>\n<output name='y'/>\n"
+    "<mechanism name='m' gravity='0 0 0'>\n"
+    "  <input name='force'/>\n"
+    "  <body name='B' mass='mass' inertia='1 1 1'/>\n"
+    "  <joint name='x' type='translational' body1='Base0' body2='B' axis='1 0 0'/>\n"
+    "  <applied_force name='push' body='B' force='force 0 0'/>\n"
+    "  <sensor name='pos' kind='coordinate' dof='x'/>\n"
+    "</mechanism>\n"
+    "<connections>\n<connect from='u' to='m.force'/>\n<connect from='m.pos' to='y'/>\n</connections>\n"
+    "</subsystem>\n";
+
+TEST_F(InstancesTest, ArrayOfSubsystemsHoldingMechanismsFedThroughPorts) {
+  Write("pushed.xml", kPushed);
+  WriteMain("", "<block type='subsystem' name='d' src='pushed.xml' count='2'>\n<param name='mass' value='1+index'/>\n"
+                "</block>\n<block type='constant' name='one' value='1'/>\n"
+                "<block type='gain' name='y0' k='1'/>\n<block type='gain' name='y1' k='1'/>\n",
+            "<connect from='one.y' to='d[0].u'/>\n<connect from='one.y' to='d[1].u'/>\n"
+            "<connect from='d[0].y' to='y0.u'/>\n<connect from='d[1].y' to='y1.u'/>\n",
+            "<output>\n<log signal='y0.y' label='y0'/>\n<log signal='y1.y' label='y1'/>\n</output>\n");
+  EXPECT_NEAR(Final("y0"), 0.5, 1e-6);
+  EXPECT_NEAR(Final("y1"), 0.25, 1e-6);
+}
+
+TEST_F(InstancesTest, MechanismInputMustNameAParameter) {
+  std::string text = kPushed;
+  text.replace(text.find("<input name='force'/>"), 21, "<input name='forse'/>");
+  Write("pushed.xml", text);
+  WriteMain("", "<block type='subsystem' name='d' src='pushed.xml'/>\n");
+  EXPECT_THAT(Error(), StartsWith("pushed.xml:7: in d (main.xml:5): input 'forse' must name a parameter or "
+                                  "identifier of subsystem 'pushed'"));
+}
+
+// The lead wires input widths into the loader: until then a width= is
+// checked as a number only, and a wider signal is accepted (today's behaviour).
+TEST_F(InstancesTest, InputWidthCheckedAsANumber) {
+  Write("p.xml", "<subsystem name='p'>\n<input name='u' width='two'/>\n</subsystem>\n");
+  WriteMain("", "<block type='subsystem' name='d' src='p.xml'/>\n");
+  EXPECT_THAT(Error(), StartsWith("p.xml:2: in d (main.xml:5): input 'u' width is 'two'; expected a whole number >= 1"));
+}
+
+// --- parts ----------------------------------------------------------------------------
+
+// A wagon on a rail, coupled by a spring to the body `prev` is.
+const char* kWagon =
+    "<part name='wagon'>\n"                                                                       // 1
+    "<parameter name='x0' default='0' unit='m'/>\n"                                               // 2
+    "<attach name='prev'/>\n"                                                                     // 3
+    "<body name='Box' mass='1' inertia='1 1 1'>\n<point name='hook' at='0.5 0 0'/>\n</body>\n"    // 4-6
+    "<joint name='x' type='translational' body1='Base0' body2='Box' axis='1 0 0' q0='x0'/>\n"     // 7
+    "<force name='coupler' type='linear' body1='prev' body2='Box' point2='hook' c='100'/>\n"      // 8
+    "<sensor name='pos' kind='coordinate' dof='x'/>\n"                                            // 9
+    "</part>\n";
+
+// main.xml with the mechanism `m`: the body Loco on a rail, then `elements` (from line 11 with one identifier).
+class PartsTest : public InstancesTest {
+ protected:
+  void WriteTrain(const std::string& elements, const std::string& identifiers = "<identifier name='n' value='3'/>\n") {
+    Write("wagon.xml", kWagon);
+    WriteMain(identifiers, "",  "",
+              "<mechanism name='m' gravity='0 0 0'>\n"
+              "<body name='Loco' mass='1' inertia='1 1 1'/>\n"
+              "<joint name='loco' type='translational' body1='Base0' body2='Loco' axis='1 0 0'/>\n" +
+                  elements + "</mechanism>\n");
+  }
+  // The flattened element `name` of mechanism m.
+  static const ElementDesc* Element(const LoadedDiagram& d, const std::string& name) {
+    for (const ElementDesc& e : d.description.mechanisms.at(0).children)
+      if (e.Text("name") == name) return &e;
+    return nullptr;
+  }
+};
+
+TEST_F(PartsTest, ElementsAndReferencesPrefixedAttachPointsReplaced) {
+  WriteTrain("<include part='wagon.xml' name='w' count='n' first='prev=Loco' attach='prev=w[index-1].Box'>\n"
+             "<param name='x0' value='-2*(index+1)'/>\n</include>\n");
+  const LoadedDiagram d = Load();
+  EXPECT_EQ(Value(d, "m.w[2].x0"), -6);
+  ASSERT_NE(Element(d, "w[2].Box"), nullptr);
+  EXPECT_EQ(Element(d, "w[2].x")->Text("body2"), "w[2].Box");
+  EXPECT_EQ(Element(d, "w[2].x")->Text("body1"), "Base0");
+  EXPECT_EQ(Element(d, "w[2].coupler")->Text("body1"), "w[1].Box");
+  EXPECT_EQ(Element(d, "w[0].coupler")->Text("body1"), "Loco");
+  EXPECT_EQ(Element(d, "w[2].pos")->Text("dof"), "w[2].x");
+  EXPECT_EQ(Element(d, "w[2].Box")->children.at(0).Text("name"), "hook");
+  // given by an expression (of index): derived, not set
+  EXPECT_THAT(ErrorOf({.overrides = {{"m.w[1].x0", 7}}}),
+              StartsWith("--set m.w[1].x0: identifier 'm.w[1].x0' is defined by an expression"));
+}
+
+TEST_F(PartsTest, SensorsOfPartsAreLogged) {
+  WriteTrain("<include part='wagon.xml' name='w' count='2' first='prev=Loco' attach='prev=w[index-1].Box'>\n"
+             "<param name='x0' value='-2*(index+1)'/>\n</include>\n");
+  std::string text = testing::ReadFile(dir_ / "main.xml");
+  text.replace(text.find("<solver"), 0, "<output>\n<log signal='m.w[1].pos' label='w1'/>\n</output>\n");
+  Write("main.xml", text);
+  EXPECT_NEAR(Final("w1"), -4, 1e-9);  // at rest: the couplers are free at the start
+}
+
+TEST_F(PartsTest, ForceOfTheMechanismJoinsBodiesOfTwoInstances) {
+  WriteTrain("<include part='wagon.xml' name='a' attach='prev=Loco'/>\n"
+             "<include part='wagon.xml' name='b' attach='prev=Loco'/>\n"
+             "<force name='link' type='linear' body1='a.Box' body2='b.Box' point1='hook' c='5'/>\n");
+  const LoadedDiagram d = Load();
+  EXPECT_EQ(Element(d, "link")->Text("body1"), "a.Box");
+  EXPECT_EQ(Element(d, "link")->Text("point1"), "hook");
+}
+
+TEST_F(PartsTest, AttachProblemsRefused) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"<include part='wagon.xml' name='w'/>",
+       "main.xml:12: m.w does not say which body its attach point 'prev' is (wagon.xml:3); add attach=\"prev=BODY\""},
+      {"<include part='wagon.xml' name='w' attach='pref=Loco'/>",
+       "main.xml:12: attach 'pref=Loco' of m.w: part 'wagon' (wagon.xml) has no attach point 'pref' (did you mean "
+       "'prev'?); its attach points: prev"},
+      {"<include part='wagon.xml' name='w' attach='prev=Loco prev=Loco'/>",
+       "main.xml:12: attach 'prev=Loco' of m.w: attach point 'prev' is given twice"},
+      {"<include part='wagon.xml' name='w' first='prev=Loco' attach='prev=Loco'/>",
+       "main.xml:12: first= gives the attach of name[0] of an array; add count="},
+      {"<include part='wagon.xml' name='w' count='2' attach='prev=w[index-1].Box'/>",
+       "main.xml:12: attach 'prev=w[index-1].Box' of m.w[0]: the index [index-1] is -1; expected a whole number >= 0"},
+  };
+  for (const auto& [include, expected] : cases) {
+    SCOPED_TRACE(include);
+    WriteTrain(include + "\n");
+    EXPECT_THAT(Error(), StartsWith(expected));
+  }
+}
+
+TEST_F(PartsTest, NamesOfIncludesTakenTwiceRefused) {
+  WriteTrain("<include part='wagon.xml' name='w' attach='prev=Loco'/>\n"
+             "<include part='wagon.xml' name='w' attach='prev=Loco'/>\n");
+  EXPECT_THAT(Error(), StartsWith("main.xml:13: include name 'w' is taken (main.xml:12)"));
+}
+
+TEST_F(PartsTest, NestedPartsPrefixedTwice) {
+  Write("train.xml", "<part name='train'>\n<attach name='head'/>\n<parameter name='n' default='2'/>\n"
+                     "<include part='wagon.xml' name='w' count='n' first='prev=head' attach='prev=w[index-1].Box'/>\n"
+                     "</part>\n");
+  WriteTrain("<include part='train.xml' name='t' attach='head=Loco'/>\n");
+  const LoadedDiagram d = Load();
+  EXPECT_EQ(Element(d, "t.w[1].coupler")->Text("body1"), "t.w[0].Box");
+  EXPECT_EQ(Element(d, "t.w[0].coupler")->Text("body1"), "Loco");
+  EXPECT_EQ(Value(d, "m.t.w[1].x0"), 0);
+  EXPECT_EQ(Value(Load({.overrides = {{"m.t.w[1].x0", 7}}}), "m.t.w[1].x0"), 7);
+}
+
+// A point named like an identifier of the diagram is still the point.
+TEST_F(PartsTest, PointNamedLikeADiagramIdentifier) {
+  WriteTrain("<include part='wagon.xml' name='w' attach='prev=Loco'/>\n", "<identifier name='hook' value='1'/>\n");
+  EXPECT_EQ(Element(Load(), "w.coupler")->Text("point2"), "hook");
+}
+
+TEST_F(PartsTest, ErrorInsideAPartNamesTheInstance) {
+  std::string wagon = kWagon;
+  wagon.replace(wagon.find("c='100'"), 7, "c='100*nonsense'");
+  WriteTrain("<include part='wagon.xml' name='w' count='3' first='prev=Loco' attach='prev=w[index-1].Box'/>\n");
+  Write("wagon.xml", wagon);
+  EXPECT_THAT(Error(), StartsWith("wagon.xml:8: in m.w[0] (main.xml:12)"));
+}
+
 }  // namespace
 }  // namespace mechflow::diagrams
