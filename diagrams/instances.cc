@@ -6,9 +6,11 @@
 #include <optional>
 #include <set>
 
+#include "blocks/framework/block_factory.h"
 #include "blocks/support/suggest.h"
 #include "diagrams/evaluator.h"
 #include "diagrams/instance_scope.h"
+#include "diagrams/loader.h"
 #include "mech/errors.h"
 
 namespace mechflow::diagrams {
@@ -27,6 +29,24 @@ const std::set<std::string> kBodyReferences = {"body", "body1", "body2"};
 const std::set<std::string> kOtherReferences = {"joint", "dof", "element"};
 // Attributes that are coordinates "x y z" or the name of a point of the body.
 const std::set<std::string> kPointAttributes = {"point", "point1", "point2", "centre"};
+
+// Block parameters of kind text or file are words (port names, "cubic", "road.csv"), not expressions, except
+// these, which are Lua or name an identifier.
+const std::set<std::string> kTextExpressions = {"expr", "identifier"};
+
+// Whether parameter `name` of a block of type `type` is written as an expression (unknown ones are: the
+// loader refuses them after flattening).
+bool IsExpressionParameter(const std::string& type, const std::string& name) {
+  static const blocks::BlockRegistry registry = [] {
+    blocks::BlockRegistry r;
+    RegisterAllBlocks(&r, nullptr, nullptr);  // for the parameters' kinds only: no block is made
+    return r;
+  }();
+  const blocks::BlockType* t = registry.Find(type);
+  const blocks::ParamSpec* spec = t ? t->FindParam(name) : nullptr;
+  if (!spec || kTextExpressions.count(name)) return true;
+  return spec->kind != blocks::ParamKind::kText && spec->kind != blocks::ParamKind::kPath;
+}
 
 std::string Format(double v) {
   char text[32];
@@ -122,7 +142,8 @@ class Flattener {
         SetContext(&flat.params, scope.context());
       }
       const std::string who = flat.loc.str() + ": block '" + b.name + "'";
-      for (Attribute& a : flat.params) a.value = scope.Rewrite(a.value, who + " parameter '" + a.name + "'");
+      for (Attribute& a : flat.params)
+        if (IsExpressionParameter(b.type, a.name)) a.value = scope.Rewrite(a.value, who + " parameter '" + a.name + "'");
       flat.text = scope.Rewrite(flat.text, who + " code");
       blocks_.push_back(std::move(flat));
     }

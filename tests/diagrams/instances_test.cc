@@ -370,6 +370,24 @@ TEST_F(InstancesTest, ErrorInANestedParamCarriesTheInstance) {
 }
 
 
+// Words among block parameters (files, port names, kinds) are no expressions: neither renamed as the
+// instance's parameters nor refused as the diagram's identifiers.
+TEST_F(InstancesTest, WordParametersOfBlocksStayAsWritten) {
+  Write("road.csv", "t,y\n0,1\n10,1\n");
+  Write("p.xml", "<subsystem name='p'>\n<parameter name='cubic' default='1'/>\n<output name='y'/>\n<output name='z'/>\n"
+                 "<blocks>\n<block type='table' name='tb' file='road.csv'/>\n"
+                 "<block type='lookup' name='lk' points='0 0; 1 cubic; 2 4; 3 9' interpolation='cubic'/>\n</blocks>\n"
+                 "<connections>\n<connect from='tb.y' to='y'/>\n<connect from='tb.y' to='lk.u'/>\n"
+                 "<connect from='lk.y' to='z'/>\n</connections>\n</subsystem>\n");
+  WriteMain("<identifier name='road' value='2'/>\n",
+            "<block type='subsystem' name='d' src='p.xml'/>\n<block type='gain' name='g' k='1'/>\n"
+            "<block type='gain' name='h' k='1'/>\n",
+            "<connect from='d.y' to='g.u'/>\n<connect from='d.z' to='h.u'/>\n",
+            "<output>\n<log signal='g.y' label='y'/>\n<log signal='h.y' label='z'/>\n</output>\n");
+  EXPECT_NEAR(Final("y"), 1, 1e-12);
+  EXPECT_NEAR(Final("z"), 1, 1e-12);
+}
+
 // --- mechanisms in subsystems ----------------------------------------------------------
 
 // A body of mass `mass` pushed by the force at input u: y = its position.
