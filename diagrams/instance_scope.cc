@@ -30,7 +30,12 @@ InstanceScope InstanceScope::WithIndex(std::optional<int> index, std::optional<i
   return s;
 }
 
+void InstanceScope::DeclareLater(const std::string& name, const std::string& where) {
+  later_.emplace(scripting::ToLower(name), where);
+}
+
 std::string InstanceScope::Declare(const std::string& name) {
+  later_.erase(scripting::ToLower(name));
   const std::string path = prefix_ + name;
   renames_[scripting::ToLower(name)] = scripting::ToLower(scripting::InstancePathLuaName(path));
   return path;
@@ -67,6 +72,9 @@ std::string InstanceScope::Rewrite(const std::string& text, const std::string& w
     } else if (const auto it = renames_.find(lower); it != renames_.end()) {
       out += it->second;
     } else {
+      if (const auto later = later_.find(lower); later != later_.end() && !key)
+        throw InputError(what + ": '" + token + "' is declared below it (" + later->second +
+                         "); parameters and identifiers may use those declared above them: move it up");
       if (!is_diagram() && !key && identifiers_ && identifiers_->Has(lower))
         throw InputError(what + ": '" + token + "' is not visible inside " + description_ +
                          ": only its parameters and identifiers are; declare <parameter name=\"" + token +

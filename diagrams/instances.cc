@@ -182,6 +182,8 @@ class Flattener {
     d_.instances.push_back({path, c.kind, c.file, loc});
     std::vector<std::string> declared;
     for (const ParameterDesc& p : c.parameters) declared.push_back(p.name);
+    for (const ParameterDesc& p : c.parameters) scope.DeclareLater(p.name, p.loc.str());
+    for (const IdentifierDesc& local : c.identifiers) scope.DeclareLater(local.name, local.loc.str());
     std::set<std::string> given;
     for (const Attribute& a : args) {
       if (std::find(declared.begin(), declared.end(), a.name) == declared.end())
@@ -204,8 +206,8 @@ class Flattener {
         id.value = here.Rewrite(arg->value, arg->loc.str() + ": parameter '" + p.name + "'");
         id.loc = arg->loc;
       } else if (p.has_default) {
-        id.value = scope.Rewrite(p.default_value, p.loc.str() + ": parameter '" + p.name + "' default");
         SetContext(&id.loc, scope.context());
+        id.value = scope.Rewrite(p.default_value, id.loc.str() + ": parameter '" + p.name + "' default");
       } else {
         throw InputError(loc.str() + ": " + path + " gives no <param name=\"" + p.name + "\"> and " +
                          scope.description() + " has no default for it (" + p.loc.str() + ")");

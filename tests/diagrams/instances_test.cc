@@ -132,6 +132,17 @@ TEST_F(InstancesTest, ParametersAndLocalIdentifiersGetPaths) {
   EXPECT_EQ(Value(d, "e.k2"), 4);
 }
 
+TEST_F(InstancesTest, NameDeclaredFurtherDownRefusedAsSuch) {
+  Write("p.xml", "<subsystem name='p'>\n<parameter name='a' default='2*b'/>\n<parameter name='b' default='1'/>\n"
+                 "</subsystem>\n");
+  WriteMain("<identifier name='b' value='5'/>\n", "<block type='subsystem' name='d' src='p.xml'/>\n");
+  EXPECT_EQ(Error(), "p.xml:2: in d (main.xml:6): parameter 'a' default: 'b' is declared below it (p.xml:3); "
+                     "parameters and identifiers may use those declared above them: move it up");
+  Write("p.xml", "<subsystem name='p'>\n<identifiers>\n<identifier name='a' value='2*b'/>\n"
+                 "<identifier name='b' value='1'/>\n</identifiers>\n</subsystem>\n");
+  EXPECT_THAT(Error(), StartsWith("p.xml:3: in d (main.xml:6): identifier 'a': 'b' is declared below it (p.xml:4)"));
+}
+
 // --- closed scope ----------------------------------------------------------------
 
 TEST_F(InstancesTest, LocalIdentifierDoesNotLeakOut) {
