@@ -169,6 +169,24 @@ TEST_F(InstancesTest, ParameterShadowsTheParentIdentifierOfItsName) {
   EXPECT_EQ(Value(d, "c"), 1);
 }
 
+// Names Lua code binds (local, function parameters, for) are its own: a diagram identifier of that name is
+// no leak, a parameter of that name is refused (the code would read neither as meant).
+TEST_F(InstancesTest, NamesLuaCodeBindsAreItsOwn) {
+  Write("p.xml", "<subsystem name='p'>\n<parameter name='k' default='3'/>\n<output name='y'/>\n<blocks>\n"
+                 "<block type='lua' name='f'>\nfunction outputs(t)\n  local g = 2\n  for i = 1, 2 do g = g + i end\n"
+                 "  return k * g\nend\n</block>\n</blocks>\n<connections><connect from='f.y' to='y'/></connections>\n"
+                 "</subsystem>\n");
+  WriteMain("<identifier name='g' value='100'/>\n<identifier name='i' value='100'/>\n",
+            "<block type='subsystem' name='d' src='p.xml'/>\n<block type='gain' name='h' k='1'/>\n",
+            "<connect from='d.y' to='h.u'/>\n", "<output>\n<log signal='h.y' label='y'/>\n</output>\n");
+  EXPECT_NEAR(Final("y"), 15, 1e-12);
+  std::string text = testing::ReadFile(dir_ / "p.xml");
+  text.replace(text.find("local g = 2"), 11, "local k = 2");
+  Write("p.xml", text);
+  EXPECT_THAT(Error(), HasSubstr("the code binds 'k' (local, function parameter or for variable), which is also a "
+                                 "parameter or identifier of subsystem 'p' (p.xml) as d; rename one of them"));
+}
+
 // --- reading files ---------------------------------------------------------------
 
 TEST_F(InstancesTest, SrcIsRelativeToTheIncludingFile) {
