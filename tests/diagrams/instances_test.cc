@@ -387,6 +387,27 @@ TEST_F(InstancesTest, ErrorInsideAnInstanceNamesEveryIncludingLine) {
   EXPECT_THAT(Error(), StartsWith("inner.xml:4: in o[0].i (outer.xml:3, main.xml:5)"));
 }
 
+TEST_F(InstancesTest, ErrorOfABlockInAnArrayElementNamesIt) {
+  Write("p.xml", "<subsystem name='p'>\n<parameter name='k' default='1'/>\n<blocks>\n"
+                 "<block type='gain' name='g' k='1/(k-index)'/>\n</blocks>\n</subsystem>\n");
+  WriteMain("", "<block type='subsystem' name='s' src='p.xml' count='3'/>\n");
+  EXPECT_THAT(Error(), StartsWith("p.xml:4: in s[1] (main.xml:5): block 's[1].g' parameter 'k': "));
+}
+
+// The command line: --set of an element's parameter, and check listing the paths.
+TEST_F(InstancesTest, SetOnTheCommandLine) {
+  Write("p.xml", "<subsystem name='p'>\n<parameter name='k' default='2'/>\n<identifiers>\n"
+                 "<identifier name='k2' value='k*k'/>\n</identifiers>\n</subsystem>\n");
+  WriteMain("", "<block type='subsystem' name='d' src='p.xml' count='2'/>\n<block type='clock' name='c'/>\n");
+  const auto run = testing::RunMechflow("check " + Path("main.xml") + " --set 'd[1].k=3'");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("d[1].k2 = 9"));
+  EXPECT_THAT(run.out, HasSubstr("d[0].k2 = 4"));
+  const auto derived = testing::RunMechflow("check " + Path("main.xml") + " --set 'd[1].k2=3'");
+  EXPECT_EQ(derived.exit_code, 2);
+  EXPECT_THAT(derived.err, HasSubstr("d[1].k2"));
+}
+
 TEST_F(InstancesTest, ErrorInANestedParamCarriesTheInstance) {
   Write("inner.xml", "<subsystem name='inner'>\n<parameter name='z'/>\n</subsystem>\n");
   Write("outer.xml", "<subsystem name='outer'>\n<blocks>\n<block type='subsystem' name='i' src='inner.xml'>\n"
