@@ -241,7 +241,9 @@ class Flattener {
     if (b.text.find_first_not_of(" \t\r\n") != std::string::npos)
       throw InputError(b.text_loc.str() + ": subsystem '" + b.name + "' takes no text content");
     int count = 0;
-    for (const auto& [path, index] : Paths(scope, scope.prefix() + b.name, FindAttribute(b.params, "count"), &count)) {
+    const auto paths = Paths(scope, scope.prefix() + b.name, FindAttribute(b.params, "count"), &count);
+    if (count > 0) arrays_[scope.prefix() + b.name] = count;
+    for (const auto& [path, index] : paths) {
       InstanceScope inner = Enter(scope, path, c, b.loc, index, count, b.args);
       for (const PortDesc& written_port : c.inputs) {
         PortDesc p = written_port;
@@ -280,6 +282,14 @@ class Flattener {
   std::vector<ConnectionDesc> ResolveConnections() {
     std::map<std::string, const Edge*> source_of;  // port -> the connection feeding it
     for (const Edge& e : edges_) {
+      for (const std::string* end : {&e.from, &e.to})
+        for (const auto& [base, count] : arrays_)
+          if (end->rfind(base + ".", 0) == 0) {
+            const std::string port = end->substr(base.size());
+            throw InputError(e.loc.str() + ": '" + *end + "': " + base + " is an array of " + std::to_string(count) +
+                             " (count=); name one element, " + base + "[0]" + port +
+                             (count > 1 ? " to " + base + "[" + std::to_string(count - 1) + "]" + port : ""));
+          }
       if (const auto it = virtual_.find(e.to); it != virtual_.end()) {
         const Port& p = it->second;
         if (p.input ? ParentPath(p.instance) != e.scope : p.instance != e.scope)
@@ -484,6 +494,7 @@ class Flattener {
   std::vector<ElementDesc> mechanisms_;
   std::vector<Edge> edges_;
   std::map<std::string, Port> virtual_;  // the ports of subsystem instances, by path
+  std::map<std::string, int> arrays_;    // subsystem arrays by path without index ("d", "o[1].s") -> count
   std::vector<DiagramDescription::InputWidth> widths_;
 };
 

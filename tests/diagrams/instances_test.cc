@@ -316,6 +316,13 @@ TEST_F(InstancesTest, PortsPassThroughTwoLevels) {
   EXPECT_NEAR(Final("z"), 1, 1e-6);
 }
 
+TEST_F(InstancesTest, PortOfAnArrayWithoutIndexRefused) {
+  Write("scale.xml", kScale);
+  WriteMain("", "<block type='subsystem' name='d' src='scale.xml' count='3'/>\n<block type='clock' name='c'/>\n",
+            "<connect from='c.y' to='d.u'/>\n");
+  EXPECT_EQ(Error(), "main.xml:9: 'd.u': d is an array of 3 (count=); name one element, d[0].u to d[2].u");
+}
+
 TEST_F(InstancesTest, UnfedInputUsedInsideRefused) {
   Write("scale.xml", kScale);
   WriteMain("", "<block type='subsystem' name='d' src='scale.xml'/>\n");
