@@ -118,8 +118,8 @@ class Flattener {
               throw InputError(loc.str() + ": " + what + " '" + name + "' has the name of a port of " +
                                scope.description() + " (" + p.loc.str() + "); rename one of them");
       if (const auto [first, fresh] = names.emplace(name, loc); !fresh)
-        throw InputError(loc.str() + ": " + what + " name '" + name + "' is taken (" + first->second.str() +
-                         "); blocks, mechanisms and subsystems of one file need names of their own");
+        throw InputError(loc.str() + ": " + what + " name '" + name + "' is used twice (first at " +
+                         first->second.str() + ")");
     };
     for (const ElementDesc& m : mechanisms) {
       claim(m.Text("name"), m.loc, "mechanism");
@@ -387,8 +387,8 @@ class Flattener {
         SourceLoc at = e.loc;
         SetContext(&at, scope.context());
         if (const auto [first, fresh] = includes.emplace(e.Text("name"), at); !fresh)
-          throw InputError(at.str() + ": include name '" + e.Text("name") + "' is taken (" + first->second.str() +
-                           "); give each <include> a name of its own");
+          throw InputError(at.str() + ": include name '" + e.Text("name") + "' is used twice (first at " +
+                           first->second.str() + ")");
         Include(scope, e, naming, mechanism, out);
         continue;
       }
@@ -449,7 +449,7 @@ class Flattener {
           if (std::none_of(c.attach_points.begin(), c.attach_points.end(), [&](const Attribute& a) { return a.name == point; })) {
             std::vector<std::string> points;
             for (const Attribute& a : c.attach_points) points.push_back(a.name);
-            throw InputError(what + ": " + scope.description().substr(0, 0) + "part '" + c.name + "' (" + c.file +
+            throw InputError(what + ": part '" + c.name + "' (" + c.file +
                              ") has no attach point '" + point + "'" + blocks::DidYouMean(point, points) +
                              (points.empty() ? "; it has none" : "; its attach points: " + blocks::JoinNames(points)));
           }

@@ -366,9 +366,9 @@ TEST_F(InstancesTest, PortsJoinedInALoopRefused) {
 TEST_F(InstancesTest, NamesTakenTwiceRefused) {
   Write("p.xml", "<subsystem name='p'/>\n");
   WriteMain("", "<block type='subsystem' name='d' src='p.xml'/>\n<block type='gain' name='d' k='1'/>\n");
-  EXPECT_THAT(Error(), StartsWith("main.xml:6: block name 'd' is taken (main.xml:5)"));
+  EXPECT_THAT(Error(), StartsWith("main.xml:6: block name 'd' is used twice (first at main.xml:5)"));
   WriteMain("", "<block type='subsystem' name='d' src='p.xml'/>\n<block type='subsystem' name='d' src='p.xml'/>\n");
-  EXPECT_THAT(Error(), StartsWith("main.xml:6: subsystem name 'd' is taken (main.xml:5)"));
+  EXPECT_THAT(Error(), StartsWith("main.xml:6: subsystem name 'd' is used twice (first at main.xml:5)"));
 }
 
 // A non-array subsystem inside an array element: its <param> is written in
@@ -583,7 +583,7 @@ TEST_F(PartsTest, AttachProblemsRefused) {
 TEST_F(PartsTest, NamesOfIncludesTakenTwiceRefused) {
   WriteTrain("<include part='wagon.xml' name='w' attach='prev=Loco'/>\n"
              "<include part='wagon.xml' name='w' attach='prev=Loco'/>\n");
-  EXPECT_THAT(Error(), StartsWith("main.xml:13: include name 'w' is taken (main.xml:12)"));
+  EXPECT_THAT(Error(), StartsWith("main.xml:13: include name 'w' is used twice (first at main.xml:12)"));
 }
 
 TEST_F(PartsTest, NestedPartsPrefixedTwice) {
