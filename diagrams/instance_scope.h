@@ -38,6 +38,9 @@ class InstanceScope {
   // is the new instance's).
   InstanceScope WithIndex(std::optional<int> index, std::optional<int> count) const;
 
+  // Names the instance declares further down (`where`: its line): an
+  // expression naming one before it is declared is refused as such.
+  void DeclareLater(const std::string& name, const std::string& where);
   // Declares a parameter or identifier `name` of this instance; its path.
   std::string Declare(const std::string& name);
   bool Declares(const std::string& name) const { return renames_.count(scripting::ToLower(name)) > 0; }
@@ -62,6 +65,7 @@ class InstanceScope {
   std::string path_, prefix_, context_, description_;
   std::string included_lines_;  // "chain.xml:30, ..." the including lines, innermost first
   std::map<std::string, std::string> renames_;  // lower-case name -> Lua name of its path
+  std::map<std::string, std::string> later_;    // lower-case name -> where it is declared, not yet
   std::optional<int> index_, count_;
   const scripting::IdentifierTable* identifiers_ = nullptr;
 };

@@ -6,9 +6,11 @@
 #include <optional>
 #include <set>
 
+#include "blocks/framework/block_factory.h"
 #include "blocks/support/suggest.h"
 #include "diagrams/evaluator.h"
 #include "diagrams/instance_scope.h"
+#include "diagrams/loader.h"
 #include "mech/errors.h"
 
 namespace mechflow::diagrams {
@@ -25,6 +27,26 @@ const std::set<std::string> kWordAttributes = {"name",   "type",          "kind"
 // Attributes naming a body, and those naming a joint, coordinate or element.
 const std::set<std::string> kBodyReferences = {"body", "body1", "body2"};
 const std::set<std::string> kOtherReferences = {"joint", "dof", "element"};
+// Attributes that are coordinates "x y z" or the name of a point of the body.
+const std::set<std::string> kPointAttributes = {"point", "point1", "point2", "centre"};
+
+// Block parameters of kind text or file are words (port names, "cubic", "road.csv"), not expressions, except
+// these, which are Lua or name an identifier.
+const std::set<std::string> kTextExpressions = {"expr", "identifier"};
+
+// Whether parameter `name` of a block of type `type` is written as an expression (unknown ones are: the
+// loader refuses them after flattening).
+bool IsExpressionParameter(const std::string& type, const std::string& name) {
+  static const blocks::BlockRegistry registry = [] {
+    blocks::BlockRegistry r;
+    RegisterAllBlocks(&r, nullptr, nullptr);  // for the parameters' kinds only: no block is made
+    return r;
+  }();
+  const blocks::BlockType* t = registry.Find(type);
+  const blocks::ParamSpec* spec = t ? t->FindParam(name) : nullptr;
+  if (!spec || kTextExpressions.count(name)) return true;
+  return spec->kind != blocks::ParamKind::kText && spec->kind != blocks::ParamKind::kPath;
+}
 
 std::string Format(double v) {
   char text[32];
@@ -43,6 +65,12 @@ void SetContext(SourceLoc* loc, const std::string& context) {
 }
 void SetContext(std::vector<Attribute>* attributes, const std::string& context) {
   for (Attribute& a : *attributes) SetContext(&a.loc, context);
+}
+// An element and all its children, as written in an instance's file.
+void SetContext(ElementDesc* e, const std::string& context) {
+  SetContext(&e->loc, context);
+  SetContext(&e->attributes, context);
+  for (ElementDesc& child : e->children) SetContext(&child, context);
 }
 
 // How a part instance's elements are named in its mechanism: "s[1]." before
@@ -77,8 +105,10 @@ class Flattener {
   // null) or of a subsystem instance, appended flat.
   void Content(InstanceScope& scope, const ComponentDesc* component, const std::vector<ElementDesc>& mechanisms,
                const std::vector<BlockDesc>& blocks, const std::vector<ConnectionDesc>& connections) {
-    std::set<std::string> names;  // of blocks, mechanisms and instances here
-    const auto claim = [&](const std::string& name, const SourceLoc& loc, const std::string& what) {
+    // blocks, mechanisms and instances share one name space: "d.y" must name one thing
+    std::map<std::string, SourceLoc> names;
+    const auto claim = [&](const std::string& name, SourceLoc loc, const std::string& what) {
+      SetContext(&loc, scope.context());
       if (const std::string problem = WrittenNameProblem(name); !problem.empty())
         throw InputError(loc.str() + ": " + what + " name '" + name + "' " + problem);
       if (component)
@@ -87,7 +117,9 @@ class Flattener {
             if (p.name == name)
               throw InputError(loc.str() + ": " + what + " '" + name + "' has the name of a port of " +
                                scope.description() + " (" + p.loc.str() + "); rename one of them");
-      names.insert(name);
+      if (const auto [first, fresh] = names.emplace(name, loc); !fresh)
+        throw InputError(loc.str() + ": " + what + " name '" + name + "' is used twice (first at " +
+                         first->second.str() + ")");
     };
     for (const ElementDesc& m : mechanisms) {
       claim(m.Text("name"), m.loc, "mechanism");
@@ -110,7 +142,8 @@ class Flattener {
         SetContext(&flat.params, scope.context());
       }
       const std::string who = flat.loc.str() + ": block '" + b.name + "'";
-      for (Attribute& a : flat.params) a.value = scope.Rewrite(a.value, who + " parameter '" + a.name + "'");
+      for (Attribute& a : flat.params)
+        if (IsExpressionParameter(b.type, a.name)) a.value = scope.Rewrite(a.value, who + " parameter '" + a.name + "'");
       flat.text = scope.Rewrite(flat.text, who + " code");
       blocks_.push_back(std::move(flat));
     }
@@ -134,8 +167,8 @@ class Flattener {
       throw InputError(what + ": one input cannot be fed by every element of an array; name one element ([0], [1], ...)");
     const auto count = [&](const std::string& ref) {
       const std::string array = scope.prefix() + ref.substr(0, star(ref));
-      const auto it = array_counts_.find(array);
-      if (it == array_counts_.end())
+      const auto it = arrays_.find(array);
+      if (it == arrays_.end())
         throw InputError(what + ": '" + ref.substr(0, star(ref)) + "' is no subsystem array (count=) of this file");
       return it->second;
     };
@@ -182,6 +215,8 @@ class Flattener {
     d_.instances.push_back({path, c.kind, c.file, loc});
     std::vector<std::string> declared;
     for (const ParameterDesc& p : c.parameters) declared.push_back(p.name);
+    for (const ParameterDesc& p : c.parameters) scope.DeclareLater(p.name, p.loc.str());
+    for (const IdentifierDesc& local : c.identifiers) scope.DeclareLater(local.name, local.loc.str());
     std::set<std::string> given;
     for (const Attribute& a : args) {
       if (std::find(declared.begin(), declared.end(), a.name) == declared.end())
@@ -200,11 +235,12 @@ class Flattener {
       IdentifierDesc id{scope.PathOf(p.name), "", p.comment, p.unit, p.loc};
       if (arg) {
         // written where the instance is used, seeing that scope (and the new instance's index)
-        id.value = parent.WithIndex(index, n).Rewrite(arg->value, arg->loc.str() + ": parameter '" + p.name + "'");
+        const InstanceScope here = index ? parent.WithIndex(index, n) : parent;
+        id.value = here.Rewrite(arg->value, arg->loc.str() + ": parameter '" + p.name + "'");
         id.loc = arg->loc;
       } else if (p.has_default) {
-        id.value = scope.Rewrite(p.default_value, p.loc.str() + ": parameter '" + p.name + "' default");
         SetContext(&id.loc, scope.context());
+        id.value = scope.Rewrite(p.default_value, id.loc.str() + ": parameter '" + p.name + "' default");
       } else {
         throw InputError(loc.str() + ": " + path + " gives no <param name=\"" + p.name + "\"> and " +
                          scope.description() + " has no default for it (" + p.loc.str() + ")");
@@ -223,8 +259,14 @@ class Flattener {
     return scope;
   }
 
-  void Subsystem(const InstanceScope& scope, const BlockDesc& b) {
-    const ComponentDesc& c = *d_.FindComponent(b.component);
+  void Subsystem(const InstanceScope& scope, const BlockDesc& written) {
+    const ComponentDesc& c = *d_.FindComponent(written.component);
+    // its lines in messages carry the instance whose file holds it
+    BlockDesc b = written;
+    SetContext(&b.loc, scope.context());
+    SetContext(&b.text_loc, scope.context());
+    SetContext(&b.params, scope.context());
+    SetContext(&b.args, scope.context());
     for (const Attribute& a : b.params)
       if (a.name != "src" && a.name != "count")
         throw InputError(a.loc.str() + ": subsystem '" + b.name + "' takes src=, count= and <param> children; give '" +
@@ -233,21 +275,25 @@ class Flattener {
       throw InputError(b.text_loc.str() + ": subsystem '" + b.name + "' takes no text content");
     int count = 0;
     const auto paths = Paths(scope, scope.prefix() + b.name, FindAttribute(b.params, "count"), &count);
-    if (count > 0) array_counts_[scope.prefix() + b.name] = count;
+    if (count > 0) arrays_[scope.prefix() + b.name] = count;
     for (const auto& [path, index] : paths) {
       InstanceScope inner = Enter(scope, path, c, b.loc, index, count, b.args);
-      for (const PortDesc& p : c.inputs) {
-        virtual_[inner.prefix() + p.name] = {path, true, p.loc};
+      for (const PortDesc& written_port : c.inputs) {
+        PortDesc p = written_port;
+        SetContext(&p.loc, inner.context());
+        virtual_[inner.prefix() + p.name] = {path, true, p.loc, p.name, inner.description()};
         if (!p.width.empty()) {
           double w = 0;
           if (!scripting::ParseNumber(p.width, &w) || !(w >= 1 && w == std::floor(w) && w <= 1e6))
             throw InputError(p.loc.str() + ": input '" + p.name + "' width is '" + p.width + "'; expected a whole number >= 1");
-          SourceLoc loc = p.loc;
-          SetContext(&loc, inner.context());
-          widths_.push_back({inner.prefix() + p.name, static_cast<int>(w), loc});
+          widths_.push_back({inner.prefix() + p.name, static_cast<int>(w), p.loc});
         }
       }
-      for (const PortDesc& p : c.outputs) virtual_[inner.prefix() + p.name] = {path, false, p.loc};
+      for (const PortDesc& p : c.outputs) {
+        SourceLoc at = p.loc;
+        SetContext(&at, inner.context());
+        virtual_[inner.prefix() + p.name] = {path, false, at, p.name, inner.description()};
+      }
       Content(inner, &c, c.mechanisms, c.blocks, c.connections);
     }
   }
@@ -263,11 +309,20 @@ class Flattener {
     std::string instance;
     bool input = false;
     SourceLoc loc;
+    std::string name, owner;  // as declared; the instance described
   };
 
   std::vector<ConnectionDesc> ResolveConnections() {
     std::map<std::string, const Edge*> source_of;  // port -> the connection feeding it
     for (const Edge& e : edges_) {
+      for (const std::string* end : {&e.from, &e.to})
+        for (const auto& [base, count] : arrays_)
+          if (end->rfind(base + ".", 0) == 0) {
+            const std::string port = end->substr(base.size());
+            throw InputError(e.loc.str() + ": '" + *end + "': " + base + " is an array of " + std::to_string(count) +
+                             " (count=); name one element, " + base + "[0]" + port +
+                             (count > 1 ? " to " + base + "[" + std::to_string(count - 1) + "]" + port : ""));
+          }
       if (const auto it = virtual_.find(e.to); it != virtual_.end()) {
         const Port& p = it->second;
         if (p.input ? ParentPath(p.instance) != e.scope : p.instance != e.scope)
@@ -283,11 +338,25 @@ class Flattener {
                          (it->second.input ? "an input of a subsystem is read inside it"
                                            : "an output of a subsystem is read in the file that uses it"));
     }
+    // an output nothing inside feeds is a mistake in the subsystem's file, read or not
+    for (const auto& [name, port] : virtual_)
+      if (!port.input && !source_of.count(name))
+        throw InputError(port.loc.str() + ": output '" + port.name + "' of " + port.owner +
+                         ": nothing inside feeds it; connect a block's output to it (<connect from=\"BLOCK.PORT\" "
+                         "to=\"" + port.name + "\"/>) or remove it");
     // the block output behind a port, through any number of ports
     const auto real_source = [&](std::string name, const SourceLoc& loc) {
-      for (std::size_t hops = 0; virtual_.count(name); ++hops) {
+      std::vector<std::string> passed;
+      for (; virtual_.count(name);) {
+        if (std::find(passed.begin(), passed.end(), name) != passed.end()) {
+          std::string loop;
+          for (auto it = std::find(passed.begin(), passed.end(), name); it != passed.end(); ++it) loop += *it + " <- ";
+          throw InputError(loc.str() + ": ports joined in a loop with no block between (" + loop + name +
+                           "); a signal needs a block's output for its source");
+        }
+        passed.push_back(name);
         const auto it = source_of.find(name);
-        if (it == source_of.end() || hops > virtual_.size()) {
+        if (it == source_of.end()) {
           const Port& p = virtual_.at(name);
           throw InputError(loc.str() + ": '" + name + "' is " +
                            (p.input ? "an input of " + p.instance + " that nothing feeds; connect it where " +
@@ -345,8 +414,14 @@ class Flattener {
   // and references as the mechanism knows them.
   void Elements(const InstanceScope& scope, const std::vector<ElementDesc>& in, const PartNaming& naming,
                 const std::string& mechanism, std::vector<ElementDesc>* out) {
+    std::map<std::string, SourceLoc> includes;  // two of one name would make the same elements
     for (const ElementDesc& e : in) {
       if (e.tag == "include") {
+        SourceLoc at = e.loc;
+        SetContext(&at, scope.context());
+        if (const auto [first, fresh] = includes.emplace(e.Text("name"), at); !fresh)
+          throw InputError(at.str() + ": include name '" + e.Text("name") + "' is used twice (first at " +
+                           first->second.str() + ")");
         Include(scope, e, naming, mechanism, out);
         continue;
       }
@@ -367,6 +442,9 @@ class Flattener {
         a.value = naming.Body(a.value);
       } else if (kOtherReferences.count(a.name)) {
         a.value = naming.Other(a.value);
+      } else if (kPointAttributes.count(a.name) && scripting::IsLuaName(Trim(a.value)) &&
+                 !scope.Declares(Trim(a.value))) {
+        // a point's name: points are named within their body, whatever the diagram's identifiers are
       } else if (!kWordAttributes.count(a.name)) {
         a.value = scope.Rewrite(a.value, a.loc.str() + ": " + who + " attribute '" + a.name + "'");
       }
@@ -376,9 +454,11 @@ class Flattener {
   }
 
   // <include part=... name=... [count first] attach=...>: the part's elements, once per instance.
-  void Include(const InstanceScope& scope, const ElementDesc& e, const PartNaming& naming,
+  void Include(const InstanceScope& scope, const ElementDesc& written, const PartNaming& naming,
                const std::string& mechanism, std::vector<ElementDesc>* out) {
-    const ComponentDesc& c = *d_.FindComponent(e.component);
+    const ComponentDesc& c = *d_.FindComponent(written.component);
+    ElementDesc e = written;  // its lines in messages carry the instance whose file holds it
+    SetContext(&e, scope.context());
     const std::string name = e.Text("name");
     if (const std::string problem = WrittenNameProblem(name); !problem.empty())
       throw InputError(e.loc.str() + ": include name '" + name + "' " + problem);
@@ -393,7 +473,7 @@ class Flattener {
       PartNaming inner_naming{local + ".", {}};
       const Attribute* attach = index == 0 && first ? first : e.Find("attach");
       if (attach) {
-        const InstanceScope here = scope.WithIndex(index, index ? std::optional<int>(count) : std::nullopt);
+        const InstanceScope here = index ? scope.WithIndex(index, count) : scope;
         for (const std::string& item : Split(attach->value, " \t\r\n,")) {
           const auto eq = item.find('=');
           const std::string point = Trim(item.substr(0, eq));
@@ -402,7 +482,7 @@ class Flattener {
           if (std::none_of(c.attach_points.begin(), c.attach_points.end(), [&](const Attribute& a) { return a.name == point; })) {
             std::vector<std::string> points;
             for (const Attribute& a : c.attach_points) points.push_back(a.name);
-            throw InputError(what + ": " + scope.description().substr(0, 0) + "part '" + c.name + "' (" + c.file +
+            throw InputError(what + ": part '" + c.name + "' (" + c.file +
                              ") has no attach point '" + point + "'" + blocks::DidYouMean(point, points) +
                              (points.empty() ? "; it has none" : "; its attach points: " + blocks::JoinNames(points)));
           }
@@ -447,7 +527,7 @@ class Flattener {
   std::vector<ElementDesc> mechanisms_;
   std::vector<Edge> edges_;
   std::map<std::string, Port> virtual_;  // the ports of subsystem instances, by path
-  std::map<std::string, int> array_counts_;  // subsystem arrays by path ("d"), their counts
+  std::map<std::string, int> arrays_;    // subsystem arrays by path without index ("d", "o[1].s") -> count
   std::vector<DiagramDescription::InputWidth> widths_;
 };
 

@@ -19,6 +19,7 @@
 #include "mech/errors.h"
 #include "scripting/expression_block.h"
 #include "scripting/identifier_block.h"
+#include "scripting/instance_path.h"
 
 namespace mechflow::diagrams {
 namespace {
@@ -236,6 +237,22 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
   };
   for (const auto& id : d.identifiers) add_identifier(id);
   ids.Evaluate(*out.lua);
+  // --set NAME=EXPR: each evaluated over the identifiers as they are then;
+  // the diagram's own before the instances are made (a count may follow
+  // them), an instance's after
+  const auto set_expressions = [&](bool diagram_level) {
+    for (const auto& [name, text] : options.expression_overrides) {
+      if (diagram_level != (ids.Find(name) >= 0 && !scripting::IsInstancePath(name))) continue;
+      try {
+        ids.Override(name, ids.EvaluateExpression(*out.lua, text, "--set " + name + "=" + text));
+      } catch (const InputError& e) {
+        const std::string message = e.what();
+        throw InputError(message.rfind("--set", 0) == 0 ? message : "--set " + name + ": " + message);
+      }
+      ids.Evaluate(*out.lua);
+    }
+  };
+  set_expressions(true);
   MakeInstances(&d, {add_identifier,
                      [&](const std::string& text, const std::string& what) {
                        double number = 0.0;
@@ -247,16 +264,7 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
   for (std::size_t k = 0; k < overrides.size(); ++k)
     if (!applied[k]) overrides[k].Apply(&ids);  // names nothing: says so
   ids.Evaluate(*out.lua);
-  // --set NAME=EXPR: each evaluated over the identifiers as they are then
-  for (const auto& [name, text] : options.expression_overrides) {
-    try {
-      ids.Override(name, ids.EvaluateExpression(*out.lua, text, "--set " + name + "=" + text));
-    } catch (const InputError& e) {
-      const std::string message = e.what();
-      throw InputError(message.rfind("--set", 0) == 0 ? message : "--set " + name + ": " + message);
-    }
-    ids.Evaluate(*out.lua);
-  }
+  set_expressions(false);
   const UnitCheck unit_check(out.identifiers.get(), std::move(units));
   unit_check.CheckDefinitions();
   const Evaluator eval(out.lua.get(), out.identifiers.get(), &unit_check);
