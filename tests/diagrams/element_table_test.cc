@@ -163,9 +163,10 @@ TEST(ElementTableTest, UnitsAreTheTablesUnits) {
   EXPECT_EQ(diagrams::AttributeUnit("solver", "", "t_end"), "s");
   for (const auto& [spec, variant] : EveryElementType())
     for (const diagrams::AttributeSpec* a : diagrams::AttributesOf(spec->tag, variant ? variant->name : ""))
-      if (spec->selector == "type")
+      if (spec->selector == "type") {
         EXPECT_EQ(diagrams::AttributeUnit(spec->tag, variant ? variant->name : "", a->name), a->unit)
             << spec->tag << " " << a->name;
+      }
 }
 
 }  // namespace

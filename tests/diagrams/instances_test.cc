@@ -22,6 +22,18 @@ using ::testing::HasSubstr;
 using ::testing::StartsWith;
 using testing::InputErrorOf;
 
+// Load options with --set NAME=VALUE, and with --variant NAME.
+LoadOptions Setting(std::vector<std::pair<std::string, double>> overrides) {
+  LoadOptions options;
+  options.overrides = std::move(overrides);
+  return options;
+}
+LoadOptions Variant(const std::string& name) {
+  LoadOptions options;
+  options.variants = {name};
+  return options;
+}
+
 class InstancesTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -201,7 +213,9 @@ TEST_F(InstancesTest, LibraryFolderWhenNotBeside) {
   Write("lib/inner.xml", "<subsystem name='inner'>\n<parameter name='z' default='7'/>\n</subsystem>\n");
   WriteMain("", "<block type='subsystem' name='o' src='inner.xml'/>\n");
   EXPECT_THAT(Error(), StartsWith("main.xml:5: subsystem: file 'inner.xml' not found"));
-  EXPECT_EQ(Value(Load({.library = {Path("lib")}}), "o.z"), 7);
+  LoadOptions options;
+  options.library = {Path("lib")};
+  EXPECT_EQ(Value(Load(options), "o.z"), 7);
 }
 
 // The CLI: exit 2 and file:line for each file problem.
@@ -245,8 +259,12 @@ TEST_F(InstancesTest, ArrayCountFromAnIdentifierAndItsOverride) {
   const LoadedDiagram two = Load();
   EXPECT_EQ(Value(two, "d[1].w"), 12);
   EXPECT_FALSE(two.identifiers->Has("d[2].w"));
-  const LoadedDiagram three = Load({.overrides = {{"n", 3}}});
+  const LoadedDiagram three = Load(Setting({{"n", 3}}));
   EXPECT_EQ(Value(three, "d[2].w"), 23);
+  LoadOptions expression;  // --set n=1+2: the count follows it too
+  expression.expression_overrides = {{"n", "1+2"}};
+  const LoadedDiagram also_three = Load(expression);
+  EXPECT_EQ(Value(also_three, "d[2].w"), 23);
 }
 
 TEST_F(InstancesTest, ParamSeesTheNewElementsIndex) {
@@ -279,12 +297,12 @@ TEST_F(InstancesTest, SetAndVariantReachAnArrayElementsParameter) {
             "<connect from='one.y' to='d[0].u'/>\n<connect from='one.y' to='d[1].u'/>\n",
             "<variants name='g'>\n<variant name='stiff'>\n<set identifier='d[1].k' value='5'/>\n</variant>\n"
             "</variants>\n");
-  const LoadedDiagram set = Load({.overrides = {{"d[1].k", 3}}});
+  const LoadedDiagram set = Load(Setting({{"d[1].k", 3}}));
   EXPECT_EQ(Value(set, "d[1].k2"), 9);
   EXPECT_EQ(Value(set, "d[0].k2"), 4);
-  EXPECT_EQ(Value(Load({.variants = {"stiff"}}), "d[1].k2"), 25);
-  EXPECT_THAT(ErrorOf({.overrides = {{"d[1].k2", 3}}}), HasSubstr("d[1].k2"));
-  EXPECT_THAT(ErrorOf({.overrides = {{"d[2].k", 3}}}), HasSubstr("d[2].k"));
+  EXPECT_EQ(Value(Load(Variant("stiff")), "d[1].k2"), 25);
+  EXPECT_THAT(ErrorOf(Setting({{"d[1].k2", 3}})), HasSubstr("d[1].k2"));
+  EXPECT_THAT(ErrorOf(Setting({{"d[2].k", 3}})), HasSubstr("d[2].k"));
 }
 
 TEST_F(InstancesTest, SetOfAParameterGivenByAnExpressionRefused) {
@@ -293,8 +311,8 @@ TEST_F(InstancesTest, SetOfAParameterGivenByAnExpressionRefused) {
             "<block type='subsystem' name='d' src='scale.xml'>\n<param name='k' value='2*k0'/>\n</block>\n"
             "<block type='constant' name='one' value='1'/>\n",
             "<connect from='one.y' to='d.u'/>\n");
-  EXPECT_THAT(ErrorOf({.overrides = {{"d.k", 3}}}), StartsWith("--set d.k: "));
-  EXPECT_EQ(Value(Load({.overrides = {{"k0", 3}}}), "d.k2"), 36);
+  EXPECT_THAT(ErrorOf(Setting({{"d.k", 3}})), StartsWith("--set d.k: "));
+  EXPECT_EQ(Value(Load(Setting({{"k0", 3}})), "d.k2"), 36);
 }
 
 // --- ports and nesting -----------------------------------------------------------------
@@ -537,7 +555,7 @@ TEST_F(PartsTest, ElementsAndReferencesPrefixedAttachPointsReplaced) {
   EXPECT_EQ(Element(d, "w[2].pos")->Text("dof"), "w[2].x");
   EXPECT_EQ(Element(d, "w[2].Box")->children.at(0).Text("name"), "hook");
   // given by an expression (of index): derived, not set
-  EXPECT_THAT(ErrorOf({.overrides = {{"m.w[1].x0", 7}}}),
+  EXPECT_THAT(ErrorOf(Setting({{"m.w[1].x0", 7}})),
               StartsWith("--set m.w[1].x0: identifier 'm.w[1].x0' is defined by an expression"));
 }
 
@@ -595,7 +613,7 @@ TEST_F(PartsTest, NestedPartsPrefixedTwice) {
   EXPECT_EQ(Element(d, "t.w[1].coupler")->Text("body1"), "t.w[0].Box");
   EXPECT_EQ(Element(d, "t.w[0].coupler")->Text("body1"), "Loco");
   EXPECT_EQ(Value(d, "m.t.w[1].x0"), 0);
-  EXPECT_EQ(Value(Load({.overrides = {{"m.t.w[1].x0", 7}}}), "m.t.w[1].x0"), 7);
+  EXPECT_EQ(Value(Load(Setting({{"m.t.w[1].x0", 7}})), "m.t.w[1].x0"), 7);
 }
 
 // A point named like an identifier of the diagram is still the point.
