@@ -3,12 +3,14 @@
 #include <set>
 
 #include "blocks/library/mechanism_block.h"
+#include "diagrams/follow_inputs.h"
 #include "diagrams/mechanism_reader.h"
 
 namespace mechflow::diagrams {
 
-std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& m, const Evaluator& eval,
+std::unique_ptr<blocks::Block> BuildMechanismBlock(const ElementDesc& written, const Evaluator& eval,
                                                    std::vector<std::string>* warnings) {
+  const ElementDesc m = FollowInputs(written, *eval.identifiers());
   const MechanismReader r(m, eval);
   mech::ModelBuilder builder;
   builder.SetGravity(r.Vector(m, "gravity", Vec3(0, 0, -9.81)));

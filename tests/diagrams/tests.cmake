@@ -7,3 +7,4 @@ mechflow_test(large_input_growth_test unit tests/diagrams/large_input_growth_tes
 mechflow_test(units_test unit tests/diagrams/units_test.cc)
 mechflow_test(element_table_test unit tests/diagrams/element_table_test.cc)
 mechflow_test(instances_test unit tests/diagrams/instances_test.cc)
+mechflow_test(follow_inputs_test unit tests/diagrams/follow_inputs_test.cc)
