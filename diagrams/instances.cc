@@ -169,7 +169,7 @@ class Flattener {
       const std::string array = scope.prefix() + ref.substr(0, star(ref));
       const auto it = arrays_.find(array);
       if (it == arrays_.end())
-        throw InputError(what + ": '" + ref.substr(0, star(ref)) + "' is no subsystem array (count=) of this file");
+        throw InputError(what + ": '" + ref.substr(0, star(ref)) + "' is no array (count=) of this file");
       return it->second;
     };
     const int n = count(c.to);
@@ -406,7 +406,16 @@ class Flattener {
     std::vector<ElementDesc> others;
     for (const ElementDesc& e : m.children)
       if (e.tag != "input") others.push_back(e);
+    attach_targets_.clear();
     Elements(scope, others, PartNaming{}, flat.Text("name"), &flat.children);
+    // an attach target that is no body is the include's mistake, not the part's
+    std::vector<std::string> bodies = {"Base0"};
+    for (const ElementDesc& e : flat.children)
+      if (e.tag == "body") bodies.push_back(e.Text("name"));
+    for (const auto& [body, what] : attach_targets_)
+      if (std::find(bodies.begin(), bodies.end(), body) == bodies.end())
+        throw InputError(what + ": mechanism '" + flat.Text("name") + "' has no body '" + body + "'" +
+                         blocks::DidYouMean(body, bodies));
     return flat;
   }
 
@@ -467,7 +476,9 @@ class Flattener {
     const Attribute* first = e.Find("first");
     if (first && !e.Find("count")) throw InputError(first->loc.str() + ": first= gives the attach of name[0] of an array; add count=");
     int count = 0;
-    for (const auto& [local, index] : Paths(scope, naming.prefix + name, e.Find("count"), &count)) {
+    const auto paths = Paths(scope, naming.prefix + name, e.Find("count"), &count);
+    if (count > 0) arrays_[mechanism + "." + naming.prefix + name] = count;
+    for (const auto& [local, index] : paths) {
       const std::string path = mechanism + "." + local;
       InstanceScope inner = Enter(scope, path, c, e.loc, index, count, args);
       PartNaming inner_naming{local + ".", {}};
@@ -486,7 +497,8 @@ class Flattener {
                              ") has no attach point '" + point + "'" + blocks::DidYouMean(point, points) +
                              (points.empty() ? "; it has none" : "; its attach points: " + blocks::JoinNames(points)));
           }
-          if (!inner_naming.attach.emplace(point, naming.Body(Indexed(here, Trim(item.substr(eq + 1)), what))).second)
+          attach_targets_.emplace_back(naming.Body(Indexed(here, Trim(item.substr(eq + 1)), what)), what);
+          if (!inner_naming.attach.emplace(point, attach_targets_.back().first).second)
             throw InputError(what + ": attach point '" + point + "' is given twice");
         }
       }
@@ -527,7 +539,9 @@ class Flattener {
   std::vector<ElementDesc> mechanisms_;
   std::vector<Edge> edges_;
   std::map<std::string, Port> virtual_;  // the ports of subsystem instances, by path
-  std::map<std::string, int> arrays_;    // subsystem arrays by path without index ("d", "o[1].s") -> count
+  std::map<std::string, int> arrays_;    // arrays by path without index ("d", "o[1].s", "m.w") -> count
+  // the bodies attach= names in the mechanism being flattened, and where
+  std::vector<std::pair<std::string, std::string>> attach_targets_;
   std::vector<DiagramDescription::InputWidth> widths_;
 };
 

@@ -568,6 +568,21 @@ TEST_F(PartsTest, SensorsOfPartsAreLogged) {
   EXPECT_NEAR(Final("w1"), -4, 1e-9);  // at rest: the couplers are free at the start
 }
 
+TEST_F(PartsTest, EveryElementsSensorConnectedAtOnce) {
+  WriteTrain("<include part='wagon.xml' name='w' count='2' first='prev=Loco' attach='prev=w[index-1].Box'>\n"
+             "<param name='x0' value='-2*(index+1)'/>\n</include>\n");
+  Write("p.xml", "<subsystem name='p'>\n<input name='u'/>\n<output name='y'/>\n<blocks><block type='gain' name='g' "
+                 "k='1'/></blocks>\n<connections><connect from='u' to='g.u'/><connect from='g.y' to='y'/>"
+                 "</connections>\n</subsystem>\n");
+  std::string text = testing::ReadFile(dir_ / "main.xml");
+  text.replace(text.find("<solver"), 0,
+               "<blocks><block type='subsystem' name='g' src='p.xml' count='2'/></blocks>\n"
+               "<connections><connect from='m.w[*].pos' to='g[*].u'/></connections>\n"
+               "<output>\n<log signal='g[1].y' label='w1'/>\n</output>\n");
+  Write("main.xml", text);
+  EXPECT_NEAR(Final("w1"), -4, 1e-9);
+}
+
 TEST_F(PartsTest, ForceOfTheMechanismJoinsBodiesOfTwoInstances) {
   WriteTrain("<include part='wagon.xml' name='a' attach='prev=Loco'/>\n"
              "<include part='wagon.xml' name='b' attach='prev=Loco'/>\n"
@@ -590,6 +605,9 @@ TEST_F(PartsTest, AttachProblemsRefused) {
        "main.xml:12: first= gives the attach of name[0] of an array; add count="},
       {"<include part='wagon.xml' name='w' count='2' attach='prev=w[index-1].Box'/>",
        "main.xml:12: attach 'prev=w[index-1].Box' of m.w[0]: the index [index-1] is -1; expected a whole number >= 0"},
+      // said at the include, not in the part where the body is used
+      {"<include part='wagon.xml' name='w' attach='prev=Lcoo'/>",
+       "main.xml:12: attach 'prev=Lcoo' of m.w: mechanism 'm' has no body 'Lcoo' (did you mean 'Loco'?)"},
   };
   for (const auto& [include, expected] : cases) {
     SCOPED_TRACE(include);
