@@ -8,31 +8,15 @@
 #include <vector>
 
 #include "scripting/identifiers.h"
+#include "scripting/instance_path.h"
 
 namespace mechflow::cli {
 
 inline bool IsVaryPattern(const std::string& name) { return name.find("[*]") != std::string::npos; }
 
-// True when `spelling` is `pattern` with each [*] an index [k] (letters in
-// any case, as identifiers are found).
+// True when `spelling` is `pattern` with each [*] an index [k].
 inline bool MatchesVaryPattern(const std::string& pattern, const std::string& spelling) {
-  std::size_t p = 0, s = 0;
-  while (p < pattern.size()) {
-    if (pattern.compare(p, 3, "[*]") == 0) {
-      if (s >= spelling.size() || spelling[s] != '[') return false;
-      const std::size_t digits = ++s;
-      while (s < spelling.size() && std::isdigit(static_cast<unsigned char>(spelling[s]))) ++s;
-      if (s == digits || s >= spelling.size() || spelling[s] != ']') return false;
-      ++s;
-      p += 3;
-      continue;
-    }
-    if (s >= spelling.size() || std::tolower(static_cast<unsigned char>(pattern[p])) !=
-                                    std::tolower(static_cast<unsigned char>(spelling[s])))
-      return false;
-    ++p, ++s;
-  }
-  return s == spelling.size();
+  return scripting::MatchesInstancePattern(pattern, spelling);
 }
 
 // `spelling` with every index written [*]: "s[2].mu" -> "s[*].mu", what a

@@ -60,12 +60,17 @@ std::string Reader::ReadComponentFile(const XMLElement* e, const char* attribute
   // beside the naming file, else in the first --library folder that has it
   namespace fs = std::filesystem;
   std::string folder = fs::path(file_).parent_path().string();
-  if (fs::path(src).is_relative() && !fs::exists(fs::path(folder) / src))
-    for (const std::string& library : session_.library)
-      if (fs::exists(fs::path(library) / src)) {
-        folder = library;
-        break;
-      }
+  if (fs::path(src).is_relative() && !fs::exists(fs::path(folder) / src) && !session_.library.empty()) {
+    std::vector<std::string> looked = {(fs::path(folder) / src).string()};
+    const auto found = std::find_if(session_.library.begin(), session_.library.end(), [&](const std::string& library) {
+      looked.push_back((fs::path(library) / src).string());
+      return fs::exists(fs::path(library) / src);
+    });
+    if (found == session_.library.end())
+      Fail(e, what + ": " + kind + " file '" + src + "' not found beside " + file_ + " nor in a --library folder (looked for " +
+                  blocks::JoinNames(looked) + ")");
+    folder = *found;
+  }
   const blocks::NamedFile file = blocks::ReadNamedFile(src, folder, session_.reads, Loc(e).str() + ": " + kind);
   const std::string key = fs::path(file.path).lexically_normal().string();
   std::vector<std::string>& chain = session_.chain;

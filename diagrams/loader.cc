@@ -228,12 +228,16 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
     }
     ids.Add(id.name, id.value, id.loc.str(), id.comment, unit ? unit->text : "", unit ? unit->to_si : 1.0);
     units.push_back(std::move(unit));
-    const std::string& added = ids.name(ids.size() - 1);
-    for (std::size_t k = 0; k < overrides.size(); ++k)
-      if (!applied[k] && ids.Find(overrides[k].name) >= 0 && ids.name(ids.Find(overrides[k].name)) == added) {
-        overrides[k].Apply(&ids);
+    const int added = ids.size() - 1;
+    for (std::size_t k = 0; k < overrides.size(); ++k) {
+      const std::string& name = overrides[k].name;
+      // "d[*].k": every element's
+      if (name.find("[*]") != std::string::npos ? scripting::MatchesInstancePattern(name, ids.spelling(added))
+                                                : !applied[k] && ids.Find(name) == added) {
+        NumberOverride{ids.spelling(added), overrides[k].value, overrides[k].context}.Apply(&ids);
         applied[k] = true;
       }
+    }
   };
   for (const auto& id : d.identifiers) add_identifier(id);
   ids.Evaluate(*out.lua);
@@ -261,8 +265,13 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
                        return ids.EvaluateExpression(*out.lua, text, what);
                      },
                      &ids});
-  for (std::size_t k = 0; k < overrides.size(); ++k)
-    if (!applied[k]) overrides[k].Apply(&ids);  // names nothing: says so
+  for (std::size_t k = 0; k < overrides.size(); ++k) {
+    if (applied[k]) continue;
+    if (overrides[k].name.find("[*]") != std::string::npos)
+      throw InputError(overrides[k].context + "no identifier matches '" + overrides[k].name +
+                       "' ([*] stands for the index of every element of an array)");
+    overrides[k].Apply(&ids);  // names nothing: says so
+  }
   ids.Evaluate(*out.lua);
   set_expressions(false);
   const UnitCheck unit_check(out.identifiers.get(), std::move(units));

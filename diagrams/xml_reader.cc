@@ -86,6 +86,9 @@ ScriptDesc Reader::ReadScript(const XMLElement* e) const {
 DiagramDescription ReadDiagramText(const std::string& text, const std::string& file,
                                    const std::vector<std::string>& allow_read,
                                    const std::vector<std::string>& library) {
+  for (const std::string& folder : library)
+    if (!std::filesystem::is_directory(folder))
+      throw InputError("--library '" + folder + "': no such folder");
   // folders parts are looked up in may be read from
   std::vector<std::string> readable = allow_read;
   readable.insert(readable.end(), library.begin(), library.end());

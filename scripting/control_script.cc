@@ -13,6 +13,7 @@
 #include "scripting/identifier_bindings.h"
 #include "scripting/identifier_block.h"
 #include "scripting/identifiers.h"
+#include "scripting/instance_path.h"
 #include "scripting/lua_guards.h"
 #include "scripting/lua_state.h"
 
@@ -416,7 +417,8 @@ bool ControlScript::DoSet(const char* name, double value) {
     const int i = identifiers_.Find(changed);
     const auto& uses = identifiers_.fixed_uses(i);
     if (uses.empty()) continue;
-    return refuse("identifier '" + changed + "'" + (i == id ? "" : " (defined from '" + identifiers_.name(id) + "')") +
+    return refuse("identifier '" + WithInstancePaths(changed) + "'" +
+                  (i == id ? "" : " (defined from '" + WithInstancePaths(identifiers_.name(id)) + "')") +
                   " cannot change during a run: its value was built into " + uses.front() +
                   (uses.size() > 1 ? " and " + std::to_string(uses.size() - 1) + " more place(s)" : "") +
                   " when the diagram was loaded. Identifiers read by expressions, Lua blocks and identifier blocks "
@@ -428,7 +430,7 @@ bool ControlScript::DoSet(const char* name, double value) {
   try {
     point_->Changed();  // evaluates the outputs: no C++ exception may cross Lua's frames
   } catch (const std::exception& e) {
-    error_ = "sim:set: the model fails with " + identifiers_.name(id) + " = " + Number(value) + ": " + e.what();
+    error_ = "sim:set: the model fails with " + WithInstancePaths(identifiers_.name(id)) + " = " + Number(value) + ": " + e.what();
     return false;
   }
   return true;

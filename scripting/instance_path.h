@@ -47,6 +47,28 @@ inline std::string InstancePathLuaName(const std::string& path) {
   return out;
 }
 
+// True when `spelling` is `pattern` with each [*] an index [k] (letters in
+// any case, as identifiers are found).
+inline bool MatchesInstancePattern(const std::string& pattern, const std::string& spelling) {
+  std::size_t p = 0, s = 0;
+  while (p < pattern.size()) {
+    if (pattern.compare(p, 3, "[*]") == 0) {
+      if (s >= spelling.size() || spelling[s] != '[') return false;
+      const std::size_t digits = ++s;
+      while (s < spelling.size() && std::isdigit(static_cast<unsigned char>(spelling[s]))) ++s;
+      if (s == digits || s >= spelling.size() || spelling[s] != ']') return false;
+      ++s;
+      p += 3;
+      continue;
+    }
+    if (s >= spelling.size() || std::tolower(static_cast<unsigned char>(pattern[p])) !=
+                                    std::tolower(static_cast<unsigned char>(spelling[s])))
+      return false;
+    ++p, ++s;
+  }
+  return s == spelling.size();
+}
+
 // `text` (an expression) with the Lua names of paths written as the paths
 // ("1.25*d__1__mu" -> "1.25*d[1].mu"), for what a user reads.
 inline std::string WithInstancePaths(const std::string& text) {

@@ -267,6 +267,16 @@ TEST_F(InstancesTest, ArrayCountFromAnIdentifierAndItsOverride) {
   EXPECT_EQ(Value(also_three, "d[2].w"), 23);
 }
 
+TEST_F(InstancesTest, SetWithAStarSetsEveryElement) {
+  Write("p.xml", "<subsystem name='p'>\n<parameter name='w' default='1'/>\n</subsystem>\n");
+  WriteMain("", "<block type='subsystem' name='d' src='p.xml' count='3'/>\n");
+  const LoadedDiagram d = Load(Setting({{"d[*].W", 5}, {"d[1].w", 7}}));  // in order: the later one wins
+  EXPECT_EQ(Value(d, "d[0].w"), 5);
+  EXPECT_EQ(Value(d, "d[1].w"), 7);
+  EXPECT_EQ(Value(d, "d[2].w"), 5);
+  EXPECT_THAT(ErrorOf(Setting({{"e[*].w", 5}})), StartsWith("--set e[*].w: no identifier matches 'e[*].w'"));
+}
+
 TEST_F(InstancesTest, ParamSeesTheNewElementsIndex) {
   Write("p.xml", "<subsystem name='p'>\n<parameter name='w'/>\n</subsystem>\n");
   WriteMain("<identifier name='w0' value='100'/>\n",
