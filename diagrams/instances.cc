@@ -96,6 +96,7 @@ class Flattener {
     d_.mechanisms = std::move(mechanisms_);
     d_.blocks = std::move(blocks_);
     d_.connections = ResolveConnections();
+    for (const LogDesc& log : d_.logs) RequireIndex(log.signal, log.loc);
   }
 
  private:
@@ -312,17 +313,22 @@ class Flattener {
     std::string name, owner;  // as declared; the instance described
   };
 
+  // A reference to an element of an array must say which ("d.F" for d[0..2]).
+  void RequireIndex(const std::string& ref, const SourceLoc& loc) const {
+    for (const auto& [base, count] : arrays_)
+      if (ref.rfind(base + ".", 0) == 0) {
+        const std::string port = ref.substr(base.size());
+        throw InputError(loc.str() + ": '" + ref + "': " + base + " is an array of " + std::to_string(count) +
+                         " (count=); name one element, " + base + "[0]" + port +
+                         (count > 1 ? " to " + base + "[" + std::to_string(count - 1) + "]" + port : ""));
+      }
+  }
+
   std::vector<ConnectionDesc> ResolveConnections() {
     std::map<std::string, const Edge*> source_of;  // port -> the connection feeding it
     for (const Edge& e : edges_) {
-      for (const std::string* end : {&e.from, &e.to})
-        for (const auto& [base, count] : arrays_)
-          if (end->rfind(base + ".", 0) == 0) {
-            const std::string port = end->substr(base.size());
-            throw InputError(e.loc.str() + ": '" + *end + "': " + base + " is an array of " + std::to_string(count) +
-                             " (count=); name one element, " + base + "[0]" + port +
-                             (count > 1 ? " to " + base + "[" + std::to_string(count - 1) + "]" + port : ""));
-          }
+      RequireIndex(e.from, e.loc);
+      RequireIndex(e.to, e.loc);
       if (const auto it = virtual_.find(e.to); it != virtual_.end()) {
         const Port& p = it->second;
         if (p.input ? ParentPath(p.instance) != e.scope : p.instance != e.scope)

@@ -349,6 +349,9 @@ TEST_F(InstancesTest, PortOfAnArrayWithoutIndexRefused) {
   WriteMain("", "<block type='subsystem' name='d' src='scale.xml' count='3'/>\n<block type='clock' name='c'/>\n",
             "<connect from='c.y' to='d.u'/>\n");
   EXPECT_EQ(Error(), "main.xml:9: 'd.u': d is an array of 3 (count=); name one element, d[0].u to d[2].u");
+  WriteMain("", "<block type='subsystem' name='d' src='scale.xml' count='3'/>\n<block type='clock' name='c'/>\n",
+            "<connect from='c.y' to='d[*].u'/>\n", "<output>\n<log signal='d.y'/>\n</output>\n");
+  EXPECT_EQ(Error(), "main.xml:12: 'd.y': d is an array of 3 (count=); name one element, d[0].y to d[2].y");
 }
 
 TEST_F(InstancesTest, UnfedInputUsedInsideRefused) {
