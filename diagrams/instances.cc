@@ -350,6 +350,14 @@ class Flattener {
         throw InputError(port.loc.str() + ": output '" + port.name + "' of " + port.owner +
                          ": nothing inside feeds it; connect a block's output to it (<connect from=\"BLOCK.PORT\" "
                          "to=\"" + port.name + "\"/>) or remove it");
+    // a fed input that nothing inside reads: the connection would do nothing
+    std::set<std::string> read;
+    for (const Edge& e : edges_) read.insert(e.from);
+    for (const auto& [name, port] : virtual_)
+      if (port.input && source_of.count(name) && !read.count(name))
+        throw InputError(source_of.at(name)->loc.str() + ": connection to '" + name + "': nothing inside " +
+                         port.instance + " reads its input '" + port.name + "' (" + port.loc.str() +
+                         "); connect it to a block there, or remove this connection");
     // the block output behind a port, through any number of ports
     const auto real_source = [&](std::string name, const SourceLoc& loc) {
       std::vector<std::string> passed;

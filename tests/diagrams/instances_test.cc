@@ -344,6 +344,20 @@ TEST_F(InstancesTest, PortsPassThroughTwoLevels) {
   EXPECT_NEAR(Final("z"), 1, 1e-6);
 }
 
+TEST_F(InstancesTest, AFedInputNothingInsideReadsRefused) {
+  Write("p.xml", "<subsystem name='p'>\n<input name='u'/>\n<input name='unused'/>\n<output name='y'/>\n"
+                 "<blocks><block type='gain' name='g' k='2'/></blocks>\n"
+                 "<connections><connect from='u' to='g.u'/><connect from='g.y' to='y'/></connections>\n"
+                 "</subsystem>\n");
+  WriteMain("", "<block type='subsystem' name='d' src='p.xml'/>\n<block type='clock' name='c'/>\n",
+            "<connect from='c.y' to='d.u'/>\n");
+  EXPECT_EQ(Error(), "");  // an input left open is no mistake
+  WriteMain("", "<block type='subsystem' name='d' src='p.xml'/>\n<block type='clock' name='c'/>\n",
+            "<connect from='c.y' to='d.u'/>\n<connect from='c.y' to='d.unused'/>\n");
+  EXPECT_THAT(Error(), StartsWith("main.xml:10: connection to 'd.unused': nothing inside d reads its input 'unused' "
+                                  "(p.xml:3"));
+}
+
 TEST_F(InstancesTest, PortOfAnArrayWithoutIndexRefused) {
   Write("scale.xml", kScale);
   WriteMain("", "<block type='subsystem' name='d' src='scale.xml' count='3'/>\n<block type='clock' name='c'/>\n",
