@@ -12,7 +12,7 @@
 
 namespace mechflow::cli {
 
-inline bool IsVaryPattern(const std::string& name) { return name.find("[*]") != std::string::npos; }
+inline bool IsVaryPattern(const std::string& name) { return scripting::IsInstancePattern(name); }
 
 // True when `spelling` is `pattern` with each [*] an index [k].
 inline bool MatchesVaryPattern(const std::string& pattern, const std::string& spelling) {

@@ -232,7 +232,7 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
     for (std::size_t k = 0; k < overrides.size(); ++k) {
       const std::string& name = overrides[k].name;
       // "d[*].k": every element's
-      if (name.find("[*]") != std::string::npos ? scripting::MatchesInstancePattern(name, ids.spelling(added))
+      if (scripting::IsInstancePattern(name) ? scripting::MatchesInstancePattern(name, ids.spelling(added))
                                                 : !applied[k] && ids.Find(name) == added) {
         NumberOverride{ids.spelling(added), overrides[k].value, overrides[k].context}.Apply(&ids);
         applied[k] = true;
@@ -267,7 +267,7 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
                      &ids});
   for (std::size_t k = 0; k < overrides.size(); ++k) {
     if (applied[k]) continue;
-    if (overrides[k].name.find("[*]") != std::string::npos)
+    if (scripting::IsInstancePattern(overrides[k].name))
       throw InputError(overrides[k].context + "no identifier matches '" + overrides[k].name +
                        "' ([*] stands for the index of every element of an array)");
     overrides[k].Apply(&ids);  // names nothing: says so

@@ -47,6 +47,9 @@ inline std::string InstancePathLuaName(const std::string& path) {
   return out;
 }
 
+// True when `name` holds [*], which stands for every index.
+inline bool IsInstancePattern(const std::string& name) { return name.find("[*]") != std::string::npos; }
+
 // True when `spelling` is `pattern` with each [*] an index [k] (letters in
 // any case, as identifiers are found).
 inline bool MatchesInstancePattern(const std::string& pattern, const std::string& spelling) {
