@@ -56,7 +56,8 @@ ElementDriveBlock::ElementDriveBlock(std::string name, const mech::Mechanism& me
   }
   if (element_.exact_stick())
     throw InputError(what + " sticks exactly: while stuck it has no force of its own, only what the mechanism "
-                            "needs; give it a stick stiffness (stick=\"spring\", c, d) to analyse it");
+                            "needs; to analyse it, give a friction element a stick stiffness (stick=\"spring\", c, "
+                            "d), a contact stick=\"regularised\"");
   if (element_.depends_on_inputs())
     throw InputError(what + " has parameters that follow signal inputs, which force analysis does not drive; "
                             "give them values through identifiers (--set)");

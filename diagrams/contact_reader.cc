@@ -23,9 +23,19 @@ std::unique_ptr<mech::ForceElement> ReadContact(const MechanismReader& r, const 
   law.stribeck_velocity = r.Number(e, "stribeck_velocity", 1e-3);
   law.v_eps = r.Number(e, "v_eps", 1e-4);
   law.max_penetration = r.Number(e, "max_penetration", mech::ContactLaw::kDefaultMaxPenetration);
+  const std::string stick = e.Text("stick", "regularised");
+  if (stick != "regularised" && stick != "exact")
+    throw InputError(r.What(e, "stick") + ": unknown stick model '" + stick +
+                     "'; expected regularised (friction a steep function of the slip) or exact (a point at rest "
+                     "held by a constraint force)");
+  law.exact_stick = stick == "exact";
+  if (law.exact_stick && r.Has(e, "v_eps"))
+    throw InputError(r.What(e, "v_eps") + ": with stick=\"exact\" a point at rest is held exactly and sliding "
+                     "friction is Coulomb's, so a regularisation velocity would have no effect; remove v_eps, or "
+                     "use stick=\"regularised\"");
   // settings of a part of the law that is absent would change nothing
   if (law.mu == 0.0 && law.mu_static == 0.0)
-    for (const char* attribute : {"stribeck_velocity", "v_eps"})
+    for (const char* attribute : {"stribeck_velocity", "v_eps", "stick"})
       if (r.Has(e, attribute))
         throw InputError(r.What(e, attribute) + ": shapes the friction, but mu and mu_static are 0 (no friction); "
                          "give mu, or remove " + attribute);

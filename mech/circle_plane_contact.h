@@ -10,7 +10,17 @@
 // no single deepest point: the evaluation fails with a message.
 // Touch and release are events. Sensors: normal, penetration, slip, friction,
 // energy (stored in the contact spring).
+//
+// With law.exact_stick (stick="exact") the friction is that of
+// mech/contact_stick.h: a circle at rest at Q is held by two holding
+// forces, so it rolls without slip exactly (Q's material velocity stays
+// zero while Q itself runs round the rim). Modes [touching | ContactStick's],
+// crossings [penetration, max_penetration | ContactStick's], and a sensor
+// mode_1 (0 open, 1 stuck, 2 sliding).
 
+#include <optional>
+
+#include "mech/contact_stick.h"
 #include "mech/points_plane_contact.h"
 
 namespace mechflow::mech {
@@ -33,16 +43,38 @@ class CirclePlaneContact final : public ForceElement {
                   std::span<double> modes) const override;
   // At rest, touching exactly when it penetrates.
   bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+  // Exact stick: after an event, a hold beyond its cone slides, a reversed slip sticks.
+  bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+  std::string CrossingName(int index, int direction) const override;
+
+  // Exact stick (law.exact_stick): holds 0 and 1 are Q's tangential slips.
+  bool StuckExactly(const ElementContext& ctx, int hold) const override;
+  void ApplyStickForce(const ElementContext& ctx, int hold, double f, Loads* loads) const override;
+  double StickAcceleration(const ElementContext& ctx, int hold, const DynamicsWorkspace& dyn,
+                           std::span<const double> vdot) const override;
+  double HoldVelocity(const ElementContext& ctx, int hold) const override;
+  double HoldWeight(const ElementContext& ctx, int hold) const override;  // the normal force
+  std::string HoldName(int hold) const override;
 
  private:
-  // Penetration, deepest point Q and the plane normal (global).
-  double Geometry(const ElementContext& ctx, Vec3* q, Vec3* n) const;
+  // Penetration, deepest point Q and the plane normal (global); with
+  // q_rate, also Q's velocity as it runs round the rim.
+  double Geometry(const ElementContext& ctx, Vec3* q, Vec3* n, Vec3* q_rate = nullptr) const;
+  // Q as the stick model sees it; the penetration into *delta.
+  ContactPointMotion Motion(const ElementContext& ctx, double* delta) const;
+  double NormalForce(const ContactPointMotion& m, double delta) const {
+    return ContactNormalForce(law_, std::max(delta, 0.0), -m.slip.dot(m.normal));
+  }
+  static std::span<double> StickModes(std::span<double> modes) { return modes.subspan(1); }
+  static std::span<const double> StickModes(std::span<const double> modes) { return modes.subspan(1); }
 
   int body1_, body2_;
   Vec3 centre_, circle_normal_;
   double radius_;
   Vec3 plane_point_, normal_;
+  Vec3 tangent1_, tangent2_;  // body 2's frame
   ContactLaw law_;
+  std::optional<ContactStick> stick_;  // with law.exact_stick
 };
 
 }  // namespace mechflow::mech

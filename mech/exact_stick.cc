@@ -6,28 +6,23 @@
 namespace mechflow::mech {
 namespace {
 
-// Pivots below kNoise * (largest) are round-off: a redundant hold.
-constexpr double kNoise = 1e-12;
+// Pivots (eigenvalues) below kRedundant * (largest) are directions in which
+// the holds are redundant, or nearly so: holding them would take forces
+// 1 / kRedundant times those of the others (the corners of a box that has
+// rocked a little on its contacts are no longer exactly redundant), which
+// no friction provides. They are left to least squares.
+constexpr double kRedundant = 1e-8;
+// A residual acceleration above this share of the accelerations in play
+// is no round-off.
+constexpr double kResidual = 1e-6;
 
-}  // namespace
-
-StickWorkspace::StickWorkspace(int num_elements, int num_exact)
-    : force(num_elements, 0.0),
-      probe(num_elements, 1.0),
-      S(Eigen::MatrixXd::Identity(num_exact, num_exact)),
-      a0(Eigen::VectorXd::Zero(num_exact)),
-      f(Eigen::VectorXd::Zero(num_exact)),
-      ldlt(num_exact) {
-  stuck.reserve(num_exact);
-}
-
-void SolveHoldingForces(StickWorkspace* ws) {
-  const int n = static_cast<int>(ws->S.rows()), k = static_cast<int>(ws->stuck.size());
-  // Symmetric by theory; averaged so round-off cannot make it otherwise.
+// Symmetric by theory; averaged so round-off cannot make it otherwise. The
+// padding takes the largest diagonal, which keeps the pivots of the stuck
+// block on their own scale (fixed size: no allocation).
+void Symmetrise(StickWorkspace* ws, int k) {
+  const int n = static_cast<int>(ws->S.rows());
   for (int i = 0; i < k; ++i)
     for (int j = 0; j < i; ++j) ws->S(i, j) = ws->S(j, i) = 0.5 * (ws->S(i, j) + ws->S(j, i));
-  // Padding with the largest diagonal keeps the pivots of the stuck block
-  // on their own scale (fixed size: no allocation).
   const double scale = k > 0 ? ws->S.diagonal().head(k).cwiseAbs().maxCoeff() : 1.0;
   for (int i = k; i < n; ++i) {
     ws->S.row(i).setZero();
@@ -35,15 +30,92 @@ void SolveHoldingForces(StickWorkspace* ws) {
     ws->S(i, i) = scale > 0.0 ? scale : 1.0;
     ws->a0(i) = 0.0;
   }
+}
+
+// S f = -a0 by LDL^T; false when a pivot is round-off (S singular).
+bool SolveRegular(StickWorkspace* ws) {
+  const int n = static_cast<int>(ws->S.rows());
   ws->ldlt.compute(ws->S);
   const auto d = ws->ldlt.vectorD();
   const double largest = n > 0 ? d.cwiseAbs().maxCoeff() : 0.0;
+  for (int i = 0; i < n; ++i)
+    if (!(d(i) > kRedundant * largest)) return false;
+  // step by step, in place: no temporaries
   ws->f = -ws->a0;
-  ws->f = ws->ldlt.transpositionsP() * ws->f;  // in place for transpositions
+  ws->f = ws->ldlt.transpositionsP() * ws->f;
   ws->ldlt.matrixL().solveInPlace(ws->f);
-  for (int i = 0; i < n; ++i) ws->f(i) = d(i) > kNoise * largest ? ws->f(i) / d(i) : 0.0;
+  for (int i = 0; i < n; ++i) ws->f(i) /= d(i);
   ws->ldlt.matrixU().solveInPlace(ws->f);
   ws->f = ws->ldlt.transpositionsP().transpose() * ws->f;
+  return true;
+}
+
+// The forces of least sum f_i^2 / w_i that bring S f + a0 closest to zero
+// (see the header): the least-norm least-squares g of (D S D) g = -D a0,
+// f = D g, D = diag(sqrt(w)).
+void SolveRedundant(StickWorkspace* ws, int k) {
+  const int n = static_cast<int>(ws->S.rows());
+  ws->scaled = ws->S;  // the padding's diagonal keeps the spectrum's scale
+  for (int i = 0; i < k; ++i) {
+    const double di = std::sqrt(std::max(ws->weight(i), 0.0));
+    ws->scaled.row(i) *= di;
+    ws->scaled.col(i) *= di;
+    ws->rhs(i) = -di * ws->a0(i);
+  }
+  for (int i = k; i < n; ++i) ws->rhs(i) = 0.0;
+  ws->eigen.compute(ws->scaled);
+  const Eigen::VectorXd& lambda = ws->eigen.eigenvalues();
+  const Eigen::MatrixXd& V = ws->eigen.eigenvectors();
+  const double largest = n > 0 ? lambda.cwiseAbs().maxCoeff() : 0.0;
+  ws->f.setZero();
+  for (int m = 0; m < n; ++m) {
+    if (!(lambda(m) > kRedundant * largest)) continue;
+    const double c = V.col(m).dot(ws->rhs) / lambda(m);
+    for (int i = 0; i < n; ++i) ws->f(i) += c * V(i, m);
+  }
+  for (int i = 0; i < k; ++i) ws->f(i) *= std::sqrt(std::max(ws->weight(i), 0.0));
+}
+
+// A stuck hold that no force moves (its S_ii is round-off) but that the
+// forces leave accelerating; else -1.
+int Unholdable(const StickWorkspace& ws, int k) {
+  double scale = 0.0, largest_diagonal = 0.0;
+  for (int i = 0; i < k; ++i) {
+    scale = std::max(scale, std::abs(ws.a0(i)));
+    largest_diagonal = std::max(largest_diagonal, std::abs(ws.S(i, i)));
+    for (int j = 0; j < k; ++j) scale = std::max(scale, std::abs(ws.S(i, j) * ws.f(j)));
+  }
+  for (int i = 0; i < k; ++i) {
+    if (ws.S(i, i) > kRedundant * largest_diagonal) continue;
+    double residual = ws.a0(i);
+    for (int j = 0; j < k; ++j) residual += ws.S(i, j) * ws.f(j);
+    if (std::abs(residual) > kResidual * scale) return i;
+  }
+  return -1;
+}
+
+}  // namespace
+
+StickWorkspace::StickWorkspace(int num_holds)
+    : force(num_holds, 0.0),
+      probe(num_holds, 1.0),
+      S(Eigen::MatrixXd::Identity(num_holds, num_holds)),
+      a0(Eigen::VectorXd::Zero(num_holds)),
+      f(Eigen::VectorXd::Zero(num_holds)),
+      weight(Eigen::VectorXd::Ones(num_holds)),
+      ldlt(num_holds),
+      scaled(Eigen::MatrixXd::Identity(num_holds, num_holds)),
+      rhs(Eigen::VectorXd::Zero(num_holds)),
+      eigen(num_holds) {
+  stuck.reserve(num_holds);
+}
+
+int SolveHoldingForces(StickWorkspace* ws) {
+  const int k = static_cast<int>(ws->stuck.size());
+  Symmetrise(ws, k);
+  if (SolveRegular(ws)) return -1;
+  SolveRedundant(ws, k);
+  return Unholdable(*ws, k);
 }
 
 }  // namespace mechflow::mech

@@ -37,9 +37,10 @@ struct ElementContext {
   std::span<const double> parameter_args;
   std::span<const double> state;  // this element's continuous states
   std::span<const double> modes;  // this element's discrete modes
-  // An exact-stick element's holding force while it sticks (see
-  // ForceElement::StuckExactly); 0 otherwise.
-  double stick_force = 0.0;
+  // An exact-stick element's holding forces, one per hold (see
+  // ForceElement::StuckExactly): the solved force of a stuck hold, 0 for
+  // the others. Empty for an element without holds.
+  std::span<const double> stick_forces;
   // ZeroCrossings only: this element's sensors, when Evaluate computed them
   // on the same kinematics; empty otherwise.
   std::span<const double> sensors;
@@ -152,7 +153,7 @@ class ForceElement {
   // not declared, read as "every body and coordinate".
   const std::vector<int>& bodies() const { return bodies_; }
   const std::vector<int>& coordinates() const { return coordinates_; }
-  bool declares_footprint() const { return !exact_stick_ && (!bodies_.empty() || !coordinates_.empty()); }
+  bool declares_footprint() const { return !exact_stick() && (!bodies_.empty() || !coordinates_.empty()); }
   int num_states() const { return num_states_; }
   int num_modes() const { return num_modes_; }
   int num_crossings() const { return static_cast<int>(crossings_.size()); }
@@ -183,23 +184,36 @@ class ForceElement {
   virtual bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
     return UpdateModes(ctx, state, modes);
   }
-  // Exact stick (docs/ELEMENTS.md 3.6). An element that declared it
-  // (DeclareExactStick) and reports StuckExactly holds its relative motion
-  // by a constraint force: the mechanism finds the force f that keeps the
-  // element's relative acceleration at zero -- StickAcceleration, affine in
-  // f -- and passes it in ElementContext::stick_force; Evaluate applies it
-  // through ApplyStickForce and the element's crossings compare it with the
-  // static limit. The modes decide whether it sticks, nothing else.
-  bool exact_stick() const { return exact_stick_; }
-  virtual bool StuckExactly(const ElementContext&) const { return false; }
-  // Adds the loads of holding force f (the element's own sign convention).
-  virtual void ApplyStickForce(const ElementContext&, double /*f*/, Loads*) const {}
-  // The element's relative acceleration after a dynamics pass (accelerations
-  // in `dyn`, generalized ones in `vdot`).
-  virtual double StickAcceleration(const ElementContext&, const DynamicsWorkspace& /*dyn*/,
+  // Exact stick (docs/ELEMENTS.md 3.6). An element that declared holds
+  // (DeclareExactStick) -- one relative motion each: a friction element's
+  // slide, the two tangential slips of a contact point -- and reports a hold
+  // StuckExactly keeps that motion's acceleration at zero by a constraint
+  // force: the mechanism finds the forces f that keep the stuck holds'
+  // accelerations (StickAcceleration, affine in f) at zero and passes them
+  // in ElementContext::stick_forces; Evaluate applies them through
+  // ApplyStickForce and the element's crossings compare them with its
+  // static limits. The modes decide which holds stick, nothing else.
+  bool exact_stick() const { return num_holds_ > 0; }
+  int num_holds() const { return num_holds_; }
+  virtual bool StuckExactly(const ElementContext&, int /*hold*/) const { return false; }
+  // Adds the loads of holding force f on `hold` (the element's own sign convention).
+  virtual void ApplyStickForce(const ElementContext&, int /*hold*/, double /*f*/, Loads*) const {}
+  // The hold's relative acceleration after a dynamics pass (accelerations
+  // in `dyn`, generalized ones in `vdot`): the rate of HoldVelocity.
+  virtual double StickAcceleration(const ElementContext&, int /*hold*/, const DynamicsWorkspace& /*dyn*/,
                                    std::span<const double> /*vdot*/) const {
     return 0.0;
   }
+  // The relative velocity the hold keeps at zero (a stuck hold starts with
+  // the root finder's residual, which the mechanism removes at events).
+  virtual double HoldVelocity(const ElementContext&, int /*hold*/) const { return 0.0; }
+  // Redundant holds (two holding one motion: four corners of a box on a
+  // plane) share a load in proportion to their weights, the loads their
+  // static limits scale with; holds that are not redundant take what the
+  // balance gives them whatever their weights.
+  virtual double HoldWeight(const ElementContext&, int /*hold*/) const { return 1.0; }
+  // What to call a hold in a message: "contact 'c', point 2".
+  virtual std::string HoldName(int /*hold*/) const { return "element '" + name() + "'"; }
   // Work accounting (for the energy balance of a run), switched on before the mechanism is
   // built when a sensor asks for it: one more state, the work W the element
   // has done on the bodies (the mechanism integrates the power of its
@@ -264,8 +278,8 @@ class ForceElement {
   // Its holding force follows from the whole mechanism's balance: its
   // sensors then depend on the inputs, and it touches every body (the
   // Jacobian's pattern is dense).
-  void DeclareExactStick() {
-    exact_stick_ = true;
+  void DeclareExactStick(int holds = 1) {
+    num_holds_ = holds;
     depends_on_inputs_ = true;
   }
   void DeclareModes(int n) { num_modes_ += n; }
@@ -281,7 +295,7 @@ class ForceElement {
   std::vector<std::string> sensors_;
   int num_states_ = 0, num_modes_ = 0;
   bool depends_on_inputs_ = false;
-  bool exact_stick_ = false;
+  int num_holds_ = 0;
   int work_state_ = -1, work_sensor_ = -1, energy_sensor_ = -1;
   std::vector<Crossing> crossings_;
   std::vector<int> bodies_, coordinates_;

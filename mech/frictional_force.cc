@@ -1,5 +1,7 @@
 #include "mech/frictional_force.h"
 
+#include <algorithm>
+
 #include "mech/dynamics.h"
 
 namespace mechflow::mech {
@@ -83,7 +85,7 @@ void FrictionalForce::Apply(const Slide& g, double f, Loads* loads, const Elemen
 }
 
 double FrictionalForce::Holding(const ElementContext& ctx, const Slide& g) const {
-  if (p_.exact_stick) return -ctx.stick_force;
+  if (p_.exact_stick) return -ctx.stick_forces[0];
   return p_.stiffness.Get(ctx) * ctx.state[0] + p_.damping.Get(ctx) * g.v;
 }
 
@@ -122,15 +124,21 @@ void FrictionalForce::Derivatives(const ElementContext& ctx, double, double, Ele
   if (c != 0.0 || damping != 0.0) d->rate_v[0] = 1.0;
 }
 
-bool FrictionalForce::StuckExactly(const ElementContext& ctx) const {
+bool FrictionalForce::StuckExactly(const ElementContext& ctx, int) const {
   return exact_stick() && ctx.modes[0] == kStick;
 }
 
-void FrictionalForce::ApplyStickForce(const ElementContext& ctx, double f, Loads* loads) const {
+void FrictionalForce::ApplyStickForce(const ElementContext& ctx, int, double f, Loads* loads) const {
   Apply(Measure(ctx), f, loads, ctx);
 }
 
-double FrictionalForce::StickAcceleration(const ElementContext& ctx, const DynamicsWorkspace& dyn,
+double FrictionalForce::HoldVelocity(const ElementContext& ctx, int) const { return Measure(ctx).v; }
+
+double FrictionalForce::HoldWeight(const ElementContext& ctx, int) const {
+  return std::max(p_.ratio.Get(ctx) * p_.friction.Get(ctx), 1e-9);
+}
+
+double FrictionalForce::StickAcceleration(const ElementContext& ctx, int, const DynamicsWorkspace& dyn,
                                           std::span<const double> vdot) const {
   if (q_index_ >= 0) return vdot[v_index_];
   // x'' = u . (a_B - a_A) + (|w|^2 - (u . w)^2) / x, w the points' relative velocity
@@ -144,7 +152,7 @@ double FrictionalForce::StickAcceleration(const ElementContext& ctx, const Dynam
 }
 
 bool FrictionalForce::UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const {
-  return StuckExactly(ctx) && SlipWhereHoldFails(ctx, state, modes);
+  return StuckExactly(ctx, 0) && SlipWhereHoldFails(ctx, state, modes);
 }
 
 StickSlipHold FrictionalForce::Hold(const ElementContext& ctx, double mode) const {

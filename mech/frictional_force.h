@@ -51,15 +51,18 @@ class FrictionalForce final : public StickSlipElement {
   std::string LinearisedAs(std::span<const double> modes) const override;
   // Exact stick: a hold beyond the static limit slips in its direction.
   bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
-  bool StuckExactly(const ElementContext& ctx) const override;
+  bool StuckExactly(const ElementContext& ctx, int hold) const override;
   // Spring stick only: exact stick's holding force comes from the whole mechanism.
   DerivativeSupport derivative_support() const override {
     return p_.exact_stick ? DerivativeSupport::kNone : DerivativeSupport::kAlongCoordinate;
   }
   void Derivatives(const ElementContext& ctx, double x, double v, ElementDerivatives* d) const override;
-  void ApplyStickForce(const ElementContext& ctx, double f, Loads* loads) const override;
-  double StickAcceleration(const ElementContext& ctx, const DynamicsWorkspace& dyn,
+  void ApplyStickForce(const ElementContext& ctx, int hold, double f, Loads* loads) const override;
+  double StickAcceleration(const ElementContext& ctx, int hold, const DynamicsWorkspace& dyn,
                            std::span<const double> vdot) const override;
+  double HoldVelocity(const ElementContext& ctx, int hold) const override;
+  // Redundant elements share a load in proportion to their static limits.
+  double HoldWeight(const ElementContext& ctx, int hold) const override;
 
  private:
   StickSlipHold Hold(const ElementContext& ctx, double mode) const override;

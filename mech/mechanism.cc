@@ -20,7 +20,8 @@ ElementContext MakeElementContext(const Mechanism& mechanism, double t, std::spa
   ctx.parameter_args = ws.parameter_args;
   ctx.state = x.subspan(mechanism.state_offset(e), element.num_states());
   ctx.modes = modes.empty() ? modes : modes.subspan(mechanism.mode_offset(e), element.num_modes());
-  ctx.stick_force = ws.stick.force[e];
+  if (element.num_holds() > 0)
+    ctx.stick_forces = std::span<const double>(ws.stick.force).subspan(mechanism.hold_offset(e), element.num_holds());
   return ctx;
 }
 
@@ -119,49 +120,122 @@ double DrivePower(const Model& model, const MechanismWorkspace& ws) {
   return power;
 }
 
-// The exact-stick elements whose modes say they stick, into ws->stick.stuck;
-// their holding forces start at zero (the first pass measures without them).
+// The holds whose modes say they stick, into ws->stick.stuck, and their
+// elements into ws->holding; every holding force starts at zero (the first
+// pass measures without them).
 void FindStuck(const Mechanism& mechanism, double t, std::span<const double> x, std::span<const double> modes,
                MechanismWorkspace* ws) {
   StickWorkspace& s = ws->stick;
   s.stuck.clear();
+  ws->holding.clear();
   for (int e : mechanism.exact_stick_elements()) {
-    if (!modes.empty() && mechanism.element(e).StuckExactly(MakeElementContext(mechanism, t, x, modes, *ws, e))) {
-      s.stuck.push_back(e);
-      // the probe's size: the last holding force's, so that the differences
-      // below lose no digits to a large load
-      s.probe[e] = std::max(1.0, std::abs(s.force[e]));
+    const ForceElement& element = mechanism.element(e);
+    const int first = mechanism.hold_offset(e);
+    if (!modes.empty()) {
+      const ElementContext ctx = MakeElementContext(mechanism, t, x, modes, *ws, e);
+      for (int h = 0; h < element.num_holds(); ++h) {
+        if (!element.StuckExactly(ctx, h)) continue;
+        s.stuck.push_back(first + h);
+        // the probe's size: the last holding force's, so that the differences
+        // below lose no digits to a large load
+        s.probe[first + h] = std::max(1.0, std::abs(s.force[first + h]));
+        if (ws->holding.empty() || ws->holding.back() != e) ws->holding.push_back(e);
+      }
     }
-    s.force[e] = 0.0;
+    for (int h = 0; h < element.num_holds(); ++h) s.force[first + h] = 0.0;
   }
 }
 
-// After EvaluateElements with the holding forces at zero: measures a0 and S
-// (mech/exact_stick.h), solves for the holding forces and lets the stuck
-// elements apply them (their sensors and rates are written again).
+// Which of element e's holds global hold g is.
+int LocalHold(const Mechanism& mechanism, int g) { return g - mechanism.hold_offset(mechanism.hold_element(g)); }
+
+// The elements' loads as EvaluateElements, those with a stuck hold last
+// (their holding forces at zero), keeping the loads before them.
+void EvaluateElementsHoldingLast(const Mechanism& mechanism, double t, std::span<const double> x,
+                                 std::span<const double> inputs, std::span<const double> modes,
+                                 MechanismWorkspace* ws, std::span<double> all_rates) {
+  EvaluatePositions(mechanism, t, x, ws);
+  SetParameterArgs(t, inputs, ws);
+  ws->loads.Clear();
+  if (mechanism.tracks_work()) ws->loads.TrackPower(x.subspan(mechanism.model().nq(), mechanism.model().nv()));
+  auto next_holding = ws->holding.begin();
+  for (int e = 0; e < mechanism.num_elements(); ++e) {
+    if (next_holding != ws->holding.end() && *next_holding == e) {
+      ++next_holding;
+      continue;
+    }
+    EvaluateElement(mechanism, e, t, x, modes, ws, all_rates);
+  }
+  ws->loads_before_holds = ws->loads;
+  for (const int e : ws->holding) EvaluateElement(mechanism, e, t, x, modes, ws, all_rates);
+}
+
+// The stuck holds' relative accelerations after a dynamics pass, into `out`.
+void StuckAccelerations(const Mechanism& mechanism, double t, std::span<const double> x,
+                        std::span<const double> modes, const MechanismWorkspace& ws, Eigen::VectorXd* out) {
+  for (std::size_t i = 0; i < ws.stick.stuck.size(); ++i) {
+    const int g = ws.stick.stuck[i], e = mechanism.hold_element(g);
+    const ElementContext ctx = MakeElementContext(mechanism, t, x, modes, ws, e);
+    (*out)(static_cast<Eigen::Index>(i)) = mechanism.element(e).StickAcceleration(ctx, LocalHold(mechanism, g), ws.dyn,
+                                                                                  ws.vdot);
+  }
+}
+
+// Measures S (mech/exact_stick.h) by one dynamics pass per stuck hold with
+// its probe force added to ws->loads_without_holds; the caller has a0.
+void MeasureHoldResponse(const Mechanism& mechanism, double t, std::span<const double> x,
+                         std::span<const double> modes, MechanismWorkspace* ws) {
+  StickWorkspace& s = ws->stick;
+  const int k = static_cast<int>(s.stuck.size());
+  for (int j = 0; j < k; ++j) {
+    const int g = s.stuck[j], e = mechanism.hold_element(g);
+    ws->loads = ws->loads_without_holds;
+    mechanism.element(e).ApplyStickForce(MakeElementContext(mechanism, t, x, modes, *ws, e), LocalHold(mechanism, g),
+                                         s.probe[g], &ws->loads);
+    SolveDynamics(mechanism, ws, false);
+    for (int i = 0; i < k; ++i) {
+      const int gi = s.stuck[i], ei = mechanism.hold_element(gi);
+      const ElementContext ctx = MakeElementContext(mechanism, t, x, modes, *ws, ei);
+      s.S(i, j) = (mechanism.element(ei).StickAcceleration(ctx, LocalHold(mechanism, gi), ws->dyn, ws->vdot) - s.a0(i)) /
+                  s.probe[g];
+    }
+  }
+  for (int i = 0; i < k; ++i) {
+    const int g = s.stuck[i], e = mechanism.hold_element(g);
+    s.weight(i) = mechanism.element(e).HoldWeight(MakeElementContext(mechanism, t, x, modes, *ws, e),
+                                                  LocalHold(mechanism, g));
+  }
+}
+
+// Solves for the forces of the stuck holds (ws->stick.f); a hold that no
+// force can keep at rest is an error naming it.
+void SolveHolds(const Mechanism& mechanism, double t, MechanismWorkspace* ws) {
+  const int failed = SolveHoldingForces(&ws->stick);
+  if (failed < 0) return;
+  const int g = ws->stick.stuck[failed];
+  const ForceElement& element = mechanism.element(mechanism.hold_element(g));
+  std::ostringstream out;
+  out << element.origin() << (element.origin().empty() ? "" : ": ") << element.HoldName(LocalHold(mechanism, g))
+      << " sticks, but no holding force can keep it at rest at t = " << t
+      << ": the motion it holds is driven by what no force changes (a prescribed motion, a locked coordinate, "
+         "or other holds that disagree); let it slide (a regularised or spring stick) or free that motion";
+  throw SimulationError(out.str());
+}
+
+// After EvaluateElementsHoldingLast: measures a0 and S, solves for the
+// holding forces and lets the holding elements apply them (their sensors and
+// rates are written again).
 void HoldStuckElements(const Mechanism& mechanism, double t, std::span<const double> x,
                        std::span<const double> modes, MechanismWorkspace* ws, std::span<double> all_rates) {
   StickWorkspace& s = ws->stick;
-  const int k = static_cast<int>(s.stuck.size());
-  auto relative_acceleration = [&](int i) {
-    const int e = s.stuck[i];
-    const ElementContext ctx = MakeElementContext(mechanism, t, x, modes, *ws, e);
-    return mechanism.element(e).StickAcceleration(ctx, ws->dyn, ws->vdot);
-  };
   ws->loads_without_holds = ws->loads;
   SolveDynamics(mechanism, ws, false);
-  for (int i = 0; i < k; ++i) s.a0(i) = relative_acceleration(i);
-  for (int j = 0; j < k; ++j) {
-    const int e = s.stuck[j];
-    ws->loads = ws->loads_without_holds;
-    mechanism.element(e).ApplyStickForce(MakeElementContext(mechanism, t, x, modes, *ws, e), s.probe[e], &ws->loads);
-    SolveDynamics(mechanism, ws, false);
-    for (int i = 0; i < k; ++i) s.S(i, j) = (relative_acceleration(i) - s.a0(i)) / s.probe[e];
-  }
-  SolveHoldingForces(&s);
-  for (int i = 0; i < k; ++i) s.force[s.stuck[i]] = s.f(i);
-  ws->loads = ws->loads_without_holds;
-  for (int e : s.stuck) EvaluateElement(mechanism, e, t, x, modes, ws, all_rates);
+  StuckAccelerations(mechanism, t, x, modes, *ws, &s.a0);
+  MeasureHoldResponse(mechanism, t, x, modes, ws);
+  SolveHolds(mechanism, t, ws);
+  for (std::size_t i = 0; i < s.stuck.size(); ++i) s.force[s.stuck[i]] = s.f(static_cast<Eigen::Index>(i));
+  ws->loads = ws->loads_before_holds;
+  for (int e : ws->holding) EvaluateElement(mechanism, e, t, x, modes, ws, all_rates);
 }
 
 // A loop whose own coordinates are all fixed by its constraint (and that no
@@ -220,7 +294,8 @@ Mechanism::Mechanism(std::shared_ptr<const Model> model, std::vector<std::unique
   for (const auto& e : elements_) {
     if (e->exact_stick()) exact_stick_.push_back(static_cast<int>(layout_.size()));
     tracks_work_ = tracks_work_ || e->tracks_work();
-    layout_.push_back({state_size_, mode_size_, crossing_size_, sensor_size_});
+    layout_.push_back({state_size_, mode_size_, crossing_size_, sensor_size_, num_holds()});
+    hold_element_.insert(hold_element_.end(), e->num_holds(), static_cast<int>(layout_.size()) - 1);
     state_size_ += e->num_states();
     mode_size_ += e->num_modes();
     crossing_size_ += e->num_crossings();
@@ -247,15 +322,19 @@ MechanismWorkspace::MechanismWorkspace(const Mechanism& mechanism)
     : kin(mechanism.model()),
       dyn(mechanism.model()),
       loads(mechanism.model()),
+      loads_before_holds(mechanism.model()),
       loads_without_holds(mechanism.model()),
       constraint(mechanism.model(), mechanism.constraints()),
-      stick(mechanism.num_elements(), static_cast<int>(mechanism.exact_stick_elements().size())),
+      stick(mechanism.num_holds()),
       vdot(mechanism.model().nv(), 0.0),
+      vdot_free(mechanism.model().nv(), 0.0),
       sensors(mechanism.num_sensor_values(), 0.0),
       sensors_on(mechanism.num_elements(), ~std::uint64_t{0}),
       rates(mechanism.num_states(), 0.0),
       parameter_args(1 + mechanism.num_inputs(), 0.0),
-      initial_stored_energy(mechanism.num_elements(), 0.0) {}
+      initial_stored_energy(mechanism.num_elements(), 0.0) {
+  holding.reserve(mechanism.exact_stick_elements().size());
+}
 
 void EvaluatePositions(const Mechanism& mechanism, double t, std::span<const double> x, MechanismWorkspace* ws) {
   const Model& model = mechanism.model();
@@ -299,9 +378,13 @@ void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const dou
                        std::span<double> xdot) {
   const Model& model = mechanism.model();
   FindStuck(mechanism, t, x, modes, ws);
-  EvaluateElements(mechanism, t, x, inputs, modes, ws, xdot);
-  if (!ws->stick.stuck.empty())
-    HoldStuckElements(mechanism, t, x, modes, ws, xdot.empty() ? std::span<double>(ws->rates) : xdot);
+  if (ws->stick.stuck.empty()) {
+    EvaluateElements(mechanism, t, x, inputs, modes, ws, xdot);
+  } else {
+    const std::span<double> rates = xdot.empty() ? std::span<double>(ws->rates) : xdot;
+    EvaluateElementsHoldingLast(mechanism, t, x, inputs, modes, ws, rates);
+    HoldStuckElements(mechanism, t, x, modes, ws, rates);
+  }
   SolveDynamics(mechanism, ws, true);
   ws->accelerations_valid = true;
   if (xdot.empty()) return;
@@ -313,8 +396,12 @@ void EvaluateMechanism(const Mechanism& mechanism, double t, std::span<const dou
 bool AnyStuckExactly(const Mechanism& mechanism, double t, std::span<const double> x, std::span<const double> modes,
                      const MechanismWorkspace& ws) {
   if (modes.empty()) return false;
-  for (int e : mechanism.exact_stick_elements())
-    if (mechanism.element(e).StuckExactly(MakeElementContext(mechanism, t, x, modes, ws, e))) return true;
+  for (int e : mechanism.exact_stick_elements()) {
+    const ForceElement& element = mechanism.element(e);
+    const ElementContext ctx = MakeElementContext(mechanism, t, x, modes, ws, e);
+    for (int h = 0; h < element.num_holds(); ++h)
+      if (element.StuckExactly(ctx, h)) return true;
+  }
   return false;
 }
 
@@ -413,6 +500,46 @@ void EvaluateForModes(const Mechanism& mechanism, double t, std::span<const doub
 
 }  // namespace
 
+bool ZeroStuckVelocities(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> modes,
+                         MechanismWorkspace* ws) {
+  if (mechanism.exact_stick_elements().empty() || modes.empty()) return false;
+  EvaluatePositions(mechanism, t, x, ws);
+  FindStuck(mechanism, t, x, modes, ws);
+  StickWorkspace& s = ws->stick;
+  const int k = static_cast<int>(s.stuck.size());
+  double largest = 0.0;
+  for (int i = 0; i < k; ++i) {
+    const int g = s.stuck[i], e = mechanism.hold_element(g);
+    s.f(i) = mechanism.element(e).HoldVelocity(MakeElementContext(mechanism, t, x, modes, *ws, e),
+                                               LocalHold(mechanism, g));
+    largest = std::max(largest, std::abs(s.f(i)));
+  }
+  // round-off of a velocity already zeroed: no change, so that settling the modes ends
+  const int nq = mechanism.model().nq();
+  double speed = 1.0;
+  for (int j = 0; j < mechanism.model().nv(); ++j) speed = std::max(speed, std::abs(x[nq + j]));
+  if (!(largest > 1e-13 * speed)) return false;
+  // S does not depend on the loads: measured from none
+  ws->loads.Clear();
+  ws->loads_without_holds = ws->loads;
+  SolveDynamics(mechanism, ws, false);
+  ws->vdot_free = ws->vdot;
+  StuckAccelerations(mechanism, t, x, modes, *ws, &s.a0);
+  MeasureHoldResponse(mechanism, t, x, modes, ws);
+  for (int i = 0; i < k; ++i) s.a0(i) = s.f(i);
+  SolveHoldingForces(&s);  // velocities no impulse can reach (redundant and at odds) stay: least squares
+  ws->loads = ws->loads_without_holds;
+  for (int i = 0; i < k; ++i) {
+    const int g = s.stuck[i], e = mechanism.hold_element(g);
+    mechanism.element(e).ApplyStickForce(MakeElementContext(mechanism, t, x, modes, *ws, e), LocalHold(mechanism, g),
+                                         s.f(i), &ws->loads);
+  }
+  SolveDynamics(mechanism, ws, false);
+  for (int j = 0; j < mechanism.model().nv(); ++j) x[nq + j] += ws->vdot[j] - ws->vdot_free[j];
+  ws->accelerations_valid = false;
+  return true;
+}
+
 bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
                         std::span<double> modes, MechanismWorkspace* ws) {
   const bool holds = !mechanism.exact_stick_elements().empty();
@@ -432,6 +559,7 @@ bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> 
     changed |= changed_now;
     if (!changed_now || !holds) break;
   }
+  if (holds) changed |= ZeroStuckVelocities(mechanism, t, x, modes, ws);
   ws->accelerations_valid = false;
   return changed;
 }

@@ -54,6 +54,10 @@ class Mechanism {
   int mode_offset(int i) const { return layout_.at(i).mode; }
   int crossing_offset(int i) const { return layout_.at(i).crossing; }
   int sensor_offset(int i) const { return layout_.at(i).sensor; }
+  // Element i's holds (ForceElement::num_holds) among all of the mechanism's.
+  int hold_offset(int i) const { return layout_.at(i).hold; }
+  int num_holds() const { return static_cast<int>(hold_element_.size()); }
+  int hold_element(int hold) const { return hold_element_[hold]; }
   const Constraints& constraints() const { return constraints_; }
   // The elements that can stick exactly (ForceElement::exact_stick): their
   // holding forces, and so their crossings, need the dynamics.
@@ -68,7 +72,7 @@ class Mechanism {
 
  private:
   struct Slices {
-    int state, mode, crossing, sensor;
+    int state, mode, crossing, sensor, hold;
   };
   std::shared_ptr<const Model> model_;
   std::vector<std::unique_ptr<ForceElement>> elements_;
@@ -76,6 +80,7 @@ class Mechanism {
   std::vector<std::string> input_names_;
   std::vector<Slices> layout_;
   std::vector<int> exact_stick_;
+  std::vector<int> hold_element_;  // per hold: its element
   bool tracks_work_ = false;
   int drive_work_state_ = -1;
   Constraints constraints_;
@@ -89,10 +94,14 @@ struct MechanismWorkspace {
   Kinematics kin;
   DynamicsWorkspace dyn;
   Loads loads;
-  Loads loads_without_holds;  // the loads before the holding forces of exact stick
+  // While holds stick exactly: the loads of the elements without a stuck
+  // hold, and of every element with the holding forces at zero.
+  Loads loads_before_holds, loads_without_holds;
   ConstraintWorkspace constraint;
   StickWorkspace stick;
+  std::vector<int> holding;            // the elements with a stuck hold in this evaluation
   std::vector<double> vdot;            // nv, after Evaluate
+  std::vector<double> vdot_free;       // scratch nv: accelerations without holding forces
   std::vector<double> sensors;         // element sensor values, after Evaluate
   std::vector<std::uint64_t> sensors_on;  // per element: the kinematics' stamp its sensors were computed on
   std::vector<double> rates;           // scratch x' when the caller wants none
@@ -166,12 +175,20 @@ void ApplyCrossing(const Mechanism& mechanism, int crossing, int direction, std:
                    std::span<double> modes, MechanismWorkspace* ws);
 
 // Lets every element reconcile its modes with the state (after an event or
-// at the start); returns true when any mode changed. With exact-stick
-// elements the mechanism is evaluated first (their holding forces decide
-// whether they stay stuck), and again after every change until the modes
-// agree.
+// at the start); returns true when any mode (or state) changed. With
+// exact-stick elements the mechanism is evaluated first (their holding
+// forces decide whether they stay stuck), and again after every change
+// until the modes agree; then ZeroStuckVelocities.
 bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
                         std::span<double> modes, MechanismWorkspace* ws);
+// Moves the velocities in x the least (in the mass's norm) that brings
+// every stuck hold's velocity to zero: the impulse p with S p = -w, which
+// changes v by M^-1 J^T p (mech/exact_stick.h). A hold keeps a velocity
+// constant, not zero: this removes what the root finder leaves of a slip
+// that has just ended (~1e-12 m/s) at events, and the integrator's drift
+// after steps. Needs no inputs. Returns true when it moved them.
+bool ZeroStuckVelocities(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> modes,
+                         MechanismWorkspace* ws);
 // The same at a candidate rest state of a static equilibrium search: one
 // pass of ForceElement::ModesAtRest (the search repeats its rounds itself,
 // so that a friction element at rest sticking and breaking away again is a

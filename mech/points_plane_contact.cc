@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "mech/dynamics.h"
 #include "mech/errors.h"
 
 namespace mechflow::mech {
@@ -17,41 +18,6 @@ std::string FormatNumber(double v) {
 }
 
 }  // namespace
-
-double ContactNormalForce(const ContactLaw& law, double delta, double rate) {
-  if (delta <= 0) return 0.0;
-  double damping = law.damping;
-  if (law.damping_depth > 0) {
-    const double s = std::min(delta / law.damping_depth, 1.0);
-    damping *= s * s * (3 - 2 * s);
-  }
-  return std::max(0.0, law.stiffness * std::pow(delta, law.exponent) + damping * rate);
-}
-
-double ContactEnergy(const ContactLaw& law, double delta) {
-  return delta > 0 ? law.stiffness * std::pow(delta, law.exponent + 1) / (law.exponent + 1) : 0.0;
-}
-
-void CheckContactLaw(const ContactLaw& law, const std::string& where) {
-  auto require = [&](bool ok, const char* what, double value) {
-    if (!ok) throw InputError(where + what + " (found " + FormatNumber(value) + ")");
-  };
-  require(law.exponent >= 1.0, "the stiffness exponent must be at least 1", law.exponent);
-  require(law.stiffness >= 0, "the stiffness must be >= 0", law.stiffness);
-  require(law.damping >= 0, "the damping must be >= 0", law.damping);
-  require(law.damping_depth >= 0, "damping_depth must be >= 0", law.damping_depth);
-  require(law.mu >= 0, "the friction coefficient mu must be >= 0", law.mu);
-  require(law.mu_static >= law.mu, "mu_static must not be below mu (static below dynamic friction)",
-          law.mu_static);
-  require(law.stribeck_velocity > 0, "stribeck_velocity must be > 0", law.stribeck_velocity);
-  require(law.v_eps > 0, "v_eps must be > 0", law.v_eps);
-  require(law.max_penetration > 0, "max_penetration must be > 0", law.max_penetration);
-}
-
-std::string PenetrationWarning(const ContactLaw& law) {
-  return "penetration exceeds max_penetration = " + FormatNumber(law.max_penetration) +
-         " m (is the contact too soft, or is a body passing through the plane?)";
-}
 
 double PlaneDepth(const Kinematics& kin, int body2, const Vec3& plane_point, const Vec3& normal, const Vec3& p) {
   const Pose& plane = kin.body_pose[body2];
@@ -83,22 +49,6 @@ std::string ContactLinearisedAs(std::span<const double> modes) {
          "friction acts as a steep viscous damper (mu N / v_eps per point)";
 }
 
-PointContactLoad ApplyPointContact(const Kinematics& kin, const ContactLaw& law, int body1, int body2,
-                                   const Vec3& p, const Vec3& n, double delta, Loads* loads) {
-  const Vec3 w = MaterialVelocityAt(kin, body1, p) - MaterialVelocityAt(kin, body2, p);
-  PointContactLoad out;
-  out.normal = ContactNormalForce(law, std::max(delta, 0.0), -w.dot(n));
-  const Vec3 wt = w - w.dot(n) * n;
-  out.slip = wt.norm();
-  const double stribeck = out.slip / law.stribeck_velocity;
-  const double mu = law.mu + (law.mu_static - law.mu) * std::exp(-stribeck * stribeck);
-  out.friction = -mu * out.normal * wt / std::sqrt(wt.squaredNorm() + law.v_eps * law.v_eps);
-  const Vec3 load = out.normal * n + out.friction;
-  loads->AddForce(kin, body1, p, load);
-  loads->AddForce(kin, body2, p, -load);
-  return out;
-}
-
 PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int body1, std::vector<Vec3> points,
                                        int body2, Vec3 plane_point, Vec3 normal, ContactLaw law)
     : ForceElement(std::move(name), std::move(origin)),
@@ -113,10 +63,20 @@ PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int
   if (!(normal.norm() > 0)) throw InputError(where + "the plane normal must be non-zero");
   CheckContactLaw(law_, where);
   normal_ = normal.normalized();
+  PlaneTangents(normal_, &tangent1_, &tangent2_);
   for (const char* s : {"normal", "penetration", "slip", "friction", "energy"}) DeclareSensor(s);
-  DeclareModes(static_cast<int>(points_.size()));
-  for (std::size_t i = 0; i < points_.size(); ++i) DeclareCrossing(mech::Crossing::kEither);
+  DeclareModes(num_points());
+  for (int i = 0; i < num_points(); ++i) DeclareCrossing(mech::Crossing::kEither);
   DeclareCrossing(mech::Crossing::kRising);  // the deepest point passes max_penetration
+  if (!law_.exact_stick) return;
+  stick_.emplace(law_);
+  for (int i = 0; i < num_points(); ++i) DeclareSensor("mode_" + std::to_string(i + 1));
+  DeclareModes(ContactStick::kModesPerPoint * num_points());
+  for (int i = 0; i < num_points(); ++i) {
+    DeclareCrossing(ContactStick::BreakawayDirection());
+    DeclareCrossing(ContactStick::SlipEndDirection());
+  }
+  DeclareExactStick(3);
 }
 
 std::string PointsPlaneContact::LinearisedAs(std::span<const double> modes) const {
@@ -139,9 +99,21 @@ double PointsPlaneContact::Penetration(const ElementContext& ctx, int i, Vec3* p
   return PlaneDepth(*ctx.kin, body2_, plane_point_, normal_, *p);
 }
 
-void PointsPlaneContact::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+ContactPointMotion PointsPlaneContact::Motion(const ElementContext& ctx, int i, double* delta) const {
   Vec3 p;
-  for (std::size_t i = 0; i < points_.size(); ++i) modes[i] = Penetration(ctx, static_cast<int>(i), &p) > 0 ? 1 : 0;
+  *delta = Penetration(ctx, i, &p);
+  const Kinematics& kin = *ctx.kin;
+  return MeasureContactPoint(kin, body1_, body2_, p, PointVelocity(kin, body1_, points_[i]),
+                             kin.body_pose[body2_].R * normal_, tangent1_, tangent2_);
+}
+
+void PointsPlaneContact::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+  for (int i = 0; i < num_points(); ++i) {
+    double delta;
+    const ContactPointMotion m = Motion(ctx, i, &delta);
+    modes[i] = delta > 0 ? 1 : 0;
+    if (stick_) ContactStick::Start(m, StickModes(modes, i));
+  }
 }
 
 void PointsPlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::span<double>,
@@ -150,22 +122,54 @@ void PointsPlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::
   const Vec3 n = kin.body_pose[body2_].R * normal_;
   double total_normal = 0, deepest = -1e300, slip = 0, loaded = -1, energy = 0;
   Vec3 friction = Vec3::Zero();
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    Vec3 p;
-    const double delta = Penetration(ctx, static_cast<int>(i), &p);
+  const Patch patch = stick_ ? MeasurePatch(ctx) : Patch{};
+  for (int i = 0; i < num_points(); ++i) {
+    PointContactLoad c;
+    double delta;
+    if (stick_) {
+      const ContactPointMotion m = Motion(ctx, i, &delta);
+      sensors[5 + i] = ctx.modes[i] == 0.0 ? 0.0 : Stuck(ctx.modes, i) ? 1.0 : 2.0;
+      if (ctx.modes[i] != 0.0) {
+        c.normal = NormalForce(m, delta);
+        c.slip = m.speed();
+        c.friction = stick_->Friction(m, c.normal, StickModes(ctx.modes, i), HoldingForce(ctx, patch, i));
+        // a stuck point's share is the sensors' and the cone's: the patch's
+        // wrench acts as one (below)
+        const Vec3 load = c.normal * m.normal + (Stuck(ctx.modes, i) ? Vec3::Zero() : c.friction);
+        loads->AddForce(kin, body1_, m.point, load);
+        loads->AddForce(kin, body2_, m.point, -load);
+      }
+    } else {
+      Vec3 p;
+      delta = Penetration(ctx, i, &p);
+      if (ctx.modes[i] != 0.0) c = ApplyPointContact(kin, law_, body1_, body2_, p, n, delta, loads);
+    }
     deepest = std::max(deepest, delta);
     if (ctx.modes[i] == 0.0) continue;
-    const PointContactLoad c = ApplyPointContact(kin, law_, body1_, body2_, p, n, delta, loads);
     energy += ContactEnergy(law_, delta);
     total_normal += c.normal;
     friction += c.friction;
     if (c.normal > loaded) loaded = c.normal, slip = c.slip;
   }
+  if (patch.stuck > 0)
+    for (int hold = 0; hold < 3; ++hold) ApplyHold(ctx, patch, hold, ctx.stick_forces[hold], loads);
   sensors[0] = total_normal;
   sensors[1] = deepest;
   sensors[2] = slip;
   sensors[3] = friction.norm();
   sensors[4] = energy;
+}
+
+void PointsPlaneContact::ApplyHold(const ElementContext& ctx, const Patch& patch, int hold, double f,
+                                   Loads* loads) const {
+  if (f == 0.0) return;
+  const Kinematics& kin = *ctx.kin;
+  if (hold == 2) {
+    loads->AddTorque(kin, body1_, f * patch.n);
+    loads->AddTorque(kin, body2_, -f * patch.n);
+    return;
+  }
+  ContactStick::ApplyHoldForce(kin, CentreMotion(ctx, patch), hold, f, loads);
 }
 
 void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
@@ -176,27 +180,169 @@ void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<doub
     deepest = std::max(deepest, values[i]);
   }
   values[points_.size()] = deepest - law_.max_penetration;
+  if (!stick_) return;
+  const Patch patch = MeasurePatch(ctx);
+  for (int i = 0; i < num_points(); ++i) {
+    double delta;
+    const ContactPointMotion m = Motion(ctx, i, &delta);
+    stick_->ZeroCrossings(m, NormalForce(m, delta), ctx.modes[i] != 0.0, StickModes(ctx.modes, i),
+                          HoldingForce(ctx, patch, i),
+                          values.subspan(num_points() + 1 + ContactStick::kCrossingsPerPoint * i,
+                                         ContactStick::kCrossingsPerPoint));
+  }
 }
 
 bool PointsPlaneContact::UpdateModes(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
-  const Vec3 n = ctx.kin->body_pose[body2_].R * normal_;
+  // the holding forces were solved for the modes coming in
+  const Patch patch = stick_ ? MeasurePatch(ctx) : Patch{};
   bool changed = false;
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    Vec3 p;
-    const double delta = Penetration(ctx, static_cast<int>(i), &p);
-    const Vec3 w = PointVelocity(*ctx.kin, body1_, points_[i]) - MaterialVelocityAt(*ctx.kin, body2_, p);
-    const double mode = delta > 0 || (delta == 0 && -w.dot(n) > 0) ? 1.0 : delta < 0 ? 0.0 : modes[i];
+  for (int i = 0; i < num_points(); ++i) {
+    double delta;
+    const ContactPointMotion m = Motion(ctx, i, &delta);
+    const double mode = delta > 0 || (delta == 0 && -m.slip.dot(m.normal) > 0) ? 1.0 : delta < 0 ? 0.0 : modes[i];
+    const bool touches = mode != 0.0 && modes[i] == 0.0;
     changed |= mode != modes[i];
     modes[i] = mode;
+    if (!stick_ || mode == 0.0) continue;
+    if (touches) {
+      ContactStick::Start(m, StickModes(modes, i));
+      continue;
+    }
+    changed |= stick_->Update(NormalForce(m, delta), HoldingForce(ctx, patch, i), StickModes(modes, i));
   }
   return changed;
 }
 
-void PointsPlaneContact::OnCrossing(int index, int direction, const ElementContext&, std::span<double>,
-                                    std::span<double> modes) const {
-  if (index == static_cast<int>(points_.size())) return;  // the bound: a warning only
-  modes[index] = direction > 0 ? 1.0 : 0.0;
+bool PointsPlaneContact::ModesAtRest(const ElementContext& ctx, std::span<double> state,
+                                     std::span<double> modes) const {
+  bool changed = UpdateModes(ctx, state, modes);
+  if (!stick_) return changed;
+  for (int i = 0; i < num_points(); ++i) {
+    if (modes[i] == 0.0 || Stuck(modes, i)) continue;
+    double delta;
+    ContactStick::Start(Motion(ctx, i, &delta), StickModes(modes, i));
+    changed = true;
+  }
+  return changed;
 }
+
+void PointsPlaneContact::OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double>,
+                                    std::span<double> modes) const {
+  if (index == num_points()) return;  // the bound: a warning only
+  double delta;
+  if (index < num_points()) {
+    modes[index] = direction > 0 ? 1.0 : 0.0;
+    if (stick_ && direction > 0) ContactStick::Start(Motion(ctx, index, &delta), StickModes(modes, index));
+    return;
+  }
+  const int i = (index - num_points() - 1) / ContactStick::kCrossingsPerPoint;
+  ContactStick::OnCrossing((index - num_points() - 1) % ContactStick::kCrossingsPerPoint, Motion(ctx, i, &delta),
+                           HoldingForce(ctx, MeasurePatch(ctx), i), StickModes(modes, i));
+}
+
+std::string PointsPlaneContact::CrossingName(int index, int direction) const {
+  if (index < num_points()) return "point " + std::to_string(index + 1) + (direction > 0 ? " touches" : " leaves");
+  if (index == num_points()) return "penetration passes max_penetration";
+  const int local = index - num_points() - 1;
+  const std::string stick_point = "point " + std::to_string(local / ContactStick::kCrossingsPerPoint + 1);
+  return stick_point + (local % ContactStick::kCrossingsPerPoint == 0 ? " breaks away" : " slip ends");
+}
+
+PointsPlaneContact::Patch PointsPlaneContact::MeasurePatch(const ElementContext& ctx) const {
+  Patch patch;
+  patch.n = ctx.kin->body_pose[body2_].R * normal_;
+  // weights: the normal forces, or equal ones while none presses
+  Vec3 weighted = Vec3::Zero();
+  for (int i = 0; i < num_points(); ++i) {
+    if (!Stuck(ctx.modes, i)) continue;
+    double delta;
+    const ContactPointMotion m = Motion(ctx, i, &delta);
+    const double N = std::max(NormalForce(m, delta), 0.0);
+    ++patch.stuck;
+    patch.normal += N;
+    weighted += N * m.point;
+    patch.held += m.point;
+  }
+  if (patch.stuck == 0) return patch;
+  patch.held /= patch.stuck;
+  patch.centre = patch.normal > 0.0 ? Vec3(weighted / patch.normal) : patch.held;
+  double spread = 0.0;  // of the stuck points about their centroid
+  for (int i = 0; i < num_points(); ++i) {
+    if (!Stuck(ctx.modes, i)) continue;
+    double delta;
+    const ContactPointMotion m = Motion(ctx, i, &delta);
+    const double w = patch.normal > 0.0 ? std::max(NormalForce(m, delta), 0.0) : 1.0;
+    const Vec3 r = m.point - patch.centre;
+    patch.spin_inertia += w * (r - r.dot(patch.n) * patch.n).squaredNorm();
+    spread = std::max(spread, (m.point - patch.held).squaredNorm());
+  }
+  // round-off of a single pressed point (or of points on one spot): no spin to hold
+  if (!(patch.spin_inertia > 1e-12 * std::max(patch.normal, 1.0) * spread)) patch.spin_inertia = 0.0;
+  return patch;
+}
+
+std::array<double, 2> PointsPlaneContact::Share(const ElementContext& ctx, const Patch& patch, int i, double F1,
+                                                double F2, double M) const {
+  double delta;
+  const ContactPointMotion m = Motion(ctx, i, &delta);
+  const bool pressed = patch.normal > 0.0;
+  const double w = pressed ? std::max(NormalForce(m, delta), 0.0) : 1.0;
+  const double share = w / (pressed ? patch.normal : patch.stuck);
+  std::array<double, 2> f = {share * F1, share * F2};
+  if (patch.spin_inertia > 0.0) {
+    // M about the held point, moved to c: F at the held point turns about c too
+    const Vec3 F = F1 * m.t1 + F2 * m.t2;
+    const double moment = M + (patch.held - patch.centre).cross(F).dot(patch.n);
+    const Vec3 turn = moment * w / patch.spin_inertia * patch.n.cross(m.point - patch.centre);
+    f[0] += turn.dot(m.t1);
+    f[1] += turn.dot(m.t2);
+  }
+  return f;
+}
+
+ContactPointMotion PointsPlaneContact::CentreMotion(const ElementContext& ctx, const Patch& patch) const {
+  const Kinematics& kin = *ctx.kin;
+  return MeasureContactPoint(kin, body1_, body2_, patch.held, MaterialVelocityAt(kin, body1_, patch.held), patch.n,
+                             tangent1_, tangent2_);
+}
+
+bool PointsPlaneContact::StuckExactly(const ElementContext& ctx, int hold) const {
+  if (!stick_) return false;
+  if (hold == 2) return MeasurePatch(ctx).spin_inertia > 0.0;
+  for (int i = 0; i < num_points(); ++i)
+    if (Stuck(ctx.modes, i)) return true;
+  return false;
+}
+
+void PointsPlaneContact::ApplyStickForce(const ElementContext& ctx, int hold, double f, Loads* loads) const {
+  ApplyHold(ctx, MeasurePatch(ctx), hold, f, loads);
+}
+
+double PointsPlaneContact::StickAcceleration(const ElementContext& ctx, int hold, const DynamicsWorkspace& dyn,
+                                             std::span<const double>) const {
+  const Kinematics& kin = *ctx.kin;
+  const Patch patch = MeasurePatch(ctx);
+  if (hold < 2) return ContactStick::HoldAcceleration(*ctx.model, kin, dyn, CentreMotion(ctx, patch), hold);
+  // the spin about n, n turning with body 2
+  const Vec3 spin = kin.body_omega[body1_] - kin.body_omega[body2_];
+  const Vec3 spin_rate =
+      AngularAcceleration(*ctx.model, kin, dyn, body1_) - AngularAcceleration(*ctx.model, kin, dyn, body2_);
+  return spin_rate.dot(patch.n) + spin.dot(kin.body_omega[body2_].cross(patch.n));
+}
+
+double PointsPlaneContact::HoldVelocity(const ElementContext& ctx, int hold) const {
+  const Patch patch = MeasurePatch(ctx);
+  if (hold == 2) return (ctx.kin->body_omega[body1_] - ctx.kin->body_omega[body2_]).dot(patch.n);
+  const ContactPointMotion m = CentreMotion(ctx, patch);
+  return hold == 0 ? m.s1 : m.s2;
+}
+
+double PointsPlaneContact::HoldWeight(const ElementContext& ctx, int hold) const {
+  const Patch patch = MeasurePatch(ctx);
+  return hold == 2 ? patch.spin_inertia : patch.normal;
+}
+
+std::string PointsPlaneContact::HoldName(int) const { return "contact '" + name() + "'"; }
 
 ElementCoordinate PointsPlaneContact::Coordinate(const std::string& component) const {
   return component.empty() ? ElementCoordinate::Penetration(body1_, body2_, normal_) : ElementCoordinate{};

@@ -19,46 +19,38 @@
 // Sensors: normal (sum of N_i), penetration (largest), slip (speed of the
 // most loaded point), friction (size of the summed friction force), energy
 // (stored in the contact springs of the points in contact).
+//
+// With law.exact_stick (stick="exact") the friction is that of
+// mech/contact_stick.h instead: the points in contact and at rest hold
+// their slips, sliding ones slide by Coulomb's law. The stuck points of one
+// contact lie on one body, so their slips are those of one rigid motion in
+// the plane: the contact holds that motion -- the slip of the material
+// point of body 1 at the stuck points' centroid, holds 0 and 1, and the
+// relative spin about the normal, hold 2, while it can be held (two or more
+// points pressed) -- rather than each point's two slips (four corners of a
+// box would hold three motions eight times over, redundant and, once the
+// box has rocked a little on its contacts, nearly but not quite: no force
+// decides that). The holding force F (at the centroid) and moment M act on
+// the bodies as such; for each point's cone and the sensors they are shared
+// as a bolt group shares them, in proportion to the normal forces N_i about
+// their centre c:
+//   f_i = N_i / sum N  F  +  M_c N_i (n x r_i) / sum N_j |r_j|^2,  r_i = p_i - c,
+// M_c being M moved to c; so each point compares its own f_i with its cone
+// mu_s N_i, and a uniform pull breaks every point away at once.
+// Modes: [touching per point | ContactStick's per point]; crossings:
+// [penetration per point | max_penetration | ContactStick's per point];
+// sensors also mode_1 ... mode_n (0 open, 1 stuck, 2 sliding).
 
+#include <array>
+#include <optional>
 #include <vector>
 
+#include "mech/contact_law.h"
+#include "mech/contact_stick.h"
 #include "mech/force_element.h"
 
 namespace mechflow::mech {
 
-struct ContactLaw {
-  double stiffness = 0.0;      // c [N/m^n]
-  double exponent = 1.0;       // n >= 1
-  double damping = 0.0;        // d, or the maximum of the ramp [N s/m]
-  double damping_depth = 0.0;  // penetration over which damping builds up [m]; 0: constant
-  double mu = 0.0;             // friction coefficient while sliding
-  double mu_static = 0.0;      // at rest, >= mu
-  double stribeck_velocity = 1e-3;  // v_s [m/s], > 0
-  double v_eps = 1e-4;         // regularisation velocity [m/s]
-  // Sanity bound on the penetration [m], > 0: deeper means the contact is
-  // too soft or a body passes through; the run warns (once per element, with
-  // the time) through an event (ForceElement::CrossingWarning).
-  double max_penetration = kDefaultMaxPenetration;
-  static constexpr double kDefaultMaxPenetration = 0.05;
-};
-
-// The normal and friction loads of one contact point p (global) of body 1
-// against body 2 with outward normal n (global, unit) at penetration delta.
-struct PointContactLoad {
-  double normal = 0.0;
-  double slip = 0.0;  // tangential speed
-  Vec3 friction = Vec3::Zero();
-};
-PointContactLoad ApplyPointContact(const Kinematics& kin, const ContactLaw& law, int body1, int body2,
-                                   const Vec3& p, const Vec3& n, double delta, Loads* loads);
-// The normal force law alone: max(0, c delta^n + D(delta) rate), 0 when delta <= 0.
-double ContactNormalForce(const ContactLaw& law, double delta, double rate);
-// The energy stored in the contact spring, c delta^(n+1) / (n+1), 0 when delta <= 0.
-double ContactEnergy(const ContactLaw& law, double delta);
-// Checks a law's numbers; throws InputError starting with `where`.
-void CheckContactLaw(const ContactLaw& law, const std::string& where);
-// The warning of a contact whose penetration crossed its bound (rising).
-std::string PenetrationWarning(const ContactLaw& law);
 // How deep the global point p lies beyond the plane of body 2 through
 // plane_point with unit external normal `normal` (both in body 2's frame).
 double PlaneDepth(const Kinematics& kin, int body2, const Vec3& plane_point, const Vec3& normal, const Vec3& p);
@@ -88,20 +80,74 @@ class PointsPlaneContact final : public ForceElement {
   // A point exactly on the plane and moving into it is in contact: the solver
   // would not see a crossing that starts at zero.
   bool UpdateModes(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
+  // At rest: as UpdateModes, and a sliding point (stick="exact") sticks.
+  bool ModesAtRest(const ElementContext& ctx, std::span<double> state, std::span<double> modes) const override;
   // The last crossing is the deepest point passing max_penetration.
   std::string CrossingWarning(int index, int direction) const override;
   // The deepest point starts beyond max_penetration.
   std::string StartWarning(const ElementContext& ctx) const override;
   std::string LinearisedAs(std::span<const double> modes) const override;
+  std::string CrossingName(int index, int direction) const override;
 
+  // Exact stick (law.exact_stick): the stuck points' common slip and spin (above).
+  bool StuckExactly(const ElementContext& ctx, int hold) const override;
+  void ApplyStickForce(const ElementContext& ctx, int hold, double f, Loads* loads) const override;
+  double StickAcceleration(const ElementContext& ctx, int hold, const DynamicsWorkspace& dyn,
+                           std::span<const double> vdot) const override;
+  double HoldVelocity(const ElementContext& ctx, int hold) const override;
+  // sum N (slips), sum N |r|^2 (spin): the loads the holds' limits scale with
+  double HoldWeight(const ElementContext& ctx, int hold) const override;
+  std::string HoldName(int hold) const override;
 
  private:
   double Penetration(const ElementContext& ctx, int i, Vec3* p) const;
+  // Point i as the stick model sees it; its penetration into *delta.
+  ContactPointMotion Motion(const ElementContext& ctx, int i, double* delta) const;
+  double NormalForce(const ContactPointMotion& m, double delta) const {
+    return ContactNormalForce(law_, std::max(delta, 0.0), -m.slip.dot(m.normal));
+  }
+  int num_points() const { return static_cast<int>(points_.size()); }
+  // Point i's slice of the stick model's modes.
+  std::span<double> StickModes(std::span<double> modes, int i) const {
+    return modes.subspan(num_points() + ContactStick::kModesPerPoint * i, ContactStick::kModesPerPoint);
+  }
+  std::span<const double> StickModes(std::span<const double> modes, int i) const {
+    return modes.subspan(num_points() + ContactStick::kModesPerPoint * i, ContactStick::kModesPerPoint);
+  }
+  // The stuck points as one: their centroid (the held point), the centre c
+  // of their normal forces, sum N and sum N |r|^2 about c (equal weights
+  // while none presses; 0: the spin is not held).
+  struct Patch {
+    int stuck = 0;
+    double normal = 0.0, spin_inertia = 0.0;
+    Vec3 held = Vec3::Zero(), centre = Vec3::Zero();
+    Vec3 n = Vec3::Zero();  // the plane's normal (global)
+  };
+  Patch MeasurePatch(const ElementContext& ctx) const;
+  // Point i's share of holding force F (t1, t2 components) and moment M.
+  std::array<double, 2> Share(const ElementContext& ctx, const Patch& patch, int i, double F1, double F2,
+                              double M) const;
+  std::array<double, 2> HoldingForce(const ElementContext& ctx, const Patch& patch, int i) const {
+    if (ctx.stick_forces.empty() || !Stuck(ctx.modes, i)) return {0.0, 0.0};
+    return Share(ctx, patch, i, ctx.stick_forces[0], ctx.stick_forces[1], ctx.stick_forces[2]);
+  }
+  // The loads of holding force (or moment) f on `hold`: F at the held point,
+  // M a pure moment about n -- what the holds' velocities are the work
+  // rates of, so that the holds' response S is symmetric. The points'
+  // shares are statically the same in the plane.
+  void ApplyHold(const ElementContext& ctx, const Patch& patch, int hold, double f, Loads* loads) const;
+  // The held point as a material point of body 1.
+  ContactPointMotion CentreMotion(const ElementContext& ctx, const Patch& patch) const;
+  bool Stuck(std::span<const double> modes, int i) const {
+    return modes[i] != 0.0 && StickModes(modes, i)[0] == ContactStick::kStuck;
+  }
 
   int body1_, body2_;
   std::vector<Vec3> points_;
   Vec3 plane_point_, normal_;
+  Vec3 tangent1_, tangent2_;  // body 2's frame
   ContactLaw law_;
+  std::optional<ContactStick> stick_;  // with law.exact_stick
 };
 
 }  // namespace mechflow::mech

@@ -98,7 +98,9 @@ MechanismBlock::MechanismBlock(std::string name, std::shared_ptr<const mech::Mec
                           : c == mech::Crossing::kFalling ? CrossingDirection::kFalling
                                                           : CrossingDirection::kEither);
     }
-  if (!mechanism_->constraints().empty() || mechanism_->model().has_quaternions()) DeclareProjection();
+  if (!mechanism_->constraints().empty() || mechanism_->model().has_quaternions() ||
+      (!mechanism_->exact_stick_elements().empty()))
+    DeclareProjection();
   const mech::Model& model = mechanism_->model();
   for (const auto& sensor : sensors_) {
     routes_.push_back(RouteOf(sensor));
@@ -359,6 +361,11 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
                             std::to_string(ctx.time()));
     mech::ProjectVelocities(model, mechanism_->constraints(), ctx.time(), q, v, &s.ws.kin, &s.ws.constraint,
                             velocity_tolerance);
+  }
+  // the velocities of the holds that stick exactly: zero, not the integrator's drift
+  if (!mechanism_->exact_stick_elements().empty()) {
+    if (mechanism_->constraints().empty()) ReadDrives(ctx, s);
+    mech::ZeroStuckVelocities(*mechanism_, ctx.time(), s.projected, ctx.discrete(), &s.ws);
   }
   for (std::size_t i = 0; i < x.size(); ++i) {
     correction[i] = s.projected[i] - x[i];

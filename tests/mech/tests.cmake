@@ -26,3 +26,4 @@ target_link_libraries(pendulum_chain_reference_test PRIVATE mechflow_bench_refer
 # (bench/friction_diagram.*) run by mechflow against it
 mechflow_test(friction_reference_test unit tests/mech/friction_reference_test.cc)
 target_link_libraries(friction_reference_test PRIVATE mechflow_bench_friction)
+mechflow_test(contact_stick_test unit tests/mech/contact_stick_test.cc)

@@ -1,0 +1,113 @@
+#pragma once
+// Exact stick of a contact point (stick="exact" on points-plane and
+// circle-plane contacts; docs/ELEMENTS.md 5.5): the two-component
+// stick/slip mode machine of one point, the 2-D case of mech/stick_slip.h.
+//
+// A point in contact is STUCK or SLIDING. While stuck, its two tangential
+// slip components s_k = t_k . w (w: body 1's material velocity at the
+// contact point minus body 2's; t_1, t_2 tangents fixed in body 2) are held
+// at zero by holding forces f_1, f_2 that the mechanism solves for with
+// every other stuck hold (mech/exact_stick.h); the normal force stays the
+// penalty law. While sliding, friction is Coulomb's with the contact's
+// Stribeck curve: -mu(|w_t|) N along the slip, whose direction at the very
+// start of a slip (w_t = 0) is the mode's slip direction d.
+//
+//   crossings, events (never `if`s inside a step):
+//     STUCK -> SLIDING  when |f_t| - mu_s N rises through 0; the slip starts
+//                       along -f_t (the way the holding force resisted). A
+//                       hold whose N falls to zero lets go the same way.
+//     SLIDING -> STUCK  when w_t . d - kEndSpeed falls through 0 (Simbody's
+//                       lesson: the slip along the direction it had runs
+//                       out, rather than |w_t| = 0, which an integrator
+//                       steps over). The offset keeps the function off zero
+//                       where a slip starts (w_t = 0: round-off there would
+//                       end it at once) and keeps the end before w_t
+//                       reverses (where the friction turns round). A slip
+//                       sets off along d: its breakaway is found where the
+//                       holding force rises through the cone. If the point
+//                       still moves sideways faster than kStopSpeed where
+//                       the slip ends, it goes on sliding with d := the new
+//                       slip direction.
+//   a stuck hold beyond its cone at an event (a load applied at once) slips
+//   at once; the velocity a stuck point keeps from the root finder (about
+//   1e-12 m/s) is removed by the mechanism at the event (mech/mechanism.h).
+//
+// Modes per point: [slip state (kStuck, kSliding), d_1, d_2] (d in the
+// tangents' components); crossings per point: [breakaway, slip ends].
+
+#include <span>
+
+#include "mech/force_element.h"
+#include "mech/contact_law.h"
+
+namespace mechflow::mech {
+
+// A contact point and how it moves.
+struct ContactPointMotion {
+  int body1 = 0, body2 = 0;
+  Vec3 point = Vec3::Zero();       // the contact point (global)
+  Vec3 point_rate = Vec3::Zero();  // its velocity as a geometric point (a rim's deepest point moves over the rim)
+  Vec3 normal = Vec3::Zero();      // the plane's external normal (global)
+  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();  // the tangents (global), fixed in body 2
+  Vec3 slip = Vec3::Zero();        // w
+  double s1 = 0.0, s2 = 0.0;       // t_k . w
+  double speed() const { return std::hypot(s1, s2); }
+};
+
+// Two unit tangents of a plane with unit normal n (body 2's frame), n = t1 x t2.
+void PlaneTangents(const Vec3& n, Vec3* t1, Vec3* t2);
+// Measures the point of body 1 at `point` against body 2's plane with global
+// normal `normal` and local tangents; `point_rate` as in ContactPointMotion.
+ContactPointMotion MeasureContactPoint(const Kinematics& kin, int body1, int body2, const Vec3& point,
+                                       const Vec3& point_rate, const Vec3& normal, const Vec3& tangent1,
+                                       const Vec3& tangent2);
+
+class ContactStick {
+ public:
+  static constexpr double kStuck = 0.0, kSliding = 1.0;
+  static constexpr int kModesPerPoint = 3, kCrossingsPerPoint = 2;
+  // A slip that ends while the point still moves sideways faster than this
+  // [m/s] turns instead of sticking.
+  static constexpr double kStopSpeed = 1e-6;
+  // At w_t = 0 the slip's direction is the mode's: the friction's direction
+  // is that of w_t + kDirectionSpeed d, which differs from w_t's only below
+  // about this speed [m/s].
+  static constexpr double kDirectionSpeed = 1e-12;
+  // A slip has run out when w_t . d falls below kEndSpeed [m/s].
+  static constexpr double kEndSpeed = 1e-9;
+
+  explicit ContactStick(const ContactLaw& law) : law_(law) {}
+
+  // The directions of a point's crossings.
+  static Crossing BreakawayDirection() { return Crossing::kRising; }
+  static Crossing SlipEndDirection() { return Crossing::kFalling; }
+
+  // The state a point takes on touching (or at the start): stuck when it
+  // moves slower than kStopSpeed, else sliding along its slip.
+  static void Start(const ContactPointMotion& m, std::span<double> modes);
+  // The friction on body 1 (global): the holding forces f while stuck, the
+  // sliding law's otherwise; N is the point's normal force.
+  Vec3 Friction(const ContactPointMotion& m, double N, std::span<const double> modes,
+                std::span<const double> f) const;
+  // A point's two crossing values (touching: whether it is in contact).
+  void ZeroCrossings(const ContactPointMotion& m, double N, bool touching, std::span<const double> modes,
+                     std::span<const double> f, std::span<double> values) const;
+  // Crossing `which` (0 breakaway, 1 slip ends) fired.
+  static void OnCrossing(int which, const ContactPointMotion& m, std::span<const double> f, std::span<double> modes);
+  // After an event: a stuck point beyond its cone slides at once (along
+  // -f_t). Returns true when it switched.
+  bool Update(double N, std::span<const double> f, std::span<double> modes) const;
+  // The rate of s_k (k = 0, 1) after a dynamics pass.
+  static double HoldAcceleration(const Model& model, const Kinematics& kin, const DynamicsWorkspace& dyn,
+                                 const ContactPointMotion& m, int k);
+  // Adds holding force f along t_k on body 1 at the point (and -f on body 2).
+  static void ApplyHoldForce(const Kinematics& kin, const ContactPointMotion& m, int k, double f, Loads* loads);
+
+ private:
+  // mu_s N with a floor of 1e-9 N (a limit that starts at exactly zero must
+  // still give a crossing the solver can see).
+  double Limit(double N) const;
+  ContactLaw law_;
+};
+
+}  // namespace mechflow::mech
