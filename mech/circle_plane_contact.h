@@ -55,6 +55,7 @@ class CirclePlaneContact final : public ForceElement {
   double HoldVelocity(const ElementContext& ctx, int hold) const override;
   double HoldWeight(const ElementContext& ctx, int hold) const override;  // the normal force
   std::string HoldName(int hold) const override;
+  bool UnholdableIsError() const override { return true; }
 
  private:
   // Penetration, deepest point Q and the plane normal (global); with

@@ -6,15 +6,16 @@
 namespace mechflow::mech {
 namespace {
 
-// Pivots (eigenvalues) below kRedundant * (largest) are directions in which
-// the holds are redundant, or nearly so: holding them would take forces
-// 1 / kRedundant times those of the others (the corners of a box that has
-// rocked a little on its contacts are no longer exactly redundant), which
-// no friction provides. They are left to least squares.
-constexpr double kRedundant = 1e-8;
-// A residual acceleration above this share of the accelerations in play
-// is no round-off.
-constexpr double kResidual = 1e-6;
+// Pivots (eigenvalues) below kRedundant * (largest) are round-off: directions
+// in which the holds are redundant. (Holds mix units -- forces, moments --
+// so the bound stays at round-off.)
+constexpr double kRedundant = 1e-12;
+// A hold no force moves: its S_ii below kUnmoved * (largest S_jj), no
+// more than round-off; it is unholdable when its residual acceleration is
+// above kResidual * (the accelerations in play) -- not round-off, nor the
+// second-order disagreement of redundant holds slightly off rest.
+constexpr double kUnmoved = 1e-15;
+constexpr double kResidual = 1e-3;
 
 // Symmetric by theory; averaged so round-off cannot make it otherwise. The
 // padding takes the largest diagonal, which keeps the pivots of the stuck
@@ -86,7 +87,7 @@ int Unholdable(const StickWorkspace& ws, int k) {
     for (int j = 0; j < k; ++j) scale = std::max(scale, std::abs(ws.S(i, j) * ws.f(j)));
   }
   for (int i = 0; i < k; ++i) {
-    if (ws.S(i, i) > kRedundant * largest_diagonal) continue;
+    if (ws.S(i, i) > kUnmoved * largest_diagonal) continue;
     double residual = ws.a0(i);
     for (int j = 0; j < k; ++j) residual += ws.S(i, j) * ws.f(j);
     if (std::abs(residual) > kResidual * scale) return i;

@@ -212,8 +212,14 @@ class ForceElement {
   // static limits scale with; holds that are not redundant take what the
   // balance gives them whatever their weights.
   virtual double HoldWeight(const ElementContext&, int /*hold*/) const { return 1.0; }
-  // What to call a hold in a message: "contact 'c', point 2".
+  // What to call a hold in a message: "contact 'c'".
   virtual std::string HoldName(int /*hold*/) const { return "element '" + name() + "'"; }
+  // A stuck hold that no force moves while the mechanism drives it
+  // (SolveHoldingForces): an error for a contact (a point of a driven body
+  // cannot be held, and a regularised stick says what happens), left
+  // without a holding force for a friction element on a coordinate, which
+  // meets it in passing where a loop's dead centre stops the coordinate.
+  virtual bool UnholdableIsError() const { return false; }
   // Work accounting (for the energy balance of a run), switched on before the mechanism is
   // built when a sensor asks for it: one more state, the work W the element
   // has done on the bodies (the mechanism integrates the power of its

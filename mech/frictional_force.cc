@@ -85,7 +85,8 @@ void FrictionalForce::Apply(const Slide& g, double f, Loads* loads, const Elemen
 }
 
 double FrictionalForce::Holding(const ElementContext& ctx, const Slide& g) const {
-  if (p_.exact_stick) return -ctx.stick_forces[0];
+  // no holds when the friction is zero for good: nothing to hold
+  if (p_.exact_stick) return ctx.stick_forces.empty() ? 0.0 : -ctx.stick_forces[0];
   return p_.stiffness.Get(ctx) * ctx.state[0] + p_.damping.Get(ctx) * g.v;
 }
 

@@ -214,11 +214,12 @@ void SolveHolds(const Mechanism& mechanism, double t, MechanismWorkspace* ws) {
   if (failed < 0) return;
   const int g = ws->stick.stuck[failed];
   const ForceElement& element = mechanism.element(mechanism.hold_element(g));
+  if (!element.UnholdableIsError()) return;
   std::ostringstream out;
   out << element.origin() << (element.origin().empty() ? "" : ": ") << element.HoldName(LocalHold(mechanism, g))
       << " sticks, but no holding force can keep it at rest at t = " << t
       << ": the motion it holds is driven by what no force changes (a prescribed motion, a locked coordinate, "
-         "or other holds that disagree); let it slide (a regularised or spring stick) or free that motion";
+         "or other holds that disagree); let it slide (stick=\"regularised\") or free that motion";
   throw SimulationError(out.str());
 }
 

@@ -98,6 +98,7 @@ class PointsPlaneContact final : public ForceElement {
   // sum N (slips), sum N |r|^2 (spin): the loads the holds' limits scale with
   double HoldWeight(const ElementContext& ctx, int hold) const override;
   std::string HoldName(int hold) const override;
+  bool UnholdableIsError() const override { return true; }
 
  private:
   double Penetration(const ElementContext& ctx, int i, Vec3* p) const;
