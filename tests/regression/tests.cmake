@@ -23,3 +23,4 @@ mechflow_test(signal_drive_test regression tests/regression/signal_drive_test.cc
 mechflow_test(damper_chain_test regression tests/regression/damper_chain_test.cc)
 mechflow_test(train_test regression tests/regression/train_test.cc)
 mechflow_test(parallelogram_ladder_test regression tests/regression/parallelogram_ladder_test.cc)
+mechflow_test(exact_contact_test regression tests/regression/exact_contact_test.cc)

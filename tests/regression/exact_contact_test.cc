@@ -1,0 +1,179 @@
+// Exact stick of contacts (stick="exact", mech/contact_stick.h) against
+// closed forms: a box held on an incline does not creep and its holding
+// forces carry m g sin(theta); pulled through a spring by a leader at
+// constant speed it breaks away when the spring reaches mu_s m g and then
+// slides at mu m g; a disk rolls down an incline with a = 2/3 g sin(theta)
+// without slip, or slips with a = g (sin - mu cos) when mu_s is too small;
+// a stuck point of a body that a prescribed motion drives cannot be held.
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/test_util.h"
+
+namespace mechflow {
+namespace {
+
+constexpr double kG = 9.81;
+
+std::string Number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+// A 2 kg cube of side 0.1 m on its four bottom corners, the incline's normal
+// (0, -sin theta, cos theta), released at rest with every corner pressed by
+// its share of the weight.
+std::string BoxOnIncline(double theta, double mu) {
+  return "<diagram><identifiers>"
+         "<identifier name=\"theta\" value=\"" + Number(theta) + "\"/>"
+         "<identifier name=\"m\" value=\"2\"/><identifier name=\"a\" value=\"0.05\"/>"
+         "<identifier name=\"c\" value=\"1e5\"/><identifier name=\"sag\" value=\"m*9.81*cos(theta)/(4*c)\"/>"
+         "</identifiers><mechanism name=\"m\">"
+         "<body name=\"Box\" mass=\"m\" inertia=\"m*(2*a)^2/6 m*(2*a)^2/6 m*(2*a)^2/6\"/>"
+         "<joint name=\"j\" type=\"quaternion\" body1=\"Base0\" body2=\"Box\" "
+         "position=\"0 -(a-sag)*sin(theta) (a-sag)*cos(theta)\" angles=\"theta 0 0\"/>"
+         "<contact name=\"c\" type=\"points_plane\" body1=\"Box\" body2=\"Base0\" normal=\"0 -sin(theta) cos(theta)\" "
+         "points=\"-a -a -a; a -a -a; -a a -a; a a -a\" stiffness=\"c\" damping=\"2*sqrt(m*c/4)\" mu=\"" +
+         Number(mu) + "\" stick=\"exact\"/>"
+         "<sensor name=\"p\" kind=\"position\" body=\"Box\"/>"
+         "<sensor name=\"f\" kind=\"element\" element=\"c\" quantity=\"friction\"/>"
+         "<sensor name=\"mode\" kind=\"element\" element=\"c\" quantity=\"mode_3\"/>"
+         "</mechanism><solver t_end=\"100\" rtol=\"1e-8\" atol=\"1e-10\"/>"
+         "<output interval=\"10\"><log signal=\"m.p\"/><log signal=\"m.f\"/><log signal=\"m.mode\"/></output>"
+         "</diagram>";
+}
+
+TEST(ExactContactTest, ABoxHeldOnAnInclineDoesNotCreep) {
+  const double theta = 20.0 * M_PI / 180.0;  // tan = 0.364 < mu = 0.5
+  const auto run = testing::RunXml(BoxOnIncline(theta, 0.5));
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time");
+  ASSERT_EQ(t.size(), 11u);
+  // after the first 10 s (the box settles on its contact springs, elastically), no motion
+  for (const char* column : {"m.p[0]", "m.p[1]", "m.p[2]"}) {
+    const auto p = run.Column(column);
+    EXPECT_LT(std::abs(p.back() - p[1]), 1e-9) << column;
+  }
+  EXPECT_NEAR(run.Column("m.f").back(), 2.0 * kG * std::sin(theta), 1e-8 * 2.0 * kG);
+  EXPECT_EQ(run.Column("m.mode").back(), 1.0);  // stuck
+}
+
+// A 1 kg block on a slide (x) and a vertical guide (z), its four bottom
+// corners on the floor, pulled through a spring k by a leader at speed V:
+// stuck, the spring force k V t reaches mu_s m g at t = mu_s m g / (k V).
+std::string PulledBlock(double mu, double mu_static, double t_end) {
+  return "<diagram><identifiers>"
+         "<identifier name=\"m\" value=\"1\"/><identifier name=\"k\" value=\"100\"/>"
+         "<identifier name=\"speed\" value=\"0.1\"/><identifier name=\"c\" value=\"1e6\"/>"
+         "<identifier name=\"sag\" value=\"m*9.81/(4*c)\"/>"
+         "</identifiers><mechanism name=\"m\">"
+         "<body name=\"Block\" mass=\"m\" inertia=\"0.01 0.01 0.01\"/>"
+         "<body name=\"Leader\" mass=\"1\" inertia=\"0.01 0.01 0.01\"/>"
+         "<joint name=\"jb\" type=\"generalized\" body1=\"Base0\" body2=\"Block\">"
+         "<et type=\"tv\" axis=\"1 0 0\" name=\"x\"/><et type=\"tv\" axis=\"0 0 1\" q0=\"0.025-sag\" name=\"z\"/></joint>"
+         "<joint name=\"jl\" type=\"generalized\" body1=\"Base0\" body2=\"Leader\">"
+         "<et type=\"tc\" axis=\"1 0 0\" value=\"1\"/><et type=\"tc\" axis=\"0 0 1\" value=\"0.025-sag\"/>"
+         "<et type=\"tt\" axis=\"1 0 0\" value=\"speed*t\"/></joint>"
+         "<force name=\"spring\" type=\"linear\" body1=\"Block\" body2=\"Leader\" c=\"k\"/>"
+         "<contact name=\"floor\" type=\"points_plane\" body1=\"Block\" body2=\"Base0\" "
+         "points=\"0.05 0.05 -0.025; 0.05 -0.05 -0.025; -0.05 0.05 -0.025; -0.05 -0.05 -0.025\" "
+         "stiffness=\"c\" damping=\"sqrt(m*c)\" mu=\"" + Number(mu) + "\" mu_static=\"" + Number(mu_static) +
+         "\" stribeck_velocity=\"1e-9\" stick=\"exact\"/>"
+         "<sensor name=\"x\" kind=\"coordinate\" dof=\"x\"/>"
+         "<sensor name=\"f\" kind=\"element\" element=\"floor\" quantity=\"friction\"/>"
+         "<sensor name=\"N\" kind=\"element\" element=\"floor\" quantity=\"normal\"/>"
+         "</mechanism><solver t_end=\"" + Number(t_end) + "\" rtol=\"1e-10\" atol=\"1e-12\"/>"
+         "<output interval=\"0.01\"><log signal=\"m.x\"/><log signal=\"m.f\"/><log signal=\"m.N\"/></output>"
+         "</diagram>";
+}
+
+TEST(ExactContactTest, APulledBlockBreaksAwayAtTheStaticLimitAndSlidesAtTheSlidingOne) {
+  const double mu = 0.3, mu_static = 0.4;
+  const auto run = testing::RunXml(PulledBlock(mu, mu_static, 0.6));
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  ASSERT_FALSE(run.sim->events().empty());
+  const double breakaway = mu_static * kG / (100 * 0.1);
+  // every corner breaks away at once (their shares follow their normal forces)
+  EXPECT_NEAR(run.sim->events().front().time, breakaway, 1e-8);
+  const auto t = run.Column("time"), x = run.Column("m.x"), f = run.Column("m.f"), N = run.Column("m.N");
+  ASSERT_EQ(t.size(), 61u);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < breakaway - 1e-6) {
+      EXPECT_LT(std::abs(x[i]), 1e-12) << "t = " << t[i];  // held exactly, no creep
+      EXPECT_NEAR(f[i], 100 * 0.1 * t[i], 1e-8) << "t = " << t[i];
+    } else if (t[i] > breakaway + 0.01 && t[i] < breakaway + 0.4) {
+      EXPECT_NEAR(f[i], mu * N[i], 1e-6 * N[i]) << "t = " << t[i];  // sliding: Coulomb's
+    }
+  }
+}
+
+// A disk (radius R, mass m, I = m R^2 / 2 about its axis y) on an incline
+// through the origin with normal (-sin theta, 0, cos theta), released at
+// rest touching it: rolling, the centre runs down the slope at
+// a = 2/3 g sin(theta); with mu_s below tan(theta)/3 it slips at
+// a = g (sin(theta) - mu cos(theta)).
+std::string DiskOnIncline(double theta, double mu) {
+  return "<diagram><identifiers>"
+         "<identifier name=\"theta\" value=\"" + Number(theta) + "\"/>"
+         "<identifier name=\"m\" value=\"1\"/><identifier name=\"R\" value=\"0.1\"/>"
+         "<identifier name=\"c\" value=\"1e6\"/><identifier name=\"sag\" value=\"m*9.81*cos(theta)/c\"/>"
+         "</identifiers><mechanism name=\"m\">"
+         "<body name=\"Disk\" mass=\"m\" inertia=\"m*R^2/4 m*R^2/2 m*R^2/4\"/>"
+         "<joint name=\"j\" type=\"quaternion\" body1=\"Base0\" body2=\"Disk\" "
+         "position=\"-(R-sag)*sin(theta) 0 (R-sag)*cos(theta)\"/>"
+         "<contact name=\"c\" type=\"circle_plane\" body1=\"Disk\" body2=\"Base0\" normal=\"-sin(theta) 0 cos(theta)\" "
+         "circle_normal=\"0 1 0\" radius=\"R\" stiffness=\"c\" damping=\"2*sqrt(m*c)\" mu=\"" + Number(mu) +
+         "\" stribeck_velocity=\"1e-9\" stick=\"exact\"/>"
+         "<sensor name=\"v\" kind=\"point_velocity\" body=\"Disk\"/>"
+         "<sensor name=\"slip\" kind=\"element\" element=\"c\" quantity=\"slip\"/>"
+         "</mechanism><solver t_end=\"1\" rtol=\"1e-10\" atol=\"1e-12\"/>"
+         "<output interval=\"0.1\"><log signal=\"m.v\"/><log signal=\"m.slip\"/></output></diagram>";
+}
+
+TEST(ExactContactTest, ADiskRollsDownAnInclineWithoutSlip) {
+  const double theta = 0.3;
+  const auto run = testing::RunXml(DiskOnIncline(theta, 0.5));  // tan / 3 = 0.103
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time"), vx = run.Column("m.v[0]"), vz = run.Column("m.v[2]"),
+             slip = run.Column("m.slip");
+  const double a = 2.0 / 3.0 * kG * std::sin(theta);
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    // down the slope: (cos, 0, sin) is up it
+    const double speed = -(vx[i] * std::cos(theta) + vz[i] * std::sin(theta));
+    EXPECT_NEAR(speed, a * t[i], 1e-6 * a) << "t = " << t[i];
+    EXPECT_LT(slip[i], 1e-10) << "t = " << t[i];
+  }
+}
+
+TEST(ExactContactTest, ADiskOnATooSlipperyInclineSlips) {
+  const double theta = 0.3, mu = 0.05;  // below tan(theta) / 3
+  const auto run = testing::RunXml(DiskOnIncline(theta, mu));
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time"), vx = run.Column("m.v[0]"), vz = run.Column("m.v[2]");
+  const double a = kG * (std::sin(theta) - mu * std::cos(theta));
+  for (std::size_t i = 2; i < t.size(); ++i) {
+    const double speed = -(vx[i] * std::cos(theta) + vz[i] * std::sin(theta));
+    EXPECT_NEAR(speed, a * t[i], 1e-4 * a) << "t = " << t[i];
+  }
+}
+
+TEST(ExactContactTest, AStuckPointOfADrivenBodyCannotBeHeld) {
+  // the block's x is prescribed (t^2): no force moves it, yet it accelerates
+  std::string xml = PulledBlock(0.3, 0.4, 0.1);
+  auto replace = [&](const std::string& from, const std::string& to) { xml.replace(xml.find(from), from.size(), to); };
+  replace("<et type=\"tv\" axis=\"1 0 0\" name=\"x\"/>", "<et type=\"tt\" axis=\"1 0 0\" value=\"t^2\"/>");
+  replace("<sensor name=\"x\" kind=\"coordinate\" dof=\"x\"/>", "");
+  replace("<log signal=\"m.x\"/>", "");
+  const auto run = testing::RunXml(xml);
+  ASSERT_FALSE(run.outcome.ok);
+  EXPECT_NE(run.outcome.failure.find("contact 'floor' sticks, but no holding force can keep it at rest"),
+            std::string::npos)
+      << run.outcome.failure;
+}
+
+}  // namespace
+}  // namespace mechflow
