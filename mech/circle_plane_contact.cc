@@ -139,10 +139,10 @@ double CirclePlaneContact::HoldVelocity(const ElementContext& ctx, int hold) con
   return hold == 0 ? m.s1 : m.s2;
 }
 
-double CirclePlaneContact::HoldWeight(const ElementContext& ctx, int) const {
+void CirclePlaneContact::FollowSlip(const ElementContext& ctx, std::span<double> modes) const {
+  if (modes[0] == 0.0) return;
   double delta;
-  const ContactPointMotion m = Motion(ctx, &delta);
-  return NormalForce(m, delta);
+  ContactStick::Follow(Motion(ctx, &delta), StickModes(modes));
 }
 
 std::string CirclePlaneContact::HoldName(int) const { return "contact '" + name() + "'"; }

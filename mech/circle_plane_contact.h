@@ -53,9 +53,9 @@ class CirclePlaneContact final : public ForceElement {
   double StickAcceleration(const ElementContext& ctx, int hold, const DynamicsWorkspace& dyn,
                            std::span<const double> vdot) const override;
   double HoldVelocity(const ElementContext& ctx, int hold) const override;
-  double HoldWeight(const ElementContext& ctx, int hold) const override;  // the normal force
   std::string HoldName(int hold) const override;
   bool UnholdableIsError() const override { return true; }
+  void FollowSlip(const ElementContext& ctx, std::span<double> modes) const override;
 
  private:
   // Penetration, deepest point Q and the plane normal (global); with

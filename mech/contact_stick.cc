@@ -91,6 +91,11 @@ Vec3 ContactStick::Friction(const ContactPointMotion& m, double N, std::span<con
   return -mu * N * along / size;
 }
 
+void ContactStick::Follow(const ContactPointMotion& m, std::span<double> modes) {
+  const double speed = m.speed();
+  if (modes[0] == kSliding && speed > 1e3 * kEndSpeed) Slide(m.s1 / speed, m.s2 / speed, modes);
+}
+
 void ContactStick::ZeroCrossings(const ContactPointMotion& m, double N, bool touching, std::span<const double> modes,
                                  std::span<const double> f, std::span<double> values) const {
   values[0] = touching && modes[0] == kStuck ? std::hypot(f[0], f[1]) - Limit(N) : -1.0;

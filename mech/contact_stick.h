@@ -16,10 +16,11 @@
 //     STUCK -> SLIDING  when |f_t| - mu_s N rises through 0; the slip starts
 //                       along -f_t (the way the holding force resisted). A
 //                       hold whose N falls to zero lets go the same way.
-//     SLIDING -> STUCK  when w_t . d - kEndSpeed falls through 0 (Simbody's
-//                       lesson: the slip along the direction it had runs
-//                       out, rather than |w_t| = 0, which an integrator
-//                       steps over). The offset keeps the function off zero
+//     SLIDING -> STUCK  when w_t . d - kEndSpeed falls through 0, d being
+//                       the slip's direction at the end of the last step
+//                       (Simbody's lesson: the slip reverses within a step,
+//                       rather than |w_t| = 0, which an integrator steps
+//                       over). The offset keeps the function off zero
 //                       where a slip starts (w_t = 0: round-off there would
 //                       end it at once) and keeps the end before w_t
 //                       reverses (where the friction turns round). A slip
@@ -89,6 +90,9 @@ class ContactStick {
   // sliding law's otherwise; N is the point's normal force.
   Vec3 Friction(const ContactPointMotion& m, double N, std::span<const double> modes,
                 std::span<const double> f) const;
+  // After a step: a sliding point's direction d turns to its slip (once
+  // the slip is well above kEndSpeed, where its direction means something).
+  static void Follow(const ContactPointMotion& m, std::span<double> modes);
   // A point's two crossing values (touching: whether it is in contact).
   void ZeroCrossings(const ContactPointMotion& m, double N, bool touching, std::span<const double> modes,
                      std::span<const double> f, std::span<double> values) const;

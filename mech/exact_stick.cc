@@ -6,9 +6,9 @@
 namespace mechflow::mech {
 namespace {
 
-// Pivots (eigenvalues) below kRedundant * (largest) are round-off: directions
-// in which the holds are redundant. (Holds mix units -- forces, moments --
-// so the bound stays at round-off.)
+// Pivots below kRedundant * (largest) are round-off: directions in which
+// the holds are redundant. (Holds mix units -- forces, moments -- so the
+// bound stays at round-off.)
 constexpr double kRedundant = 1e-12;
 // A hold no force moves: its S_ii below kUnmoved * (largest S_jj), no
 // more than round-off; it is unholdable when its residual acceleration is
@@ -33,48 +33,19 @@ void Symmetrise(StickWorkspace* ws, int k) {
   }
 }
 
-// S f = -a0 by LDL^T; false when a pivot is round-off (S singular).
-bool SolveRegular(StickWorkspace* ws) {
+// S f = -a0 by LDL^T; pivots at round-off (redundant holds) get no force.
+void Solve(StickWorkspace* ws) {
   const int n = static_cast<int>(ws->S.rows());
   ws->ldlt.compute(ws->S);
   const auto d = ws->ldlt.vectorD();
   const double largest = n > 0 ? d.cwiseAbs().maxCoeff() : 0.0;
-  for (int i = 0; i < n; ++i)
-    if (!(d(i) > kRedundant * largest)) return false;
   // step by step, in place: no temporaries
   ws->f = -ws->a0;
   ws->f = ws->ldlt.transpositionsP() * ws->f;
   ws->ldlt.matrixL().solveInPlace(ws->f);
-  for (int i = 0; i < n; ++i) ws->f(i) /= d(i);
+  for (int i = 0; i < n; ++i) ws->f(i) = d(i) > kRedundant * largest ? ws->f(i) / d(i) : 0.0;
   ws->ldlt.matrixU().solveInPlace(ws->f);
   ws->f = ws->ldlt.transpositionsP().transpose() * ws->f;
-  return true;
-}
-
-// The forces of least sum f_i^2 / w_i that bring S f + a0 closest to zero
-// (see the header): the least-norm least-squares g of (D S D) g = -D a0,
-// f = D g, D = diag(sqrt(w)).
-void SolveRedundant(StickWorkspace* ws, int k) {
-  const int n = static_cast<int>(ws->S.rows());
-  ws->scaled = ws->S;  // the padding's diagonal keeps the spectrum's scale
-  for (int i = 0; i < k; ++i) {
-    const double di = std::sqrt(std::max(ws->weight(i), 0.0));
-    ws->scaled.row(i) *= di;
-    ws->scaled.col(i) *= di;
-    ws->rhs(i) = -di * ws->a0(i);
-  }
-  for (int i = k; i < n; ++i) ws->rhs(i) = 0.0;
-  ws->eigen.compute(ws->scaled);
-  const Eigen::VectorXd& lambda = ws->eigen.eigenvalues();
-  const Eigen::MatrixXd& V = ws->eigen.eigenvectors();
-  const double largest = n > 0 ? lambda.cwiseAbs().maxCoeff() : 0.0;
-  ws->f.setZero();
-  for (int m = 0; m < n; ++m) {
-    if (!(lambda(m) > kRedundant * largest)) continue;
-    const double c = V.col(m).dot(ws->rhs) / lambda(m);
-    for (int i = 0; i < n; ++i) ws->f(i) += c * V(i, m);
-  }
-  for (int i = 0; i < k; ++i) ws->f(i) *= std::sqrt(std::max(ws->weight(i), 0.0));
 }
 
 // A stuck hold that no force moves (its S_ii is round-off) but that the
@@ -103,19 +74,14 @@ StickWorkspace::StickWorkspace(int num_holds)
       S(Eigen::MatrixXd::Identity(num_holds, num_holds)),
       a0(Eigen::VectorXd::Zero(num_holds)),
       f(Eigen::VectorXd::Zero(num_holds)),
-      weight(Eigen::VectorXd::Ones(num_holds)),
-      ldlt(num_holds),
-      scaled(Eigen::MatrixXd::Identity(num_holds, num_holds)),
-      rhs(Eigen::VectorXd::Zero(num_holds)),
-      eigen(num_holds) {
+      ldlt(num_holds) {
   stuck.reserve(num_holds);
 }
 
 int SolveHoldingForces(StickWorkspace* ws) {
   const int k = static_cast<int>(ws->stuck.size());
   Symmetrise(ws, k);
-  if (SolveRegular(ws)) return -1;
-  SolveRedundant(ws, k);
+  Solve(ws);
   return Unholdable(*ws, k);
 }
 

@@ -16,25 +16,19 @@
 // (the stuck motion is constrained, the force follows from the balance)
 // without a DAE solver.
 //
-// Redundant holds (S singular: the four corners of a box holding its three
-// in-plane motions, two friction elements on one slide) leave the forces
-// undecided by the balance; rigid bodies do not say how they share a load.
-// The forces taken are then those of least sum f_i^2 / w_i, the holds'
-// weights (ForceElement::HoldWeight: the loads their static limits scale
-// with, a contact point's normal force), so that a load shared by redundant
-// holds reaches every static limit at once, as it does when the contacts'
-// compliance shares it. Redundant holds may also disagree at second order
-// (the corners of a box that rocks on its contacts cannot all keep still
-// tangentially): the forces then hold them in the least-squares sense. A
-// hold whose motion no force can change and that the rest of the mechanism
-// still drives (a prescribed motion across a stuck contact) has no holding
-// force at all: SolveHoldingForces reports it.
+// Redundant holds (two holding one motion: two friction elements on one
+// slide, the joints of a loop with one degree of freedom, two rims of one
+// wheel set on the ground) leave the forces undecided by the balance; rigid
+// bodies do not say how they share a load, and none is made up: directions
+// in which S is singular get no force (one of the redundant holds carries
+// it). A hold whose motion no force changes and that the rest of the
+// mechanism still drives (a prescribed motion across a stuck contact) has
+// no holding force at all: SolveHoldingForces reports it.
 
 #include <vector>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 namespace mechflow::mech {
 
@@ -47,15 +41,11 @@ struct StickWorkspace {
   std::vector<int> stuck;      // the holds stuck exactly in this evaluation
   Eigen::MatrixXd S;           // num_holds x num_holds; rows and columns past the stuck ones are padding
   Eigen::VectorXd a0, f;
-  Eigen::VectorXd weight;      // per stuck hold (only read when S is singular)
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
-  Eigen::MatrixXd scaled;      // D S D, D = diag(sqrt(weight))
-  Eigen::VectorXd rhs;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen;
 };
 
 // Solves S f = -a0 over the first stuck.size() rows of ws->S and ws->a0
-// (and, when S is singular, ws->weight; all filled by the caller); writes
+// (filled by the caller); writes
 // ws->f. Returns -1, or the position in ws->stuck of a hold that no force
 // moves but that accelerates all the same.
 int SolveHoldingForces(StickWorkspace* ws);

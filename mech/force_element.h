@@ -176,6 +176,11 @@ class ForceElement {
   virtual bool UpdateModes(const ElementContext&, std::span<double> /*state*/, std::span<double> /*modes*/) const {
     return false;
   }
+  // After every step the integrator takes: an element whose modes record a
+  // direction of slip turns it to the slip of that state (a contact point's,
+  // mech/contact_stick.h), so that the end of a slip is a reversal within
+  // one step, not a turn of the slip's direction.
+  virtual void FollowSlip(const ElementContext&, std::span<double> /*modes*/) const {}
   // A static equilibrium search (analysis/linearization.h) at a candidate state
   // at rest: set the modes that element takes there -- a contact's from its
   // penetration, a sliding friction element sticks, a stuck one beyond its
@@ -207,11 +212,6 @@ class ForceElement {
   // The relative velocity the hold keeps at zero (a stuck hold starts with
   // the root finder's residual, which the mechanism removes at events).
   virtual double HoldVelocity(const ElementContext&, int /*hold*/) const { return 0.0; }
-  // Redundant holds (two holding one motion: four corners of a box on a
-  // plane) share a load in proportion to their weights, the loads their
-  // static limits scale with; holds that are not redundant take what the
-  // balance gives them whatever their weights.
-  virtual double HoldWeight(const ElementContext&, int /*hold*/) const { return 1.0; }
   // What to call a hold in a message: "contact 'c'".
   virtual std::string HoldName(int /*hold*/) const { return "element '" + name() + "'"; }
   // A stuck hold that no force moves while the mechanism drives it

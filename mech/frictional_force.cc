@@ -1,7 +1,5 @@
 #include "mech/frictional_force.h"
 
-#include <algorithm>
-
 #include "mech/dynamics.h"
 
 namespace mechflow::mech {
@@ -134,10 +132,6 @@ void FrictionalForce::ApplyStickForce(const ElementContext& ctx, int, double f, 
 }
 
 double FrictionalForce::HoldVelocity(const ElementContext& ctx, int) const { return Measure(ctx).v; }
-
-double FrictionalForce::HoldWeight(const ElementContext& ctx, int) const {
-  return std::max(p_.ratio.Get(ctx) * p_.friction.Get(ctx), 1e-9);
-}
 
 double FrictionalForce::StickAcceleration(const ElementContext& ctx, int, const DynamicsWorkspace& dyn,
                                           std::span<const double> vdot) const {

@@ -61,8 +61,6 @@ class FrictionalForce final : public StickSlipElement {
   double StickAcceleration(const ElementContext& ctx, int hold, const DynamicsWorkspace& dyn,
                            std::span<const double> vdot) const override;
   double HoldVelocity(const ElementContext& ctx, int hold) const override;
-  // Redundant elements share a load in proportion to their static limits.
-  double HoldWeight(const ElementContext& ctx, int hold) const override;
 
  private:
   StickSlipHold Hold(const ElementContext& ctx, double mode) const override;

@@ -200,11 +200,6 @@ void MeasureHoldResponse(const Mechanism& mechanism, double t, std::span<const d
                   s.probe[g];
     }
   }
-  for (int i = 0; i < k; ++i) {
-    const int g = s.stuck[i], e = mechanism.hold_element(g);
-    s.weight(i) = mechanism.element(e).HoldWeight(MakeElementContext(mechanism, t, x, modes, *ws, e),
-                                                  LocalHold(mechanism, g));
-  }
 }
 
 // Solves for the forces of the stuck holds (ws->stick.f); a hold that no
@@ -501,6 +496,16 @@ void EvaluateForModes(const Mechanism& mechanism, double t, std::span<const doub
 
 }  // namespace
 
+void FollowSlips(const Mechanism& mechanism, double t, std::span<const double> x, std::span<double> modes,
+                 MechanismWorkspace* ws) {
+  EvaluatePositions(mechanism, t, x, ws);
+  for (int e : mechanism.exact_stick_elements()) {
+    const ForceElement& element = mechanism.element(e);
+    element.FollowSlip(MakeElementContext(mechanism, t, x, modes, *ws, e),
+                       modes.subspan(mechanism.mode_offset(e), element.num_modes()));
+  }
+}
+
 bool ZeroStuckVelocities(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> modes,
                          MechanismWorkspace* ws) {
   if (mechanism.exact_stick_elements().empty() || modes.empty()) return false;
@@ -536,8 +541,12 @@ bool ZeroStuckVelocities(const Mechanism& mechanism, double t, std::span<double>
                                          s.f(i), &ws->loads);
   }
   SolveDynamics(mechanism, ws, false);
-  for (int j = 0; j < mechanism.model().nv(); ++j) x[nq + j] += ws->vdot[j] - ws->vdot_free[j];
   ws->accelerations_valid = false;
+  // what least squares already left where it is (holds at odds) is no change
+  double change = 0.0;
+  for (int j = 0; j < mechanism.model().nv(); ++j) change = std::max(change, std::abs(ws->vdot[j] - ws->vdot_free[j]));
+  if (!(change > 1e-13 * speed)) return false;
+  for (int j = 0; j < mechanism.model().nv(); ++j) x[nq + j] += ws->vdot[j] - ws->vdot_free[j];
   return true;
 }
 

@@ -181,6 +181,10 @@ void ApplyCrossing(const Mechanism& mechanism, int crossing, int direction, std:
 // until the modes agree; then ZeroStuckVelocities.
 bool UpdateElementModes(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> inputs,
                         std::span<double> modes, MechanismWorkspace* ws);
+// After a step: lets the elements turn the slip directions their modes
+// record to the slips at (t, x) (ForceElement::FollowSlip).
+void FollowSlips(const Mechanism& mechanism, double t, std::span<const double> x, std::span<double> modes,
+                 MechanismWorkspace* ws);
 // Moves the velocities in x the least (in the mass's norm) that brings
 // every stuck hold's velocity to zero: the impulse p with S p = -w, which
 // changes v by M^-1 J^T p (mech/exact_stick.h). A hold keeps a velocity

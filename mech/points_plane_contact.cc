@@ -337,9 +337,12 @@ double PointsPlaneContact::HoldVelocity(const ElementContext& ctx, int hold) con
   return hold == 0 ? m.s1 : m.s2;
 }
 
-double PointsPlaneContact::HoldWeight(const ElementContext& ctx, int hold) const {
-  const Patch patch = MeasurePatch(ctx);
-  return hold == 2 ? patch.spin_inertia : patch.normal;
+void PointsPlaneContact::FollowSlip(const ElementContext& ctx, std::span<double> modes) const {
+  for (int i = 0; i < num_points(); ++i) {
+    if (modes[i] == 0.0) continue;
+    double delta;
+    ContactStick::Follow(Motion(ctx, i, &delta), StickModes(modes, i));
+  }
 }
 
 std::string PointsPlaneContact::HoldName(int) const { return "contact '" + name() + "'"; }

@@ -95,10 +95,9 @@ class PointsPlaneContact final : public ForceElement {
   double StickAcceleration(const ElementContext& ctx, int hold, const DynamicsWorkspace& dyn,
                            std::span<const double> vdot) const override;
   double HoldVelocity(const ElementContext& ctx, int hold) const override;
-  // sum N (slips), sum N |r|^2 (spin): the loads the holds' limits scale with
-  double HoldWeight(const ElementContext& ctx, int hold) const override;
   std::string HoldName(int hold) const override;
   bool UnholdableIsError() const override { return true; }
+  void FollowSlip(const ElementContext& ctx, std::span<double> modes) const override;
 
  private:
   double Penetration(const ElementContext& ctx, int i, Vec3* p) const;

@@ -362,10 +362,12 @@ void MechanismBlock::DoProject(const BlockContext& ctx, std::span<double> correc
     mech::ProjectVelocities(model, mechanism_->constraints(), ctx.time(), q, v, &s.ws.kin, &s.ws.constraint,
                             velocity_tolerance);
   }
-  // the velocities of the holds that stick exactly: zero, not the integrator's drift
+  // the velocities of the holds that stick exactly: zero, not the integrator's
+  // drift; the slips' directions: those of this step's end
   if (!mechanism_->exact_stick_elements().empty()) {
     if (mechanism_->constraints().empty()) ReadDrives(ctx, s);
     mech::ZeroStuckVelocities(*mechanism_, ctx.time(), s.projected, ctx.discrete(), &s.ws);
+    mech::FollowSlips(*mechanism_, ctx.time(), s.projected, ctx.discrete(), &s.ws);
   }
   for (std::size_t i = 0; i < x.size(); ++i) {
     correction[i] = s.projected[i] - x[i];
