@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -109,6 +110,20 @@ TEST(ExactContactTest, APulledBlockBreaksAwayAtTheStaticLimitAndSlidesAtTheSlidi
       EXPECT_NEAR(f[i], mu * N[i], 1e-6 * N[i]) << "t = " << t[i];  // sliding: Coulomb's
     }
   }
+}
+
+TEST(ExactContactTest, StickSlipKeepsCoulombsPeriod) {
+  // the same block in stick-slip: slip 0.473153 s (the spring's half-swing
+  // about mu m g, from mu_s m g), stick 0.196193 s (back up to mu_s m g at
+  // k V), as for a rigid stick with Coulomb's law
+  const auto run = testing::RunXml(PulledBlock(0.3, 0.4, 2.5));
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  std::vector<double> breakaways;  // of the first corner: its crossing 5, after 4 penetrations and the bound
+  for (const auto& e : run.sim->events())
+    if (e.crossing == 5 && (breakaways.empty() || e.time > breakaways.back() + 0.1)) breakaways.push_back(e.time);
+  ASSERT_GE(breakaways.size(), 3u);
+  for (std::size_t i = 1; i + 1 < breakaways.size(); ++i)
+    EXPECT_NEAR(breakaways[i + 1] - breakaways[i], 0.669346, 1e-4) << "cycle " << i;
 }
 
 // A disk (radius R, mass m, I = m R^2 / 2 about its axis y) on an incline
