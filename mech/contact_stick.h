@@ -36,6 +36,7 @@
 // Modes per point: [slip state (kStuck, kSliding), d_1, d_2] (d in the
 // tangents' components); crossings per point: [breakaway, slip ends].
 
+#include <cmath>
 #include <span>
 
 #include "mech/force_element.h"
@@ -101,6 +102,8 @@ class ContactStick {
   // After an event: a stuck point beyond its cone slides at once (along
   // -f_t). Returns true when it switched.
   bool Update(double N, std::span<const double> f, std::span<double> modes) const;
+  // Whether a stuck point's holding force f is beyond its cone.
+  bool Exceeds(double N, std::span<const double> f) const { return std::hypot(f[0], f[1]) > Limit(N); }
   // The rate of s_k (k = 0, 1) after a dynamics pass.
   static double HoldAcceleration(const Model& model, const Kinematics& kin, const DynamicsWorkspace& dyn,
                                  const ContactPointMotion& m, int k);

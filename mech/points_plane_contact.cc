@@ -192,10 +192,38 @@ void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<doub
   }
 }
 
+std::vector<std::array<double, 2>> PointsPlaneContact::Shares(const ElementContext& ctx, bool* beyond) const {
+  const Patch patch = MeasurePatch(ctx);
+  std::vector<std::array<double, 2>> shares(points_.size(), {0.0, 0.0});
+  *beyond = false;
+  for (int i = 0; i < num_points(); ++i) {
+    if (!Stuck(ctx.modes, i)) continue;
+    shares[i] = HoldingForce(ctx, patch, i);
+    double delta;
+    const ContactPointMotion m = Motion(ctx, i, &delta);
+    *beyond = *beyond || stick_->Exceeds(NormalForce(m, delta), shares[i]);
+  }
+  return shares;
+}
+
+void PointsPlaneContact::ReleaseAll(const ElementContext& ctx, const std::vector<std::array<double, 2>>& shares,
+                                    std::span<double> modes) const {
+  for (int i = 0; i < num_points(); ++i) {
+    if (!Stuck(modes, i)) continue;
+    double delta;
+    ContactStick::OnCrossing(0, Motion(ctx, i, &delta), shares[i], StickModes(modes, i));
+  }
+}
+
 bool PointsPlaneContact::UpdateModes(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
-  // the holding forces were solved for the modes coming in
-  const Patch patch = stick_ ? MeasurePatch(ctx) : Patch{};
+  // the holding forces were solved for the modes coming in (ctx.modes is modes: measured first)
+  bool beyond = false;
+  const std::vector<std::array<double, 2>> shares = stick_ ? Shares(ctx, &beyond) : std::vector<std::array<double, 2>>{};
   bool changed = false;
+  if (beyond) {
+    ReleaseAll(ctx, shares, modes);
+    changed = true;
+  }
   for (int i = 0; i < num_points(); ++i) {
     double delta;
     const ContactPointMotion m = Motion(ctx, i, &delta);
@@ -203,12 +231,7 @@ bool PointsPlaneContact::UpdateModes(const ElementContext& ctx, std::span<double
     const bool touches = mode != 0.0 && modes[i] == 0.0;
     changed |= mode != modes[i];
     modes[i] = mode;
-    if (!stick_ || mode == 0.0) continue;
-    if (touches) {
-      ContactStick::Start(m, StickModes(modes, i));
-      continue;
-    }
-    changed |= stick_->Update(NormalForce(m, delta), HoldingForce(ctx, patch, i), StickModes(modes, i));
+    if (stick_ && touches) ContactStick::Start(m, StickModes(modes, i));
   }
   return changed;
 }
@@ -236,8 +259,14 @@ void PointsPlaneContact::OnCrossing(int index, int direction, const ElementConte
     return;
   }
   const int i = (index - num_points() - 1) / ContactStick::kCrossingsPerPoint;
-  ContactStick::OnCrossing((index - num_points() - 1) % ContactStick::kCrossingsPerPoint, Motion(ctx, i, &delta),
-                           HoldingForce(ctx, MeasurePatch(ctx), i), StickModes(modes, i));
+  if ((index - num_points() - 1) % ContactStick::kCrossingsPerPoint == 1) {
+    ContactStick::OnCrossing(1, Motion(ctx, i, &delta), {}, StickModes(modes, i));
+    return;
+  }
+  // one point's share beyond its cone: the contact's stuck points let go together (the others
+  // alone would pivot the body about themselves and drag the released point off its slip)
+  bool beyond = false;
+  ReleaseAll(ctx, Shares(ctx, &beyond), modes);
 }
 
 std::string PointsPlaneContact::CrossingName(int index, int direction) const {

@@ -136,6 +136,12 @@ class PointsPlaneContact final : public ForceElement {
   // rates of, so that the holds' response S is symmetric. The points'
   // shares are statically the same in the plane.
   void ApplyHold(const ElementContext& ctx, const Patch& patch, int hold, double f, Loads* loads) const;
+  // The stuck points' shares of the holding force (ctx.modes' stuck set);
+  // *beyond: some share is beyond its point's cone.
+  std::vector<std::array<double, 2>> Shares(const ElementContext& ctx, bool* beyond) const;
+  // Every stuck point slides, along -(its share).
+  void ReleaseAll(const ElementContext& ctx, const std::vector<std::array<double, 2>>& shares,
+                  std::span<double> modes) const;
   // The held point as a material point of body 1.
   ContactPointMotion CentreMotion(const ElementContext& ctx, const Patch& patch) const;
   bool Stuck(std::span<const double> modes, int i) const {
