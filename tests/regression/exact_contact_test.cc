@@ -7,6 +7,8 @@
 // a stuck point of a body that a prescribed motion drives cannot be held.
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -174,6 +176,23 @@ TEST(ExactContactTest, ADiskOnATooSlipperyInclineSlips) {
     const double speed = -(vx[i] * std::cos(theta) + vz[i] * std::sin(theta));
     EXPECT_NEAR(speed, a * t[i], 1e-4 * a) << "t = " << t[i];
   }
+}
+
+TEST(ExactContactTest, TheFallingCubeComesToRestAndStays) {
+  // the Falling example (a cube sliding down an incline onto the floor) with exact stick
+  std::ifstream file(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/falling.xml");
+  std::string xml((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  for (std::size_t at; (at = xml.find("v_eps=\"1e-3\"")) != std::string::npos;) xml.replace(at, 12, "stick=\"exact\"");
+  const auto run = testing::RunXml(xml);
+  ASSERT_TRUE(run.outcome.ok) << run.outcome.failure;
+  const auto t = run.Column("time");
+  ASSERT_NEAR(t.back(), 4.0, 0.01);
+  const std::size_t second_to_last = t.size() - 1 - 500;  // 2 ms grid: t = 3
+  for (const char* column : {"m.p[0]", "m.p[1]", "m.p[2]"}) {
+    const auto p = run.Column(column);
+    EXPECT_LT(std::abs(p.back() - p[second_to_last]), 1e-9) << column;
+  }
+  EXPECT_GT(run.Column("m.p[1]").back(), 0.3);  // it ran onto the floor
 }
 
 TEST(ExactContactTest, AStuckPointOfADrivenBodyCannotBeHeld) {
