@@ -1,4 +1,4 @@
-# Every test executable, one line each: mechflow_test(name label sources...).
+# Every test file, one line each: mechflow_test(name label sources...) (see CMakeLists.txt).
 include(tests/mech/tests.cmake)
 include(tests/blocks/tests.cmake)
 include(tests/scripting/tests.cmake)

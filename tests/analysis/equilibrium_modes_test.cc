@@ -16,6 +16,7 @@
 #include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 #include "mech/errors.h"
+#include "tests/numbers.h"
 #include "tests/test_util.h"
 
 namespace mechflow::analysis {
@@ -25,7 +26,7 @@ using namespace blocks;
 
 using ::testing::HasSubstr;
 
-constexpr double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 // The state and modes of the last row a run records.
 class LastRow : public RowObserver {

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/force_analysis.h"
+#include "tests/numbers.h"
 #include "tests/test_util.h"
 
 namespace mechflow::analysis {
@@ -20,7 +21,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 // A diagram file with one body on a slider and the element `element`
 // (named e) between the ground and it, written to a temporary folder.

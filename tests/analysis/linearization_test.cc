@@ -17,6 +17,7 @@
 
 #include "diagrams/loader.h"
 #include "mech/errors.h"
+#include "tests/numbers.h"
 #include "tests/test_util.h"
 
 namespace mechflow::analysis {
@@ -24,7 +25,7 @@ namespace {
 
 using namespace blocks;
 
-constexpr double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 std::string Example(const std::string& name) {
   return std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + name;

@@ -10,12 +10,13 @@
 #include <gtest/gtest.h>
 
 #include "analysis/spectrum.h"
+#include "tests/numbers.h"
 #include "tests/test_util.h"
 
 namespace mechflow::analysis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 std::vector<double> Sines(int n, double dt, std::vector<std::pair<double, double>> amplitude_frequency) {
   std::vector<double> x(n, 0.3);  // an offset, which the mean removal takes out

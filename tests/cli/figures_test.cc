@@ -18,7 +18,7 @@
 #include "cli/report.h"
 #include "tests/test_util.h"
 
-namespace mechflow::cli {
+namespace mechflow::cli::figures_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 using ::testing::HasSubstr;
@@ -131,4 +131,4 @@ TEST(FiguresTest, NoWarningWithinTheBoundAndTheDefaultIsFiveCentimetres) {
 }
 
 }  // namespace
-}  // namespace mechflow::cli
+}  // namespace mechflow::cli::figures_test

@@ -16,7 +16,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-namespace mechflow::cli {
+namespace mechflow::cli::modes_command_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 using ::testing::HasSubstr;
@@ -292,4 +292,4 @@ TEST(ModesCommandTest, Help) {
 }
 
 }  // namespace
-}  // namespace mechflow::cli
+}  // namespace mechflow::cli::modes_command_test

@@ -8,7 +8,7 @@
 #include "analysis/linearization.h"
 #include "cli/commands.h"
 
-namespace mechflow::cli {
+namespace mechflow::cli::modes_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 std::string Example(const std::string& name) {
@@ -76,4 +76,4 @@ TEST(ModesTest, JacobianOfALinearSystemIsExact) {
 }
 
 }  // namespace
-}  // namespace mechflow::cli
+}  // namespace mechflow::cli::modes_test

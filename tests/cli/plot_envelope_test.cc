@@ -20,7 +20,7 @@
 #include "cli/plot_envelope.h"
 #include "tests/cli/mechflow_command.h"
 
-namespace mechflow {
+namespace mechflow::plot_envelope_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 namespace fs = std::filesystem;
@@ -219,4 +219,4 @@ TEST(PlotEnvelopeTest, ASweepOverlaysItsLongRunsEnvelopes) {
 }
 
 }  // namespace
-}  // namespace mechflow
+}  // namespace mechflow::plot_envelope_test

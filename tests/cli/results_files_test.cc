@@ -23,7 +23,7 @@
 #include "tests/cli/mechflow_command.h"
 #include "tests/test_util.h"
 
-namespace mechflow {
+namespace mechflow::results_files_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 namespace fs = std::filesystem;
@@ -184,4 +184,4 @@ TEST(ResultsFilesTest, FiftyCurvesLookDifferent) {
 }
 
 }  // namespace
-}  // namespace mechflow
+}  // namespace mechflow::results_files_test

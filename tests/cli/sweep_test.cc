@@ -30,7 +30,7 @@
 #include "cli/vary_pattern.h"
 #include "tests/cli/mechflow_command.h"
 
-namespace mechflow::cli {
+namespace mechflow::cli::sweep_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 using ::testing::HasSubstr;
@@ -478,4 +478,4 @@ TEST(SweepTest, AnInterruptWhileTheOverlayIsDrawnEndsTheSweepAsInterrupted) {
 }
 
 }  // namespace
-}  // namespace mechflow::cli
+}  // namespace mechflow::cli::sweep_test

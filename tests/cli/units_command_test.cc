@@ -12,7 +12,7 @@
 
 #include "tests/cli/mechflow_command.h"
 
-namespace mechflow {
+namespace mechflow::units_command_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 namespace fs = std::filesystem;
@@ -104,4 +104,4 @@ TEST(UnitsCommandTest, AReportUnitConvertsItsFigure) {
 }
 
 }  // namespace
-}  // namespace mechflow
+}  // namespace mechflow::units_command_test

@@ -11,7 +11,7 @@
 
 #include "tests/test_util.h"
 
-namespace mechflow::diagrams {
+namespace mechflow::diagrams::bad_input_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 using ::testing::HasSubstr;
@@ -135,4 +135,4 @@ TEST(BadInputTest, ReportAsksForNoneOrTwoFigures) {
 }
 
 }  // namespace
-}  // namespace mechflow::diagrams
+}  // namespace mechflow::diagrams::bad_input_test

@@ -23,6 +23,7 @@
 #include "graphics/encoding.h"
 #include "tests/cli/mechflow_command.h"
 #include "tests/graphics/hostile_names.h"
+#include "tests/numbers.h"
 
 namespace mechflow {
 namespace {
@@ -30,7 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-constexpr double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 const char* Chromium() {
   for (const char* path : {"/usr/bin/chromium", "/usr/bin/chromium-browser"})

@@ -9,11 +9,12 @@
 #include <gtest/gtest.h>
 
 #include "graphics/mesh.h"
+#include "tests/numbers.h"
 
 namespace mechflow::graphics {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 // The signed volume of a closed triangle mesh (divergence theorem): positive
 // when every triangle is counter-clockwise seen from outside.

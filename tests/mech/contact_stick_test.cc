@@ -15,7 +15,7 @@
 #include "mech/points_plane_contact.h"
 #include "tests/mech/mech_test_util.h"
 
-namespace mechflow::mech {
+namespace mechflow::mech::contact_stick_test {
 namespace {
 
 using testing::Box;
@@ -114,4 +114,4 @@ TEST(ContactStickTest, CirclePlaneHoldRollsARollingDisk) {
 }
 
 }  // namespace
-}  // namespace mechflow::mech
+}  // namespace mechflow::mech::contact_stick_test

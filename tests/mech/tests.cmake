@@ -6,7 +6,7 @@ mechflow_test(quaternion_joint_test unit tests/mech/quaternion_joint_test.cc)
 # Counting allocations replaces malloc, which AddressSanitizer owns: these
 # run in the Release suite only.
 if(NOT MECHFLOW_SANITIZE AND NOT MECHFLOW_FUZZ)
-  mechflow_test(mech_no_allocation_test unit tests/mech/no_allocation_test.cc)
+  mechflow_test(mech_no_allocation_test unit tests/mech/no_allocation_test.cc OWN_EXECUTABLE)
 endif()
 mechflow_test(force_elements_test unit tests/mech/force_elements_test.cc)
 mechflow_test(friction_hysteresis_test unit tests/mech/friction_hysteresis_test.cc)
@@ -19,11 +19,11 @@ mechflow_test(energy_sensor_test unit tests/mech/energy_sensor_test.cc)
 if(NOT MECHFLOW_BUILD_BENCH)
   add_subdirectory(${PROJECT_SOURCE_DIR}/bench ${PROJECT_BINARY_DIR}/bench EXCLUDE_FROM_ALL)
 endif()
-mechflow_test(pendulum_chain_reference_test unit tests/mech/pendulum_chain_reference_test.cc)
-target_link_libraries(pendulum_chain_reference_test PRIVATE mechflow_bench_reference)
+# (its own executable: it counts malloc calls)
+mechflow_test(pendulum_chain_reference_test unit tests/mech/pendulum_chain_reference_test.cc OWN_EXECUTABLE
+              LINK mechflow_bench_reference)
 
 # the P1-P3 reference (bench/friction_direct.*) against closed forms, and the generated diagrams
 # (bench/friction_diagram.*) run by mechflow against it
-mechflow_test(friction_reference_test unit tests/mech/friction_reference_test.cc)
-target_link_libraries(friction_reference_test PRIVATE mechflow_bench_friction)
+mechflow_test(friction_reference_test unit tests/mech/friction_reference_test.cc LINK mechflow_bench_friction)
 mechflow_test(contact_stick_test unit tests/mech/contact_stick_test.cc)

@@ -16,7 +16,7 @@
 
 #include "tests/test_util.h"
 
-namespace mechflow {
+namespace mechflow::exact_contact_test {
 namespace {
 
 constexpr double kG = 9.81;
@@ -210,4 +210,4 @@ TEST(ExactContactTest, AStuckPointOfADrivenBodyCannotBeHeld) {
 }
 
 }  // namespace
-}  // namespace mechflow
+}  // namespace mechflow::exact_contact_test

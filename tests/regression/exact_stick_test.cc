@@ -14,12 +14,13 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/numbers.h"
 #include "tests/test_util.h"
 
 namespace mechflow {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 // FR-2 with the friction on the joint coordinate or on a line from a point
 // of the ground far out along -x (so the line stays along the motion).

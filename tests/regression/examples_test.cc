@@ -11,11 +11,12 @@
 
 #include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
+#include "tests/numbers.h"
 
 namespace mechflow {
 namespace {
 
-const double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 std::string Example(const std::string& name) {
   return std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + name;

@@ -17,7 +17,7 @@
 #include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 
-namespace mechflow {
+namespace mechflow::fidget_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 struct FidgetRun {
@@ -127,4 +127,4 @@ TEST(FidgetTest, SettlesWithThePlungerDeflectedByItsWeightOverCAndLosesEnergy) {
 }
 
 }  // namespace
-}  // namespace mechflow
+}  // namespace mechflow::fidget_test

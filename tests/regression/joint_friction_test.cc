@@ -12,12 +12,13 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/numbers.h"
 #include "tests/test_util.h"
 
 namespace mechflow {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 std::string Oscillator(const std::string& joint_type, const std::string& friction, const std::string& extra = "") {
   return "<diagram name='osc'><identifiers><identifier name='k' value='100'/><identifier name='F' value='2'/>"

@@ -13,11 +13,12 @@
 #include "blocks/library/mechanism_block.h"
 #include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
+#include "tests/numbers.h"
 
-namespace mechflow {
+namespace mechflow::mechanism_examples_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
-const double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 struct ExampleRun {
   diagrams::LoadedDiagram loaded;
@@ -282,4 +283,4 @@ TEST(MechanismExamplesTest, PendulumChainConservesEnergy) {
 }
 
 }  // namespace
-}  // namespace mechflow
+}  // namespace mechflow::mechanism_examples_test

@@ -14,12 +14,13 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/numbers.h"
 #include "tests/test_util.h"
 
 namespace mechflow {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 const std::string kLadder = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/parallelogram_ladder.xml";
 
 // The example with the last crank's angle logged as "last" (its pivot

@@ -13,6 +13,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/numbers.h"
 #include "tests/test_util.h"
 
 namespace mechflow {
@@ -20,7 +21,7 @@ namespace {
 
 using ::testing::HasSubstr;
 using Complex = std::complex<double>;
-const double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 // Amplitude and phase (y = A sin(w t + phase)) of y over the whole periods
 // of w that end at the last row, by projection (trapezoid rule).

@@ -19,12 +19,13 @@
 #include "diagrams/loader.h"
 #include "mech/constraint_solve.h"
 #include "mech/mechanism.h"
+#include "tests/numbers.h"
 #include "tests/test_util.h"
 
-namespace mechflow {
+namespace mechflow::singular_position_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 constexpr double kG = 9.81, kA = 0.5, kD = 1.0;  // crank radius, rod length = pivot spacing
 
 struct Energy {
@@ -193,4 +194,4 @@ TEST(SingularPositionTest, TheCollinearPositionIsNamed) {
 }
 
 }  // namespace
-}  // namespace mechflow
+}  // namespace mechflow::singular_position_test

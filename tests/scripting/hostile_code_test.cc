@@ -20,7 +20,7 @@
 #include "scripting/lua_state.h"
 #include "tests/test_util.h"
 
-namespace mechflow::scripting {
+namespace mechflow::scripting::hostile_code_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 using mechflow::testing::InputErrorOf;
@@ -363,4 +363,4 @@ TEST(HostileCodeTest, LoopsOfFullCollectionsMeetTheTimeLimit) {
 }
 
 }  // namespace
-}  // namespace mechflow::scripting
+}  // namespace mechflow::scripting::hostile_code_test

@@ -18,7 +18,7 @@
 #include "scripting/identifier_bindings.h"
 #include "tests/test_util.h"
 
-namespace mechflow::scripting {
+namespace mechflow::scripting::lua_block_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 using mechflow::testing::InputErrorOf;
@@ -412,4 +412,4 @@ TEST(LuaBlockTest, EndlessLoopIsStopped) {
 }
 
 }  // namespace
-}  // namespace mechflow::scripting
+}  // namespace mechflow::scripting::lua_block_test

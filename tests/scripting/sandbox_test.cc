@@ -19,7 +19,7 @@
 #include "scripting/lua_state.h"
 #include "tests/test_util.h"
 
-namespace mechflow::scripting {
+namespace mechflow::scripting::sandbox_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 using mechflow::testing::InputErrorOf;
@@ -194,4 +194,4 @@ TEST_F(SandboxExpressionTest, OnlyExpressionsThatCanLoopAreCounted) {
 }
 
 }  // namespace
-}  // namespace mechflow::scripting
+}  // namespace mechflow::scripting::sandbox_test

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/blocks/block_test_util.h"
+#include "tests/numbers.h"
 
 namespace mechflow::blocks {
 namespace {
@@ -18,7 +19,7 @@ using testing::MakeError;
 using testing::Options;
 using testing::Simulate;
 
-const double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 // a = (3, -1), b = (4, 0.5): every block elementwise on width 2.
 TEST(ArithmeticTest, ElementwiseValues) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/blocks/block_test_util.h"
+#include "tests/numbers.h"
 
 namespace mechflow::blocks {
 namespace {
@@ -17,7 +18,7 @@ using testing::Num;
 using testing::Options;
 using testing::Simulate;
 
-const double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 // True when t is an event instant: the row there may show the value just
 // before the event (the root is located at or a hair after t) or after it.

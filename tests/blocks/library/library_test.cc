@@ -8,9 +8,10 @@
 #include <gtest/gtest.h>
 
 #include "mech/friction_law.h"
+#include "tests/numbers.h"
 #include "tests/test_util.h"
 
-namespace mechflow::blocks {
+namespace mechflow::blocks::library_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 using ::testing::HasSubstr;
@@ -18,7 +19,7 @@ using mechflow::testing::InputErrorOf;
 using mechflow::testing::LoadXml;
 using mechflow::testing::RunXml;
 
-const double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 // A diagram with the given blocks, connections and logs; t in [0, t_end].
 std::string Diagram(const std::string& blocks, const std::string& connections, const std::string& logs,
@@ -226,4 +227,4 @@ TEST(LibraryTest, FactoriesRejectUnusableParameters) {
 }
 
 }  // namespace
-}  // namespace mechflow::blocks
+}  // namespace mechflow::blocks::library_test

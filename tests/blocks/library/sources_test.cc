@@ -11,6 +11,7 @@
 
 #include "blocks/library/table.h"
 #include "tests/blocks/block_test_util.h"
+#include "tests/numbers.h"
 
 namespace mechflow::blocks {
 namespace {
@@ -23,7 +24,7 @@ using testing::Num;
 using testing::Options;
 using testing::Simulate;
 
-const double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 TEST(SourcesTest, ConstantClockAndSine) {
   const auto run = Simulate(Blocks(MakeBlock("constant", "c", {{"value", "1.5 -2"}}), MakeBlock("clock", "clk"),

@@ -119,7 +119,7 @@ TEST(ReportTest, AFailedRunReportsWhatItFoundUpToTheFailure) {
       "<connect from='sq.y' to='x.u'/></connections>"
       "<solver t_end='2' rtol='1e-8' atol='1e-10'/>"
       "<output interval='0.1'><log signal='x.y'/><report peak='x.y' label='largest x'/></output></diagram>";
-  const auto run = testing::RunXml(xml);
+  const auto run = mechflow::testing::RunXml(xml);
   ASSERT_FALSE(run.outcome.ok);
   const auto& f = run.sim->results().figures();
   ASSERT_EQ(f.size(), 1u);

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/blocks/block_test_util.h"
+#include "tests/numbers.h"
 
 namespace mechflow::blocks {
 namespace {
@@ -19,7 +20,7 @@ using testing::MakeError;
 using testing::Options;
 using testing::Simulate;
 
-const double kPi = 3.14159265358979323846;
+using mechflow::testing::kPi;
 
 // Closed forms, written out independently of the blocks.
 double DeadZone(double u, double start, double end) { return u < start ? u - start : u > end ? u - end : 0.0; }

@@ -11,7 +11,7 @@
 #include "blocks/solver/simulator.h"
 #include "mech/errors.h"
 
-namespace mechflow::blocks {
+namespace mechflow::blocks::projection_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 // A point circling the unit circle at w [rad/s] with a radial term that
@@ -224,4 +224,4 @@ TEST(ProjectionTest, AFailedProjectionEndsTheRunWithTheBlocksReason) {
 }
 
 }  // namespace
-}  // namespace mechflow::blocks
+}  // namespace mechflow::blocks::projection_test

@@ -33,7 +33,7 @@
 #include "tests/blocks/block_test_util.h"
 #include "tests/test_util.h"
 
-namespace mechflow {
+namespace mechflow::sparse_jacobian_test {  // names of its own: the files of its folder are compiled together
 namespace {
 
 using blocks::ColouredJacobian;
@@ -447,4 +447,4 @@ TEST(SparseSolverTest, SparseRunOfAStatelessDiagram) {
 }
 
 }  // namespace
-}  // namespace mechflow
+}  // namespace mechflow::sparse_jacobian_test
