@@ -40,7 +40,7 @@ CirclePlaneContact::CirclePlaneContact(std::string name, std::string origin, int
 }
 
 std::string CirclePlaneContact::LinearisedAs(std::span<const double> modes) const {
-  return ContactLinearisedAs(modes);
+  return ContactLinearisedAs(modes.first(1), stick_.has_value());
 }
 
 std::string CirclePlaneContact::CrossingWarning(int index, int direction) const {

@@ -40,13 +40,17 @@ std::string StartPenetrationWarning(const ElementContext& ctx, const std::string
   return start + ": check the bodies' initial positions and the plane's point and normal";
 }
 
-std::string ContactLinearisedAs(std::span<const double> modes) {
+std::string ContactLinearisedAs(std::span<const double> touching_modes, bool exact_stick) {
   int touching = 0;
-  for (const double m : modes) touching += m != 0.0;
+  for (const double m : touching_modes) touching += m != 0.0;
   if (touching == 0) return "not touching: no contact stiffness";
-  return std::to_string(touching) + " of " + std::to_string(modes.size()) +
-         " point(s) touching: their contact stiffness acts, and below a slip of v_eps their regularised "
-         "friction acts as a steep viscous damper (mu N / v_eps per point)";
+  const std::string points = std::to_string(touching) + " of " + std::to_string(touching_modes.size()) +
+                             " point(s) touching: their contact stiffness acts, ";
+  if (exact_stick)
+    return points + "and their slip is held exactly while they stick (held motions are locked: a zero "
+                    "eigenvalue below is such a lock, not a free motion)";
+  return points + "and below a slip of v_eps their regularised friction acts as a steep viscous damper "
+                  "(mu N / v_eps per point)";
 }
 
 PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int body1, std::vector<Vec3> points,
@@ -80,7 +84,7 @@ PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int
 }
 
 std::string PointsPlaneContact::LinearisedAs(std::span<const double> modes) const {
-  return ContactLinearisedAs(modes);
+  return ContactLinearisedAs(modes.first(num_points()), stick_.has_value());
 }
 
 std::string PointsPlaneContact::CrossingWarning(int index, int direction) const {

@@ -64,7 +64,7 @@ std::string StartPenetrationWarning(const ElementContext& ctx, const std::string
                                     double depth, int body1, int body2, const Vec3& plane_point, const Vec3& normal);
 // What `mechflow modes` says of a contact linearised with these point modes
 // (nonzero: touching).
-std::string ContactLinearisedAs(std::span<const double> modes);
+std::string ContactLinearisedAs(std::span<const double> touching_modes, bool exact_stick);
 
 class PointsPlaneContact final : public ForceElement {
  public:
