@@ -21,11 +21,10 @@
 // side its function starts on when its mode begins, so entering a mode is no
 // crossing.
 //
-// A contact point that holds in its tangent plane would have a two-component
-// hold: H and the slip rate become vectors, the two break-away functions one
-// (|H| - limit), and the two slip-end functions one (the slip velocity along
-// the direction it had when sliding began); the mode then records that
-// direction. StickSlipHold and the decisions below are the 1-D case of that.
+// A contact point holds in its tangent plane: its two-component hold, with
+// one break-away function (|H| - limit) and one slip-end function (the slip
+// along its recorded direction), is mech/contact_stick.h; StickSlipHold and
+// the decisions below are the 1-D case.
 
 #include <array>
 #include <span>
