@@ -111,7 +111,7 @@ void ContactStick::OnCrossing(int which, const ContactPointMotion& m, std::span<
 }
 
 bool ContactStick::Update(double N, std::span<const double> f, std::span<double> modes) const {
-  if (modes[0] != kStuck || !(std::hypot(f[0], f[1]) > Limit(N))) return false;
+  if (modes[0] != kStuck || !Exceeds(N, f)) return false;
   SlideAgainst(f, modes);
   return true;
 }
