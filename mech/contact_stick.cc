@@ -83,7 +83,7 @@ Vec3 ContactStick::Friction(const ContactPointMotion& m, double N, std::span<con
                             std::span<const double> f) const {
   if (modes[0] == kStuck) return f[0] * m.t1 + f[1] * m.t2;
   const Vec3 wt = m.s1 * m.t1 + m.s2 * m.t2;
-  const Vec3 along = wt + kDirectionSpeed * Direction(m, modes);
+  const Vec3 along = wt + 2.0 * kEndSpeed * Direction(m, modes);
   const double size = along.norm();
   if (!(size > 0.0)) return Vec3::Zero();
   const double stribeck = m.speed() / law_.stribeck_velocity;
@@ -99,7 +99,7 @@ void ContactStick::Follow(const ContactPointMotion& m, std::span<double> modes) 
 void ContactStick::ZeroCrossings(const ContactPointMotion& m, double N, bool touching, std::span<const double> modes,
                                  std::span<const double> f, std::span<double> values) const {
   values[0] = touching && modes[0] == kStuck ? std::hypot(f[0], f[1]) - Limit(N) : -1.0;
-  values[1] = touching && modes[0] == kSliding ? m.s1 * modes[1] + m.s2 * modes[2] - kEndSpeed : 1.0;
+  values[1] = touching && modes[0] == kSliding ? m.s1 * modes[1] + m.s2 * modes[2] + kEndSpeed : 1.0;
 }
 
 void ContactStick::OnCrossing(int which, const ContactPointMotion& m, std::span<const double> f,

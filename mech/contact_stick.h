@@ -16,19 +16,19 @@
 //     STUCK -> SLIDING  when |f_t| - mu_s N rises through 0; the slip starts
 //                       along -f_t (the way the holding force resisted). A
 //                       hold whose N falls to zero lets go the same way.
-//     SLIDING -> STUCK  when w_t . d - kEndSpeed falls through 0, d being
+//     SLIDING -> STUCK  when w_t . d + kEndSpeed falls through 0, d being
 //                       the slip's direction at the end of the last step
 //                       (Simbody's lesson: the slip reverses within a step,
 //                       rather than |w_t| = 0, which an integrator steps
 //                       over). The offset keeps the function off zero
-//                       where a slip starts (w_t = 0: round-off there would
-//                       end it at once) and keeps the end before w_t
-//                       reverses (where the friction turns round). A slip
-//                       sets off along d: its breakaway is found where the
-//                       holding force rises through the cone. If the point
-//                       still moves sideways faster than kStopSpeed where
-//                       the slip ends, it goes on sliding with d := the new
-//                       slip direction.
+//                       where a slip starts (w_t = 0), so that a slip that
+//                       sets off backwards is seen too; the friction's
+//                       direction is that of w_t + 2 kEndSpeed d, which
+//                       turns round only after the crossing (else the
+//                       friction would chatter about w_t = 0 before the
+//                       slip could end). If the point still moves sideways
+//                       faster than kStopSpeed where the slip ends, it goes
+//                       on sliding with d := the new slip direction.
 //   a stuck hold beyond its cone at an event (a load applied at once) slips
 //   at once; the velocity a stuck point keeps from the root finder (about
 //   1e-12 m/s) is removed by the mechanism at the event (mech/mechanism.h).
@@ -71,11 +71,7 @@ class ContactStick {
   // A slip that ends while the point still moves sideways faster than this
   // [m/s] turns instead of sticking.
   static constexpr double kStopSpeed = 1e-6;
-  // At w_t = 0 the slip's direction is the mode's: the friction's direction
-  // is that of w_t + kDirectionSpeed d, which differs from w_t's only below
-  // about this speed [m/s].
-  static constexpr double kDirectionSpeed = 1e-12;
-  // A slip has run out when w_t . d falls below kEndSpeed [m/s].
+  // A slip has ended when w_t . d falls below -kEndSpeed [m/s].
   static constexpr double kEndSpeed = 1e-9;
 
   explicit ContactStick(const ContactLaw& law) : law_(law) {}
