@@ -8,15 +8,11 @@
 #include "mech/kinematics.h"
 
 namespace mechflow::mech {
-namespace {
-
-std::string FormatNumber(double v) {
+std::string ContactNumber(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%g", v);
   return buffer;
 }
-
-}  // namespace
 
 double ContactNormalForce(const ContactLaw& law, double delta, double rate) {
   if (delta <= 0) return 0.0;
@@ -34,7 +30,7 @@ double ContactEnergy(const ContactLaw& law, double delta) {
 
 void CheckContactLaw(const ContactLaw& law, const std::string& where) {
   auto require = [&](bool ok, const char* what, double value) {
-    if (!ok) throw InputError(where + what + " (found " + FormatNumber(value) + ")");
+    if (!ok) throw InputError(where + what + " (found " + ContactNumber(value) + ")");
   };
   require(law.exponent >= 1.0, "the stiffness exponent must be at least 1", law.exponent);
   require(law.stiffness >= 0, "the stiffness must be >= 0", law.stiffness);
@@ -49,7 +45,7 @@ void CheckContactLaw(const ContactLaw& law, const std::string& where) {
 }
 
 std::string PenetrationWarning(const ContactLaw& law) {
-  return "penetration exceeds max_penetration = " + FormatNumber(law.max_penetration) +
+  return "penetration exceeds max_penetration = " + ContactNumber(law.max_penetration) +
          " m (is the contact too soft, or is a body passing through the plane?)";
 }
 

@@ -44,6 +44,8 @@ double ContactNormalForce(const ContactLaw& law, double delta, double rate);
 double ContactEnergy(const ContactLaw& law, double delta);
 // Checks a law's numbers; throws InputError starting with `where`.
 void CheckContactLaw(const ContactLaw& law, const std::string& where);
+// A number as the contacts' messages print it (%g).
+std::string ContactNumber(double v);
 // The warning of a contact whose penetration crossed its bound (rising).
 std::string PenetrationWarning(const ContactLaw& law);
 

@@ -2,22 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "mech/dynamics.h"
 #include "mech/errors.h"
 
 namespace mechflow::mech {
-namespace {
-
-std::string FormatNumber(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
-
-}  // namespace
 
 double PlaneDepth(const Kinematics& kin, int body2, const Vec3& plane_point, const Vec3& normal, const Vec3& p) {
   const Pose& plane = kin.body_pose[body2];
@@ -28,7 +18,7 @@ std::string StartPenetrationWarning(const ElementContext& ctx, const std::string
                                     double depth, int body1, int body2, const Vec3& plane_point, const Vec3& normal) {
   if (!(depth > law.max_penetration)) return "";
   // m, with mm alongside: contacts are set in m, their depths read in mm
-  auto length = [](double m) { return FormatNumber(m) + " m (" + FormatNumber(m * 1e3) + " mm)"; };
+  auto length = [](double m) { return ContactNumber(m) + " m (" + ContactNumber(m * 1e3) + " mm)"; };
   const std::string start = "contact '" + name + "' starts " + length(depth) +
                             " inside its plane, beyond its max_penetration " + length(law.max_penetration);
   const Body& body = ctx.model->bodies()[body1];
