@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Exact contact stick against the regularised law on the same models, in one
-# run: the seed examples Falling and Oscillations (with mu_static = 0.4: true
-# stick-slip) and a box held on a 20 deg incline for 100 s. Prints, per model
+# run: the seed examples Falling, Oscillations (with mu_static = 0.4: true
+# stick-slip) and Fidget (a wheel set rocking on two rims), and a box held on
+# a 20 deg incline for 100 s. Prints, per model
 # and law, the solver's steps, right-hand sides and events, the CPU time of
 # `mechflow run` (best of 3), and the ratio exact / regularised.
 #   bench/exact_contact_stick.sh [build folder]   (default: build)
@@ -16,6 +17,7 @@ exact() { sed -E 's/ v_eps="[^"]*"/ stick="exact"/g' "$1"; }
 sed 's/value="0.3" comment="static/value="0.4" comment="static/' diagrams/examples/oscillations.xml \
   > "$work/oscillations_regularised.xml"
 cp diagrams/examples/falling.xml "$work/falling_regularised.xml"
+cp diagrams/examples/fidget.xml "$work/fidget_regularised.xml"
 cat > "$work/held_box_regularised.xml" <<'XML'
 <diagram name="held_box"><identifiers>
   <identifier name="theta" value="20*pi/180"/><identifier name="m" value="2"/><identifier name="a" value="0.05"/>
@@ -28,7 +30,7 @@ cat > "$work/held_box_regularised.xml" <<'XML'
     <sensor name="p" kind="position" body="Box"/></mechanism>
   <solver t_end="100" rtol="1e-8" atol="1e-10"/><output interval="10"><log signal="m.p"/></output></diagram>
 XML
-for model in falling oscillations held_box; do exact "$work/${model}_regularised.xml" > "$work/${model}_exact.xml"; done
+for model in falling oscillations fidget held_box; do exact "$work/${model}_regularised.xml" > "$work/${model}_exact.xml"; done
 
 cpu() {  # diagram -> best user+sys seconds of 3 runs, and the solver's counters
   local best=
@@ -43,7 +45,7 @@ cpu() {  # diagram -> best user+sys seconds of 3 runs, and the solver's counters
 }
 
 printf '%-14s %-12s %8s %8s %8s %8s\n' model law "CPU [s]" steps RHS events
-for model in falling oscillations held_box; do
+for model in falling oscillations fidget held_box; do
   read -r t_reg s_reg r_reg e_reg < <(cpu "$work/${model}_regularised.xml")
   read -r t_ex s_ex r_ex e_ex < <(cpu "$work/${model}_exact.xml")
   printf '%-14s %-12s %8s %8s %8s %8s\n' "$model" regularised "$t_reg" "$s_reg" "$r_reg" "$e_reg"

@@ -36,6 +36,7 @@ CirclePlaneContact::CirclePlaneContact(std::string name, std::string origin, int
   DeclareModes(ContactStick::kModesPerPoint);
   DeclareCrossing(ContactStick::BreakawayDirection());
   DeclareCrossing(ContactStick::SlipEndDirection());
+  DeclareCrossing(ContactStick::SteerDirection());
   DeclareExactStick(2);
 }
 
@@ -113,9 +114,9 @@ bool CirclePlaneContact::UpdateModes(const ElementContext& ctx, std::span<double
 }
 
 std::string CirclePlaneContact::CrossingName(int index, int direction) const {
-  static const char* const kNames[] = {"", "penetration passes max_penetration", "breaks away", "slip ends"};
   if (index == 0) return direction > 0 ? "touches" : "leaves";
-  return kNames[index];
+  if (index == 1) return "penetration passes max_penetration";
+  return ContactStick::CrossingName(index - 2);
 }
 
 bool CirclePlaneContact::StuckExactly(const ElementContext& ctx, int) const {

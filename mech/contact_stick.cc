@@ -10,8 +10,9 @@ namespace {
 // The slip direction d of a point's modes, global.
 Vec3 Direction(const ContactPointMotion& m, std::span<const double> modes) { return modes[1] * m.t1 + modes[2] * m.t2; }
 
-void Slide(double d1, double d2, std::span<double> modes) {
-  modes[0] = ContactStick::kSliding;
+// Slips along (d1, d2) at `speed`: starting below kSteerSpeed.
+void Slip(double d1, double d2, double speed, std::span<double> modes) {
+  modes[0] = speed > ContactStick::kSteerSpeed ? ContactStick::kSliding : ContactStick::kStarting;
   modes[1] = d1;
   modes[2] = d2;
 }
@@ -21,16 +22,16 @@ void Stick(std::span<double> modes) {
   modes[1] = modes[2] = 0.0;
 }
 
-// Slides along -f (the way the holding force resisted); a hold with no
-// force to speak of (lift-off) keeps the way it last slid, or t_1.
-void SlideAgainst(std::span<const double> f, std::span<double> modes) {
+// Starts a slip along -f (the way the holding force resisted); a hold with
+// no force to speak of (lift-off) keeps the way it last slid, or t_1.
+void StartAgainst(std::span<const double> f, std::span<double> modes) {
   const double size = std::hypot(f[0], f[1]);
   if (size > 0.0)
-    Slide(-f[0] / size, -f[1] / size, modes);
+    Slip(-f[0] / size, -f[1] / size, 0.0, modes);
   else if (modes[1] != 0.0 || modes[2] != 0.0)
-    Slide(modes[1], modes[2], modes);
+    Slip(modes[1], modes[2], 0.0, modes);
   else
-    Slide(1.0, 0.0, modes);
+    Slip(1.0, 0.0, 0.0, modes);
 }
 
 // At the end of a slip: sticks when the point has (all but) stopped, else
@@ -38,7 +39,7 @@ void SlideAgainst(std::span<const double> f, std::span<double> modes) {
 void EndSlip(const ContactPointMotion& m, std::span<double> modes) {
   const double speed = m.speed();
   if (speed > ContactStick::kStopSpeed)
-    Slide(m.s1 / speed, m.s2 / speed, modes);
+    Slip(m.s1 / speed, m.s2 / speed, speed, modes);
   else
     Stick(modes);
 }
@@ -82,8 +83,8 @@ void ContactStick::Start(const ContactPointMotion& m, std::span<double> modes) {
 Vec3 ContactStick::Friction(const ContactPointMotion& m, double N, std::span<const double> modes,
                             std::span<const double> f) const {
   if (modes[0] == kStuck) return f[0] * m.t1 + f[1] * m.t2;
-  const Vec3 wt = m.s1 * m.t1 + m.s2 * m.t2;
-  const Vec3 along = wt + 2.0 * kEndSpeed * Direction(m, modes);
+  const Vec3 d = Direction(m, modes);
+  const Vec3 along = modes[0] == kStarting ? d : Vec3(m.s1 * m.t1 + m.s2 * m.t2 + 2.0 * kEndSpeed * d);
   const double size = along.norm();
   if (!(size > 0.0)) return Vec3::Zero();
   const double stribeck = m.speed() / law_.stribeck_velocity;
@@ -93,26 +94,39 @@ Vec3 ContactStick::Friction(const ContactPointMotion& m, double N, std::span<con
 
 void ContactStick::Follow(const ContactPointMotion& m, std::span<double> modes) {
   const double speed = m.speed();
-  if (modes[0] == kSliding && speed > 1e3 * kEndSpeed) Slide(m.s1 / speed, m.s2 / speed, modes);
+  if (modes[0] != kSliding || !(speed > 1e3 * kEndSpeed)) return;
+  modes[1] = m.s1 / speed;
+  modes[2] = m.s2 / speed;
 }
 
 void ContactStick::ZeroCrossings(const ContactPointMotion& m, double N, bool touching, std::span<const double> modes,
                                  std::span<const double> f, std::span<double> values) const {
   values[0] = touching && modes[0] == kStuck ? std::hypot(f[0], f[1]) - Limit(N) : -1.0;
-  values[1] = touching && modes[0] == kSliding ? m.s1 * modes[1] + m.s2 * modes[2] + kEndSpeed : 1.0;
+  const bool slipping = touching && modes[0] != kStuck;
+  values[1] = slipping ? m.s1 * modes[1] + m.s2 * modes[2] + kEndSpeed : 1.0;
+  values[2] = slipping && modes[0] == kStarting ? m.speed() - kSteerSpeed : -1.0;
 }
 
 void ContactStick::OnCrossing(int which, const ContactPointMotion& m, std::span<const double> f,
                               std::span<double> modes) {
-  if (which == 0)
-    SlideAgainst(f, modes);
-  else
+  if (which == 0) {
+    StartAgainst(f, modes);
+  } else if (which == 1) {
     EndSlip(m, modes);
+  } else if (const double speed = m.speed(); speed > 0.0) {
+    modes[0] = kSliding;  // at kSteerSpeed, whichever side of it the root lies
+    modes[1] = m.s1 / speed;
+    modes[2] = m.s2 / speed;
+  }
+}
+
+const char* ContactStick::CrossingName(int which) {
+  return which == 0 ? "breaks away" : which == 1 ? "slip ends" : "slip steers";
 }
 
 bool ContactStick::Update(double N, std::span<const double> f, std::span<double> modes) const {
   if (modes[0] != kStuck || !Exceeds(N, f)) return false;
-  SlideAgainst(f, modes);
+  StartAgainst(f, modes);
   return true;
 }
 

@@ -3,38 +3,48 @@
 // circle-plane contacts; docs/ELEMENTS.md 5.5): the two-component
 // stick/slip mode machine of one point, the 2-D case of mech/stick_slip.h.
 //
-// A point in contact is STUCK or SLIDING. While stuck, its two tangential
-// slip components s_k = t_k . w (w: body 1's material velocity at the
-// contact point minus body 2's; t_1, t_2 tangents fixed in body 2) are held
-// at zero by holding forces f_1, f_2 that the mechanism solves for with
+// A point in contact is STUCK, STARTING or SLIDING. While stuck, its two
+// tangential slip components s_k = t_k . w (w: body 1's material velocity at
+// the contact point minus body 2's; t_1, t_2 tangents fixed in body 2) are
+// held at zero by holding forces f_1, f_2 that the mechanism solves for with
 // every other stuck hold (mech/exact_stick.h); the normal force stays the
-// penalty law. While sliding, friction is Coulomb's with the contact's
-// Stribeck curve: -mu(|w_t|) N along the slip, whose direction at the very
-// start of a slip (w_t = 0) is the mode's slip direction d.
+// penalty law. Otherwise friction is Coulomb's with the contact's Stribeck
+// curve, mu(|w_t|) N against the slip. Its direction:
+//   STARTING  (a slip slower than kSteerSpeed): -d, d being the direction
+//             the slip set off in. Near w_t = 0 the slip's own direction
+//             means nothing: a slip whose sideways part is driven by other
+//             holds (the second rim of a wheel set rocking on its
+//             contacts) would turn the friction round faster than any step
+//             resolves; friction against the breakaway's direction turns
+//             it only at the events below.
+//   SLIDING   -(w_t + 2 kEndSpeed d) / |..|: against the slip (d as below).
 //
 //   crossings, events (never `if`s inside a step):
-//     STUCK -> SLIDING  when |f_t| - mu_s N rises through 0; the slip starts
-//                       along -f_t (the way the holding force resisted). A
-//                       hold whose N falls to zero lets go the same way.
-//     SLIDING -> STUCK  when w_t . d + kEndSpeed falls through 0, d being
-//                       the slip's direction at the end of the last step
-//                       (Simbody's lesson: the slip reverses within a step,
-//                       rather than |w_t| = 0, which an integrator steps
-//                       over). The offset keeps the function off zero
-//                       where a slip starts (w_t = 0), so that a slip that
-//                       sets off backwards is seen too; the friction's
-//                       direction is that of w_t + 2 kEndSpeed d, which
-//                       turns round only after the crossing (else the
-//                       friction would chatter about w_t = 0 before the
-//                       slip could end). If the point still moves sideways
-//                       faster than kStopSpeed where the slip ends, it goes
-//                       on sliding with d := the new slip direction.
+//     STUCK -> STARTING  when |f_t| - mu_s N rises through 0; the slip
+//                        starts along -f_t (the way the holding force
+//                        resisted). A hold whose N falls to zero lets go
+//                        the same way.
+//     STARTING -> SLIDING  when |w_t| rises through kSteerSpeed.
+//     STARTING, SLIDING -> STUCK  when w_t . d + kEndSpeed falls through 0,
+//                        d being the slip's direction (at its start, or at
+//                        the end of the last step while sliding): the slip
+//                        reverses within a step (Simbody's lesson: rather
+//                        than |w_t| = 0, which an integrator steps over).
+//                        The offset keeps the function off zero where a
+//                        slip starts (w_t = 0), so that a slip that sets off
+//                        backwards is seen too; a sliding friction's
+//                        direction turns round only after the crossing
+//                        (else it would chatter about w_t = 0 before the
+//                        slip could end). If the point still moves sideways
+//                        faster than kStopSpeed where the slip ends, it goes
+//                        on slipping with d := the new slip direction.
 //   a stuck hold beyond its cone at an event (a load applied at once) slips
 //   at once; the velocity a stuck point keeps from the root finder (about
 //   1e-12 m/s) is removed by the mechanism at the event (mech/mechanism.h).
 //
-// Modes per point: [slip state (kStuck, kSliding), d_1, d_2] (d in the
-// tangents' components); crossings per point: [breakaway, slip ends].
+// Modes per point: [slip state (kStuck, kSliding, kStarting), d_1, d_2] (d
+// in the tangents' components); crossings per point: [breakaway, slip ends,
+// slip steers].
 
 #include <cmath>
 #include <span>
@@ -66,34 +76,40 @@ ContactPointMotion MeasureContactPoint(const Kinematics& kin, int body1, int bod
 
 class ContactStick {
  public:
-  static constexpr double kStuck = 0.0, kSliding = 1.0;
-  static constexpr int kModesPerPoint = 3, kCrossingsPerPoint = 2;
+  static constexpr double kStuck = 0.0, kSliding = 1.0, kStarting = 2.0;
+  static constexpr int kModesPerPoint = 3, kCrossingsPerPoint = 3;
   // A slip that ends while the point still moves sideways faster than this
   // [m/s] turns instead of sticking.
   static constexpr double kStopSpeed = 1e-6;
   // A slip has ended when w_t . d falls below -kEndSpeed [m/s].
   static constexpr double kEndSpeed = 1e-9;
+  // A starting slip's friction turns to the slip's own direction [m/s].
+  static constexpr double kSteerSpeed = 1e-5;
 
   explicit ContactStick(const ContactLaw& law) : law_(law) {}
 
   // The directions of a point's crossings.
   static Crossing BreakawayDirection() { return Crossing::kRising; }
   static Crossing SlipEndDirection() { return Crossing::kFalling; }
+  static Crossing SteerDirection() { return Crossing::kRising; }
+  // What crossing `which` of a point is, for the event log.
+  static const char* CrossingName(int which);
 
   // The state a point takes on touching (or at the start): stuck when it
-  // moves slower than kStopSpeed, else sliding along its slip.
+  // moves slower than kStopSpeed, else slipping along its slip.
   static void Start(const ContactPointMotion& m, std::span<double> modes);
   // The friction on body 1 (global): the holding forces f while stuck, the
   // sliding law's otherwise; N is the point's normal force.
   Vec3 Friction(const ContactPointMotion& m, double N, std::span<const double> modes,
                 std::span<const double> f) const;
   // After a step: a sliding point's direction d turns to its slip (once
-  // the slip is well above kEndSpeed, where its direction means something).
+  // the slip is well above kEndSpeed, where its direction means something;
+  // a starting slip keeps its d).
   static void Follow(const ContactPointMotion& m, std::span<double> modes);
   // A point's two crossing values (touching: whether it is in contact).
   void ZeroCrossings(const ContactPointMotion& m, double N, bool touching, std::span<const double> modes,
                      std::span<const double> f, std::span<double> values) const;
-  // Crossing `which` (0 breakaway, 1 slip ends) fired.
+  // Crossing `which` (0 breakaway, 1 slip ends, 2 slip steers) fired.
   static void OnCrossing(int which, const ContactPointMotion& m, std::span<const double> f, std::span<double> modes);
   // After an event: a stuck point beyond its cone slides at once (along
   // -f_t). Returns true when it switched.

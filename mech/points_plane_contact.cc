@@ -69,6 +69,7 @@ PointsPlaneContact::PointsPlaneContact(std::string name, std::string origin, int
   for (int i = 0; i < num_points(); ++i) {
     DeclareCrossing(ContactStick::BreakawayDirection());
     DeclareCrossing(ContactStick::SlipEndDirection());
+    DeclareCrossing(ContactStick::SteerDirection());
   }
   DeclareExactStick(3);
 }
@@ -253,8 +254,8 @@ void PointsPlaneContact::OnCrossing(int index, int direction, const ElementConte
     return;
   }
   const int i = (index - num_points() - 1) / ContactStick::kCrossingsPerPoint;
-  if ((index - num_points() - 1) % ContactStick::kCrossingsPerPoint == 1) {
-    ContactStick::OnCrossing(1, Motion(ctx, i, &delta), {}, StickModes(modes, i));
+  if (const int which = (index - num_points() - 1) % ContactStick::kCrossingsPerPoint; which != 0) {
+    ContactStick::OnCrossing(which, Motion(ctx, i, &delta), {}, StickModes(modes, i));
     return;
   }
   // one point's share beyond its cone: the contact's stuck points let go together (the others
@@ -268,7 +269,7 @@ std::string PointsPlaneContact::CrossingName(int index, int direction) const {
   if (index == num_points()) return "penetration passes max_penetration";
   const int local = index - num_points() - 1;
   const std::string stick_point = "point " + std::to_string(local / ContactStick::kCrossingsPerPoint + 1);
-  return stick_point + (local % ContactStick::kCrossingsPerPoint == 0 ? " breaks away" : " slip ends");
+  return stick_point + " " + ContactStick::CrossingName(local % ContactStick::kCrossingsPerPoint);
 }
 
 PointsPlaneContact::Patch PointsPlaneContact::MeasurePatch(const ElementContext& ctx) const {

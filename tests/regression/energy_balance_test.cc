@@ -95,7 +95,7 @@ INSTANTIATE_TEST_SUITE_P(Examples, BalancedExample,
                                            "falling.xml", "forces.xml", "frequencies.xml", "oscillations.xml",
                                            "rollers.xml", "math_game.xml", "convel1.xml", "fidget.xml",
                                            "tension_mechanism.xml", "four_bar.xml", "slider_crank.xml", "train.xml",
-                                           "oscillations.xml+exact"));
+                                           "oscillations.xml+exact", "falling.xml+exact", "fidget.xml+exact"));
 
 // Kinetic + gravitational + stored energy, and what the elements dissipated,
 // from the ElastFriction example (box on a spring, friction to the base).

@@ -3,11 +3,14 @@
 // settles to rest with the plunger's joint deflection at -(weight component
 // along the joint axis)/c, and its mechanical energy never rises above the
 // start (the contacts and the damper only take energy out; the contact
-// springs give back no more than they stored).
+// springs give back no more than they stored) -- with the contacts'
+// regularised friction and with exact stick.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,6 +19,7 @@
 
 #include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
+#include "diagrams/xml_reader.h"
 
 namespace mechflow::fidget_test {  // names of its own: the files of its folder are compiled together
 namespace {
@@ -30,11 +34,18 @@ struct FidgetRun {
   }
 };
 
-FidgetRun RunFidget(double s1, double s2, double s3) {
+// fidget.xml, with its contacts' v_eps replaced by stick="exact" when `exact`.
+FidgetRun RunFidget(double s1, double s2, double s3, bool exact = false) {
   diagrams::LoadOptions options;
   options.overrides = {{"s1", s1}, {"s2", s2}, {"s3", s3}};
-  const auto loaded =
-      diagrams::LoadDiagram(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/fidget.xml", options);
+  const std::string path = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/fidget.xml";
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string xml = text.str();
+  for (std::size_t at; exact && (at = xml.find(" v_eps=\"")) != std::string::npos;)
+    xml.replace(at, xml.find('"', at + 8) + 1 - at, " stick=\"exact\"");
+  const auto loaded = diagrams::LoadDiagramDescription(diagrams::ReadDiagramText(xml, path), options);
   blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
   const auto outcome = sim.Run();
   EXPECT_TRUE(outcome.ok) << outcome.failure;
@@ -71,8 +82,10 @@ TEST(FidgetTest, EitherSignOfTheCircleNormalsGivesTheSameRun) {
   }
 }
 
-TEST(FidgetTest, SettlesWithThePlungerDeflectedByItsWeightOverCAndLosesEnergy) {
-  const FidgetRun run = RunFidget(1, -1, 1);
+class FidgetLaw : public ::testing::TestWithParam<bool> {};
+
+TEST_P(FidgetLaw, SettlesWithThePlungerDeflectedByItsWeightOverCAndLosesEnergy) {
+  const FidgetRun run = RunFidget(1, -1, 1, GetParam());
   const auto& t = run.Column("time");
   const std::size_t end = t.size() - 1;
   auto at = [&](const std::string& name, std::size_t k) { return run.Column(name)[k]; };
@@ -122,9 +135,14 @@ TEST(FidgetTest, SettlesWithThePlungerDeflectedByItsWeightOverCAndLosesEnergy) {
     e_end = e;
   }
   EXPECT_LE(worst, 1e-8 * e0);
-  std::printf("rest deflection %.9e m (expected %.9e), energy %.6f J at start, largest rise %.3e J, end %.6f J\n",
-              at("m.x", end), expected, e0, worst, e_end);
+  std::printf("%s: rest deflection %.9e m (expected %.9e), energy %.6f J at start, largest rise %.3e J, end %.6f J\n",
+              GetParam() ? "exact stick" : "regularised", at("m.x", end), expected, e0, worst, e_end);
 }
+
+INSTANTIATE_TEST_SUITE_P(Friction, FidgetLaw, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                           return std::string(info.param ? "ExactStick" : "Regularised");
+                         });
 
 }  // namespace
 }  // namespace mechflow::fidget_test
