@@ -74,4 +74,17 @@ std::vector<OutputEstimate> AnimationOutput::EstimateSizes(double rows) const {
   return files;
 }
 
+std::vector<OutputStem> AnimationOutput::Stems() const {
+  std::vector<OutputStem> stems;
+  const auto add = [&](const std::string& file, const std::string& named, const char* attribute, const char* option) {
+    if (file.empty()) return;
+    stems.push_back({StemOf(file), !named.empty() ? std::string("<output ") + attribute + "=\"" + file + "\">"
+                                                  : std::string(option) + " (the diagram's name \"" +
+                                                        loaded_.description.name + "\")"});
+  };
+  add(html_, loaded_.animation_file, "animation", "--animate");
+  add(glb_, loaded_.gltf_file, "gltf", "--gltf");
+  return stems;
+}
+
 }  // namespace mechflow::cli

@@ -10,6 +10,7 @@
 
 #include "blocks/solver/simulator.h"
 #include "cli/arguments.h"
+#include "cli/output_claims.h"
 #include "cli/output_budget.h"
 #include "cli/output_folder.h"
 #include "diagrams/loader.h"
@@ -33,6 +34,9 @@ class AnimationOutput {
   // The size of each file it will write, for a run of `rows` rows (the
   // output budget, cli/output_budget.h).
   std::vector<OutputEstimate> EstimateSizes(double rows) const;
+
+  // The stems of the files it will write (cli/output_claims.h).
+  std::vector<OutputStem> Stems() const;
 
  private:
   const diagrams::LoadedDiagram& loaded_;

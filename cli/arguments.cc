@@ -115,11 +115,17 @@ std::string HelpText(const std::string& command) {
   if (command == "run")
     return "usage: mechflow run FILE [--variant NAME]... [--set NAME=VALUE]... [--t-end T] [--out DIR]\n"
            "                    [--rtol R] [--atol A] [--interval DT] [--results NAME] [--quiet | --verbose]\n"
-           "                    [--animate] [--gltf] [--no-animate] [--unsafe-lua]\n"
+           "                    [--animate] [--gltf] [--no-animate] [--no-plot] [--overwrite] [--unsafe-lua]\n"
            "\n"
            "Simulates the diagram FILE and writes its logged signals as CSV (and the plot\n"
            "named in <output plot=...>) into DIR. Prints solver counters and the range of\n"
            "every logged signal.\n"
+           "\n"
+           "Files are named after the diagram (<diagram name>, <output csv>). DIR keeps a\n"
+           "record, .mechflow-outputs, of which diagram file wrote the files of each name;\n"
+           "a run whose files another diagram file wrote there (a copy keeping its\n"
+           "<diagram name>) is refused before it starts (exit 2): give another --out,\n"
+           "rename the outputs, or pass --overwrite. The same file again just overwrites.\n"
            "\n"
            "  --variant NAME    apply a named set of identifier values from the diagram's\n"
            "                    <variants> (repeatable, in order; `mechflow check` lists them)\n"
@@ -132,6 +138,14 @@ std::string HelpText(const std::string& command) {
            "  --rtol R, --atol A  the solver's tolerances, override <solver>\n"
            "  --interval DT     the output grid [s], overrides <output interval>\n"
            "  --results NAME    the results file's name (default: <output csv> or NAME.csv)\n"
+           "  --results -       the results CSV on standard output and nothing else there: every\n"
+           "                    message (and a script's print) goes to standard error. No plot;\n"
+           "                    the other files (NAME.units.csv, report, animation) go into\n"
+           "                    --out DIR if given, else are not written (a note says which).\n"
+           "                    A failed run leaves its rows up to the failure there (exit 1)\n"
+           "  --no-plot         draw no plot (nor its .gp script, nor the <spectrum>s'): gnuplot\n"
+           "                    is not needed; the CSV files and the animation are written alike\n"
+           "  --overwrite       replace files another diagram file wrote in DIR (see above)\n"
            "  --quiet           print nothing but errors\n"
            "  --animate         write the animation NAME.html (the <shape>s of the bodies in 3D;\n"
            "                    <output animation=\"...\"> names it in the diagram)\n"
@@ -172,7 +186,7 @@ std::string HelpText(const std::string& command) {
            "blocks of each subsystem instance are drawn in a box labelled with its path.\n";
   if (command == "modes")
     return "usage: mechflow modes FILE [--variant NAME]... [--set NAME=VALUE]... [--equilibrium]\n"
-           "                      [--out DIR] [--unsafe-lua]\n"
+           "                      [--out DIR] [--overwrite] [--unsafe-lua]\n"
            "\n"
            "Linearises the diagram at its initial state (or, with --equilibrium, at the\n"
            "static equilibrium found first by damped Newton on x' = 0, the modes of\n"
@@ -193,6 +207,7 @@ std::string HelpText(const std::string& command) {
            "  --equilibrium     linearise at the static equilibrium instead of the initial state\n"
            "  --out DIR         output folder for NAME.modes.csv (created if missing; default:\n"
            "                    current folder)\n"
+           "  --overwrite       replace a NAME.modes.csv another diagram file wrote, as for run\n"
            "  --unsafe-lua      give Lua code the io, os and package libraries\n"
            "  --allow-read DIR, --library DIR  as for mechflow run\n"
            "\n"
@@ -204,7 +219,7 @@ std::string HelpText(const std::string& command) {
   if (command == "sweep")
     return "usage: mechflow sweep FILE --vary NAME=V1,V2,... [--vary ...] [--variant NAME]...\n"
            "                      [--set NAME=VALUE]... [--t-end T] [--jobs N] [--out DIR] [--quiet | --verbose]\n"
-           "                      [--unsafe-lua]\n"
+           "                      [--no-plot] [--overwrite] [--unsafe-lua]\n"
            "\n"
            "Runs the diagram FILE once for every combination of the varied identifiers'\n"
            "values (the cartesian product; the last --vary changes fastest), N runs at a\n"
@@ -230,6 +245,9 @@ std::string HelpText(const std::string& command) {
            "                    (NAME.runK.ID=VALUE....events.txt)\n"
            "  --max-output SIZE the budget per output file (each run's results), as for run\n"
            "  --out DIR         output folder (created if missing; default: current folder)\n"
+           "  --no-plot         no overlay NAME.sweep.png (nor the envelopes it draws from)\n"
+           "  --overwrite       replace files another diagram file wrote in DIR, as for run\n"
+           "--results - is for mechflow run: a sweep writes a results file per run.\n"
            "\n"
            "Built with MPI (cmake -DMECHFLOW_MPI=ON), `mpirun -n K mechflow sweep ...`\n"
            "deals the runs to the K processes in turn (run i to process i mod K, each\n"
@@ -333,6 +351,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.t_end = ParseNumber(value(arg), arg);
     } else if (arg == "--out") {
       a.out_dir = value(arg);
+      a.out_given = true;
     } else if (arg == "--rtol" && runs) {
       a.rtol = ParseNumber(value(arg), arg);
     } else if (arg == "--atol" && runs) {
@@ -349,6 +368,10 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.gltf = true;
     } else if (arg == "--no-animate" && a.command == "run") {
       a.no_animate = true;
+    } else if (arg == "--no-plot" && runs) {
+      a.no_plot = true;
+    } else if (arg == "--overwrite" && (runs || a.command == "modes")) {
+      a.overwrite = true;
     } else if (arg == "--quiet" && runs) {
       a.quiet = true;
     } else if (arg == "--verbose" && runs) {
@@ -371,8 +394,8 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       std::vector<std::string> options = {"--set", "--set-file", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
       if (runs) options.insert(options.end(), {"--rtol", "--atol", "--interval", "--results", "--quiet"});
       if (a.command != "psd") options.insert(options.end(), {"--allow-read", "--library"});
-      if (runs) options.push_back("--max-output");
-      if (a.command == "modes") options.push_back("--equilibrium");
+      if (runs) options.insert(options.end(), {"--max-output", "--no-plot", "--overwrite"});
+      if (a.command == "modes") options.insert(options.end(), {"--equilibrium", "--overwrite"});
       if (a.command == "run") options.insert(options.end(), {"--animate", "--gltf", "--no-animate"});
       if (a.command == "sweep") options.insert(options.end(), {"--vary", "--jobs"});
       if (a.command == "force-analysis") options.push_back("--vary");
@@ -390,6 +413,13 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
   if (a.no_animate && (a.animate || a.gltf))
     throw UsageError(std::string("--no-animate and ") + (a.animate ? "--animate" : "--gltf") +
                      " contradict each other; give one");
+  if (a.results == "-" && a.command == "sweep")
+    throw UsageError("--results - (standard output) is for mechflow run: a sweep writes a results file per run; "
+                     "give --results NAME.csv (each run's file is named from it) or leave it out");
+  if (a.results == "-" && !a.out_given && (a.animate || a.gltf))
+    throw UsageError(std::string(a.animate ? "--animate" : "--gltf") +
+                     " writes a file into the output folder, and --results - without --out has none: give --out DIR "
+                     "for it (the results still go to standard output)");
   if (!a.help && a.command == "sweep" && a.vary.empty())
     throw UsageError("mechflow sweep needs at least one --vary NAME=V1,V2,...");
   return a;

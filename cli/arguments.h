@@ -18,13 +18,17 @@ struct Arguments {
   std::vector<std::pair<std::string, std::string>> set_expressions;  // --set NAME=EXPR (not a number)
   std::optional<double> t_end;                            // --t-end T
   std::optional<double> rtol, atol, interval;             // --rtol, --atol, --interval
-  std::optional<std::string> results;                     // --results NAME
+  std::optional<std::string> results;                     // --results NAME ("-": standard output, run only)
   bool quiet = false;                                     // --quiet: errors only
   bool verbose = false;                                   // run --verbose: the event log
   bool animate = false;                                   // run --animate: write NAME.html
   bool gltf = false;                                      // run --gltf: write NAME.glb
   bool no_animate = false;                                // run --no-animate: neither, whatever <output> says
   std::string out_dir = ".";                              // --out DIR
+  bool out_given = false;                                 // --out was given (run --results - writes no file without)
+  bool no_plot = false;                                   // run, sweep --no-plot: gnuplot draws nothing
+  bool overwrite = false;                                 // run, sweep, modes --overwrite: take over another
+                                                          // diagram's file names in --out (cli/output_claims.h)
   bool unsafe_lua = false;                                // --unsafe-lua
   std::vector<std::string> allow_read;                    // --allow-read DIR: the diagram may read files there too
   std::vector<std::string> library;                       // --library DIR: subsystem and part files looked up there

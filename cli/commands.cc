@@ -17,11 +17,13 @@
 #include "cli/force_analysis_command.h"
 #include "cli/interrupt.h"
 #include "cli/modes_report.h"
+#include "cli/output_claims.h"
 #include "cli/output_budget.h"
 #include "cli/output_folder.h"
 #include "cli/plot_envelope.h"
 #include "cli/psd_command.h"
 #include "cli/report.h"
+#include "cli/results_file.h"
 #include "cli/run_outputs.h"
 #include "cli/sweep.h"
 #include "diagrams/loader.h"
@@ -41,7 +43,7 @@ diagrams::LoadOptions ToLoadOptions(const Arguments& args) {
   o.rtol = args.rtol;
   o.atol = args.atol;
   o.interval = args.interval;
-  o.results = args.results;
+  if (args.results != "-") o.results = args.results;  // "-": standard output; the other files keep the diagram's names
   o.unsafe_lua = args.unsafe_lua;
   o.allow_read = args.allow_read;
   o.library = args.library;
@@ -85,9 +87,17 @@ int PrintLoadWarnings(const diagrams::LoadedDiagram& loaded, std::ostream& out) 
 }
 
 int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
+  // --results -: standard output carries the results and nothing else
+  std::optional<StandardOutputForResults> results_on_stdout;
+  if (args.results == "-") results_on_stdout.emplace();
   run::Model model(args.file, ToLoadOptions(args));
   PrintLoadWarnings(model.Loaded(), err);
-  const OutputFolder folder(args.out_dir);  // before the run: a bad --out is bad input
+  // before the run: a bad --out is bad input. --results - without --out writes no file
+  std::optional<OutputFolder> folder;
+  if (!results_on_stdout || args.out_given) folder.emplace(args.out_dir);
+  RunOutputPlan plan;
+  plan.folder = folder ? &*folder : nullptr;
+  plan.plot = !args.no_plot && !results_on_stdout;  // gnuplot draws from the results file
   // the rows go to the results file; the columns of the <spectrum>s stay in memory too
   std::unique_ptr<ResultsFile> results_file;
   run::RunOptions options;
@@ -102,17 +112,20 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   run::PreparedRun prepared = model.Prepare(options);
   const diagrams::LoadedDiagram& loaded = prepared.loaded();
   blocks::Simulator& sim = prepared.simulator();
-  const AnimationOutput animation(loaded, args, &sim);  // shapes checked now: bad geometry is bad input
+  Arguments animation_args = args;
+  if (!folder) animation_args.no_animate = true;  // nowhere to write it (said below)
+  const AnimationOutput animation(loaded, animation_args, &sim);  // shapes checked now: bad geometry is bad input
   // every file estimated before any is made: past its budget is bad input
   const std::uint64_t budget = args.max_output_bytes.value_or(kDefaultMaxOutputBytes);
-  const OutputEstimate csv_size = EstimateResultsCsv(sim.options(), sim.results().num_columns(), loaded.csv_file);
+  const OutputEstimate csv_size = EstimateResultsCsv(sim.options(), sim.results().num_columns(),
+                                                    results_on_stdout ? "standard output" : loaded.csv_file);
   RefuseOverBudget(csv_size, budget);
   const std::uint64_t animation_budget = args.max_output_bytes.value_or(kDefaultMaxAnimationBytes);
   for (const OutputEstimate& file : animation.EstimateSizes(csv_size.rows))
     RefuseOverBudget(file, animation_budget);
   // the plot of a long run is drawn from an envelope of its rows
   std::unique_ptr<PlotEnvelope> envelope;
-  if (!loaded.plot_file.empty()) {
+  if (plan.plot && !loaded.plot_file.empty()) {
     std::vector<int> xy_columns;
     for (const diagrams::XYPlotRequest& p : loaded.xy_plots)
       for (const auto& [x, y] : p.curves) xy_columns.insert(xy_columns.end(), {x, y});
@@ -121,7 +134,17 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     envelope = std::make_unique<PlotEnvelope>(PlottedColumns(loaded.groups), xy_columns,
                                               loaded.solver.t_end - loaded.solver.t_start, nullptr);
   }
-  results_file = OpenResults(loaded, sim, folder, budget, envelope.get());
+  // another diagram file's results in the folder are not overwritten unasked
+  if (folder) {
+    std::vector<OutputStem> stems = RunStems(loaded, plan, args.results);
+    for (const OutputStem& s : animation.Stems()) stems.push_back(s);
+    ClaimStems(*folder, args.file, stems, args.overwrite, true, out);
+  }
+  if (results_on_stdout) {
+    SayWhatStandardOutputLeavesOut(loaded, plan, args.no_plot, out);
+    plan.results_fd = results_on_stdout->TakeResultsDescriptor();
+  }
+  results_file = OpenResults(loaded, sim, plan, budget, envelope.get());
   const InterruptHandlers handlers;  // Ctrl-C, SIGTERM, SIGHUP: cli/interrupt.h
 
   const auto wall_start = std::chrono::steady_clock::now();
@@ -159,9 +182,9 @@ int RunCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
 
   // results are written whether or not the run finished
   int plot_stopped_by = 0;  // a signal while gnuplot drew
-  bool all_written = WriteRunOutputs(loaded, sim, prepared.columns(), folder, results_file.get(), out, err,
+  bool all_written = WriteRunOutputs(loaded, sim, prepared.columns(), plan, results_file.get(), out, err,
                                      &plot_stopped_by, envelope.get());
-  all_written = animation.Write(folder, out, err) && all_written;
+  if (folder) all_written = animation.Write(*folder, out, err) && all_written;
   PrintSignalRanges(sim.results(), out);
   PrintFigures(sim.results().figures(), outcome.ok, out);
   if (args.verbose) PrintEventLog(*loaded.diagram, sim.events(), out);
@@ -200,6 +223,11 @@ int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     err << args.file << ": the diagram has no continuous states; nothing to analyse\n";
     return 2;
   }
+  // NAME.modes.csv goes into the output folder, named after the diagram as
+  // `run`'s files are: another diagram file's of that name is not overwritten unasked
+  const OutputFolder folder(args.out_dir);
+  ClaimStems(folder, args.file, {{loaded.description.name, "the diagram's name \"" + loaded.description.name + "\""}},
+             args.overwrite, true, out);
   // where: the initial state, or the static equilibrium found from it
   ModesReport report;
   report.time = loaded.solver.t_start;
@@ -229,10 +257,7 @@ int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
       << count(report.modes.size(), "mode") << "\n";
   PrintModes(report, out);
 
-  // NAME.modes.csv in the output folder, named after the diagram as `run`'s
-  // files are, so that two diagrams can share a folder; written whole
-  // (cli/output_folder.h): a full disk is an error naming it (exit 1)
-  const OutputFolder folder(args.out_dir);
+  // written whole (cli/output_folder.h): a full disk is an error naming it (exit 1)
   const std::string name = loaded.description.name + ".modes.csv";
   std::ostringstream csv;
   WriteModesCsv(report.modes, report.states, csv);
@@ -265,8 +290,10 @@ int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& 
   }
   std::ostream null_stream(nullptr);  // --quiet: errors only
   std::ostream& out_or_nothing = args.quiet ? null_stream : out;
+  // run --results -: standard output holds the results, the messages go with the errors
+  std::ostream& run_messages = args.quiet ? null_stream : args.results == "-" ? err : out;
   try {
-    if (args.command == "run") return RunCommand(args, out_or_nothing, err);
+    if (args.command == "run") return RunCommand(args, run_messages, err);
     if (args.command == "check") return CheckCommand(args, out, err);
     if (args.command == "graph") return GraphCommand(args, out, err);
     if (args.command == "modes") return ModesCommand(args, out, err);

@@ -89,6 +89,7 @@ std::string WritePsd(const PsdRequest& request, const OutputFolder& folder, std:
   const std::string csv_name = request.stem + ".psd.csv", plot = request.stem + ".psd.png";
   folder.Write(csv_name, csv.str());
   out << "wrote " << folder.PathOf(csv_name) << "\n";
+  if (!request.plot) return "";
   XYPanel panel{"power spectral density", "frequency [Hz]", "PSD [signal^2/Hz]", {}, false, true,
                 request.max_frequency};
   for (std::size_t i = 0; i < request.signals.size(); ++i)

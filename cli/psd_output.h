@@ -26,12 +26,13 @@ struct PsdRequest {
   int peaks = 5;                   // listed per signal
   double max_frequency = 0.0;      // > 0: the plot ends there (the CSV goes to fs/2) [Hz]
   std::string stem, title;         // file names STEM.psd.*; the plot's title
+  bool plot = true;                // false: the CSV only (run --no-plot)
 };
 
 // Throws InputError (bad options, too few rows, times out of order) and
 // WriteError; analysis::Interrupted when request.options.interrupt is set
 // while the spectra are computed (before anything is written). Returns the
-// plot warning ("" when the plot was drawn).
+// plot warning ("" when the plot was drawn or not asked for).
 std::string WritePsd(const PsdRequest& request, const OutputFolder& folder, std::ostream& out);
 
 }  // namespace mechflow::cli

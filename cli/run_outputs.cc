@@ -1,5 +1,6 @@
 #include "cli/run_outputs.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -15,10 +16,11 @@
 namespace mechflow::cli {
 
 std::unique_ptr<ResultsFile> OpenResults(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim,
-                                         const OutputFolder& folder, std::uint64_t max_bytes, PlotEnvelope* envelope) {
+                                         const RunOutputPlan& plan, std::uint64_t max_bytes, PlotEnvelope* envelope) {
   std::unique_ptr<ResultsFile> file;
   try {
-    file = std::make_unique<ResultsFile>(folder, loaded.csv_file, sim.results().columns());
+    file = plan.results_fd >= 0 ? std::make_unique<ResultsFile>(plan.results_fd, sim.results().columns())
+                                : std::make_unique<ResultsFile>(*plan.folder, loaded.csv_file, sim.results().columns());
   } catch (const WriteError& e) {
     throw InputError(e.what());
   }
@@ -27,9 +29,59 @@ std::unique_ptr<ResultsFile> OpenResults(const diagrams::LoadedDiagram& loaded, 
   return file;
 }
 
+std::string ResultsNameOrigin(const diagrams::LoadedDiagram& loaded, const std::optional<std::string>& results_option) {
+  const auto& output = loaded.description.output;
+  const bool csv_attribute =
+      std::find_if(output.begin(), output.end(), [](const auto& a) { return a.name == "csv"; }) != output.end();
+  return results_option && *results_option != "-" ? "--results " + loaded.csv_file
+         : csv_attribute                          ? "<output csv=\"" + loaded.csv_file + "\">"
+                                                  : "the diagram's name \"" + loaded.description.name + "\"";
+}
+
+std::vector<OutputStem> RunStems(const diagrams::LoadedDiagram& loaded, const RunOutputPlan& plan,
+                                 const std::optional<std::string>& results_option) {
+  if (!plan.folder) return {};
+  // the results' stem names every file beside them (units, report, spectra), written with or without --results -
+  std::vector<OutputStem> stems = {{StemOf(loaded.csv_file), ResultsNameOrigin(loaded, results_option)}};
+  if (plan.plot && !loaded.plot_file.empty())
+    stems.push_back({StemOf(loaded.plot_file), "<output plot=\"" + loaded.plot_file + "\">"});
+  return stems;
+}
+
+void SayWhatStandardOutputLeavesOut(const diagrams::LoadedDiagram& loaded, const RunOutputPlan& plan, bool no_plot,
+                                    std::ostream& out) {
+  const std::string stem = StemOf(loaded.csv_file);
+  if (!plan.folder) {
+    std::vector<std::string> files = {stem + ".units.csv"};
+    if (!loaded.reports.empty()) files.push_back(stem + ".report.csv");
+    if (loaded.control) files.push_back(stem + ".changes.csv (if the script changes identifiers)");
+    for (const diagrams::SpectrumRequest& s : loaded.spectra) files.push_back(stem + "." + s.column + ".psd.csv");
+    for (const std::string& file : {loaded.animation_file, loaded.gltf_file})
+      if (!file.empty()) files.push_back(file);
+    out << "note: --results - without --out writes the results only, not " << blocks::JoinNames(files)
+        << " (give --out DIR for them)\n";
+  }
+  std::vector<std::string> plots;
+  if (!loaded.plot_file.empty()) plots.push_back(loaded.plot_file);
+  for (const diagrams::SpectrumRequest& s : loaded.spectra) plots.push_back(stem + "." + s.column + ".psd.png");
+  if (!no_plot && !plots.empty())
+    out << "note: --results - draws no plot (gnuplot draws from files): not " << blocks::JoinNames(plots)
+        << " (--no-plot says so and leaves this note out)\n";
+}
+
 bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simulator& sim,
-                     const std::vector<run::Column>& columns, const OutputFolder& folder, ResultsFile* results_file, std::ostream& out, std::ostream& err, int* stopped_by,
-                     const PlotEnvelope* envelope) {
+                     const std::vector<run::Column>& columns, const RunOutputPlan& plan, ResultsFile* results_file,
+                     std::ostream& out, std::ostream& err, int* stopped_by, const PlotEnvelope* envelope) {
+  const bool to_stdout = plan.results_fd >= 0;
+  if (!plan.folder) {  // --results - without --out: the results are all
+    if (const std::string problem = results_file->Close(); !problem.empty()) {
+      err << problem << "\n";
+      return false;
+    }
+    out << "wrote the results to standard output (" << results_file->rows() << " rows)\n";
+    return true;
+  }
+  const OutputFolder& folder = *plan.folder;
   std::vector<std::string> written, failed, cut;
   const auto write = [&](const std::string& name, const std::string& bytes, const std::string& note) {
     try {
@@ -52,13 +104,15 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
     return s.str();
   };
   const std::string& csv = loaded.csv_file;
+  const std::string results_name = to_stdout ? "the results on standard output" : csv;
   if (const std::string problem = results_file->Close(); problem.empty()) {
-    written.push_back(csv);
-    out << "wrote " << folder.PathOf(csv) << " (" << results_file->rows() << " rows)\n";
+    written.push_back(results_name);
+    out << "wrote " << (to_stdout ? "the results to standard output" : folder.PathOf(csv)) << " ("
+        << results_file->rows() << " rows)\n";
   } else {
     err << problem << "\n";
     // kept: the rows before the cut are what the run computed
-    cut.push_back(csv + " (" + results_file->cut_reason() + ": its rows before the cut are kept)");
+    cut.push_back(results_name + " (" + results_file->cut_reason() + ": its rows before the cut are kept)");
   }
   // beside the results: tension_mechanism.csv -> tension_mechanism.report.csv
   const std::string stem = std::filesystem::path(csv).replace_extension().string();
@@ -73,7 +127,9 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
   if (loaded.control && !loaded.control->changes().empty())
     write(stem + ".changes.csv",
           text([&](std::ostream& s) { WriteScriptChanges(*loaded.control, *loaded.identifiers, s); }), "");
-  if (!loaded.plot_file.empty() && sim.results().num_rows() < 2) {
+  if (!plan.plot) {
+    // --no-plot or --results -: gnuplot draws nothing
+  } else if (!loaded.plot_file.empty() && sim.results().num_rows() < 2) {
     err << "warning: no plot: the run left " << sim.results().num_rows() << " row"
         << (sim.results().num_rows() == 1 ? "" : "s") << ", nothing to draw\n";
   } else if (!loaded.plot_file.empty()) {
@@ -114,6 +170,7 @@ bool WriteRunOutputs(const diagrams::LoadedDiagram& loaded, const blocks::Simula
     request.max_frequency = s.max_frequency;
     request.stem = stem + "." + s.column;
     request.title = loaded.description.name + ": " + s.column;
+    request.plot = plan.plot;
     request.options.interrupt = InterruptFlag();  // Ctrl-C: no spectrum (mechflow psd computes it from the results)
     try {
       const std::string problem = WritePsd(request, folder, out);

@@ -26,11 +26,13 @@
 #include "blocks/support/suggest.h"
 #include "cli/interrupt.h"
 #include "cli/output_budget.h"
+#include "cli/output_claims.h"
 #include "cli/output_folder.h"
 #include "cli/plot_envelope.h"
 #include "cli/ranks.h"
 #include "cli/report.h"
 #include "cli/results_file.h"
+#include "cli/run_outputs.h"
 #include "cli/vary_pattern.h"
 #include "diagrams/loader.h"
 #include "mech/errors.h"
@@ -90,6 +92,8 @@ struct Plan {
   bool event_logs = false;                 // --verbose: each run's event log beside its results
   std::uint64_t max_output = kDefaultMaxOutputBytes;  // bytes per results file (--max-output)
   std::vector<int> plotted;                // the overlay's columns: a long run's envelope follows them
+  bool plot = true;                        // the overlay (not with --no-plot), and the envelopes it draws from
+  std::string csv_origin;                  // where the results' name comes from, for messages
 };
 
 // A run's envelope for the overlay, beside its results.
@@ -194,7 +198,7 @@ RunRow RunOne(const Plan& plan, int index, std::unique_ptr<run::Model>* model) {
     results_file = name;
     // a long run's curves in the overlay come from its envelope (and no
     // envelope of an earlier sweep stays to be drawn)
-    if (envelope.worthwhile() && !plan.groups.empty())
+    if (plan.plot && envelope.worthwhile() && !plan.groups.empty())
       plan.folder->Write(EnvelopeName(name), envelope.Csv(sim.results().columns()));
     else plan.folder->Clear(EnvelopeName(name));
     if (plan.event_logs) {
@@ -297,6 +301,8 @@ Plan MakePlan(const Arguments& args, std::string* header, std::string* summary_n
   plan.width = std::to_string(plan.runs);
   for (const blocks::ReportRequest& r : base.reports) plan.figure_labels.push_back(r.label);
   plan.csv_file = base.csv_file;
+  plan.csv_origin = ResultsNameOrigin(base, args.results);
+  plan.plot = !args.no_plot;
   plan.animated = !base.animation_file.empty() || !base.gltf_file.empty();
   plan.groups = base.groups;
   plan.plotted = PlottedColumns(base.groups);
@@ -414,6 +420,24 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     if (ranks->root()) err << e.what() << "\n";
     return 2;
   }
+  // another diagram file's results there are not overwritten unasked: every
+  // process checks, process 0 records; all stop if one refuses
+  std::string refused;
+  std::ostream null_stream(nullptr);
+  try {
+    ClaimStems(*plan.folder, args.file, {{StemOf(plan.csv_file), plan.csv_origin}}, args.overwrite, ranks->root(),
+               ranks->root() ? out : null_stream);
+  } catch (const std::runtime_error& e) {  // InputError; WriteError from the record
+    refused = e.what();
+  }
+  if (ranks->Max(refused.empty() ? 0 : 1) > 0) {
+    if (ranks->root())
+      err << (refused.empty() ? "mechflow sweep: another MPI process could not check " +
+                                    plan.folder->PathOf(kOutputRecordName) + "; nothing was run"
+                              : refused)
+          << "\n";
+    return 2;
+  }
 
   // this rank's runs, dealt in turn; threads take them in order
   std::vector<int> mine;
@@ -487,7 +511,7 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   std::vector<OverlayRun> overlay;
   std::vector<std::vector<std::string>> legend_numbers;
   for (const std::vector<double>& values : plan.values) legend_numbers.push_back(LegendNumbers(values));
-  for (int i = 0; i < plan.runs && !stopped_now(); ++i) {
+  for (int i = 0; plan.plot && i < plan.runs && !stopped_now(); ++i) {
     const std::vector<double> values = Combination(plan, i);
     const std::string name = RunFileName(plan, plan.csv_file, i, values);
     if (plan.folder->HasFile(name))
@@ -496,7 +520,9 @@ int SweepCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   }
   const std::string plot = fs::path(summary_name).replace_extension(".png").string();
   const auto signal_name = [] { return *InterruptFlag() == SIGTERM ? "SIGTERM" : "SIGINT"; };
-  if (stopped_now()) {
+  if (!plan.plot) {
+    // --no-plot: gnuplot draws nothing
+  } else if (stopped_now()) {
     err << "warning: no plot: interrupted by " << signal_name() << "\n";
   } else {
     try {

@@ -338,7 +338,7 @@ TEST(SweepTest, TwoJobsEqualOneJob) {
   EXPECT_EQ(Mechflow(args + "--jobs 1 --out " + one.string()).exit_code, 1);
   EXPECT_EQ(Mechflow(args + "--jobs 2 --out " + two.string()).exit_code, 1);
   const auto a = Files(one), b = Files(two);
-  EXPECT_EQ(a.size(), 11u);  // 8 runs, the summary, the overlay plot and its script
+  EXPECT_EQ(a.size(), 12u);  // 8 runs, the summary, the overlay plot and its script, .mechflow-outputs
   EXPECT_TRUE(a == b);
 }
 
@@ -352,7 +352,7 @@ TEST(SweepTest, ControlScriptsOnThreadsEqualSingleRuns) {
   ASSERT_EQ(Mechflow(args + "--jobs 1 --out " + one.string()).exit_code, 0);
   ASSERT_EQ(Mechflow(args + "--jobs 2 --out " + two.string()).exit_code, 0);
   const auto a = Files(one), b = Files(two);
-  EXPECT_EQ(a.size(), 7u);  // 4 runs, the summary, the overlay plot and its script
+  EXPECT_EQ(a.size(), 8u);  // 4 runs, the summary, the overlay plot and its script, .mechflow-outputs
   EXPECT_TRUE(a == b);
   ASSERT_EQ(Mechflow("run " + diagram + " --set dist=8 --set period=0.02 --out " + single.string()).exit_code, 0);
   EXPECT_EQ(a.at("pendulum_pd_control.run4.dist=8.period=0.02.csv"),
@@ -408,7 +408,7 @@ TEST(SweepTest, TwoMpiRanksEqualThreads) {
   // the rows are printed once, by rank 0
   EXPECT_EQ(mpi.out.find("run 1/6"), mpi.out.rfind("run 1/6"));
   const auto a = Files(threads), b = Files(ranks);
-  EXPECT_EQ(a.size(), 9u);  // 6 runs, the summary, the overlay plot and its script
+  EXPECT_EQ(a.size(), 10u);  // 6 runs, the summary, the overlay plot and its script, .mechflow-outputs
   EXPECT_EQ(a.at("damping_ratio.sweep.csv"), b.at("damping_ratio.sweep.csv"));
   EXPECT_TRUE(a == b);
 #endif
