@@ -10,11 +10,10 @@ namespace {
 // The slip direction d of a point's modes, global.
 Vec3 Direction(const ContactPointMotion& m, std::span<const double> modes) { return modes[1] * m.t1 + modes[2] * m.t2; }
 
-// Slips along (d1, d2) at `speed`: starting below kSteerSpeed.
-void Slip(double d1, double d2, double speed, std::span<double> modes) {
-  modes[0] = speed > ContactStick::kSteerSpeed ? ContactStick::kSliding : ContactStick::kStarting;
-  modes[1] = d1;
-  modes[2] = d2;
+// d := the direction of the point's slip (speed: its size, > 0).
+void TurnToSlip(const ContactPointMotion& m, double speed, std::span<double> modes) {
+  modes[1] = m.s1 / speed;
+  modes[2] = m.s2 / speed;
 }
 
 void Stick(std::span<double> modes) {
@@ -25,23 +24,23 @@ void Stick(std::span<double> modes) {
 // Starts a slip along -f (the way the holding force resisted); a hold with
 // no force to speak of (lift-off) keeps the way it last slid, or t_1.
 void StartAgainst(std::span<const double> f, std::span<double> modes) {
+  modes[0] = ContactStick::kStarting;
   const double size = std::hypot(f[0], f[1]);
-  if (size > 0.0)
-    Slip(-f[0] / size, -f[1] / size, 0.0, modes);
-  else if (modes[1] != 0.0 || modes[2] != 0.0)
-    Slip(modes[1], modes[2], 0.0, modes);
-  else
-    Slip(1.0, 0.0, 0.0, modes);
+  if (size > 0.0) {
+    modes[1] = -f[0] / size;
+    modes[2] = -f[1] / size;
+  } else if (modes[1] == 0.0 && modes[2] == 0.0) {
+    modes[1] = 1.0;
+  }
 }
 
 // At the end of a slip: sticks when the point has (all but) stopped, else
 // turns to its new slip direction.
 void EndSlip(const ContactPointMotion& m, std::span<double> modes) {
   const double speed = m.speed();
-  if (speed > ContactStick::kStopSpeed)
-    Slip(m.s1 / speed, m.s2 / speed, speed, modes);
-  else
-    Stick(modes);
+  if (!(speed > ContactStick::kStopSpeed)) return Stick(modes);
+  modes[0] = speed > ContactStick::kSteerSpeed ? ContactStick::kSliding : ContactStick::kStarting;
+  TurnToSlip(m, speed, modes);
 }
 
 }  // namespace
@@ -94,9 +93,7 @@ Vec3 ContactStick::Friction(const ContactPointMotion& m, double N, std::span<con
 
 void ContactStick::Follow(const ContactPointMotion& m, std::span<double> modes) {
   const double speed = m.speed();
-  if (modes[0] != kSliding || !(speed > 1e3 * kEndSpeed)) return;
-  modes[1] = m.s1 / speed;
-  modes[2] = m.s2 / speed;
+  if (modes[0] == kSliding && speed > 1e3 * kEndSpeed) TurnToSlip(m, speed, modes);
 }
 
 void ContactStick::ZeroCrossings(const ContactPointMotion& m, double N, bool touching, std::span<const double> modes,
@@ -115,8 +112,7 @@ void ContactStick::OnCrossing(int which, const ContactPointMotion& m, std::span<
     EndSlip(m, modes);
   } else if (const double speed = m.speed(); speed > 0.0) {
     modes[0] = kSliding;  // at kSteerSpeed, whichever side of it the root lies
-    modes[1] = m.s1 / speed;
-    modes[2] = m.s2 / speed;
+    TurnToSlip(m, speed, modes);
   }
 }
 
