@@ -88,7 +88,7 @@ DiagramDescription ReadDiagramText(const std::string& text, const std::string& f
                                    const std::vector<std::string>& library) {
   for (const std::string& folder : library)
     if (!std::filesystem::is_directory(folder))
-      throw InputError("--library '" + folder + "': no such folder");
+      throw InputError("--library '" + blocks::Excerpt(folder, blocks::kPathExcerptLength) + "': no such folder");
   // folders parts are looked up in may be read from
   std::vector<std::string> readable = allow_read;
   readable.insert(readable.end(), library.begin(), library.end());

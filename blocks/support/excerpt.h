@@ -11,6 +11,9 @@
 namespace mechflow::blocks {
 
 inline constexpr std::size_t kExcerptLength = 60;
+// A path is quoted further: a folder deep in a build tree is longer than 60
+// characters, and its end is the part that tells two paths apart.
+inline constexpr std::size_t kPathExcerptLength = 400;
 
 // `text` made safe to print: control characters, DEL and bytes that are not
 // UTF-8 written as \xNN (the rest of UTF-8 as it is); cut after about

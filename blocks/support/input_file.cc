@@ -103,7 +103,7 @@ ReadPolicy::ReadPolicy(const std::string& diagram_file, const std::vector<std::s
   for (const std::string& allowed : allowed_folders) {
     const std::filesystem::path root = std::filesystem::canonical(allowed, error);
     if (error || !std::filesystem::is_directory(root))
-      throw InputError("--allow-read '" + Excerpt(allowed) + "': no such folder");
+      throw InputError("--allow-read '" + Excerpt(allowed, kPathExcerptLength) + "': no such folder");
     roots_.push_back(root);
   }
 }
@@ -127,8 +127,8 @@ NamedFile ReadNamedFile(const std::string& name, const std::string& folder, cons
   const std::filesystem::path path = (std::filesystem::path(folder) / name).lexically_normal();
   const auto outside = [&](const std::filesystem::path& real) {
     return InputError(where + ": file " + quoted + " lies outside the diagram's folder " +
-                      Excerpt(policy.DiagramFolder(), 200) +
-                      (real.empty() ? std::string() : " (it is " + Excerpt(real.string(), 200) + ")") +
+                      Excerpt(policy.DiagramFolder(), kPathExcerptLength) +
+                      (real.empty() ? std::string() : " (it is " + Excerpt(real.string(), kPathExcerptLength) + ")") +
                       "; a diagram reads files in its own folder tree only: copy the file there, or allow its "
                       "folder with --allow-read DIR");
   };
@@ -136,7 +136,7 @@ NamedFile ReadNamedFile(const std::string& name, const std::string& folder, cons
   std::error_code error;
   const std::filesystem::path named = std::filesystem::canonical(path, error);
   if (error == std::errc::no_such_file_or_directory || error == std::errc::not_a_directory)
-    throw InputError(where + ": file " + quoted + " not found (looked for " + Excerpt(path.string(), 200) + ")");
+    throw InputError(where + ": file " + quoted + " not found (looked for " + Excerpt(path.string(), kPathExcerptLength) + ")");
   if (error) throw InputError(where + ": cannot open file " + quoted + ": " + error.message());
   if (!policy.Allows(named)) throw outside(named);
   // then the file opened: a link swapped in since cannot lead out
