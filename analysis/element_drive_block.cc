@@ -1,13 +1,12 @@
 #include "analysis/element_drive_block.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "mech/errors.h"
 
 namespace mechflow::analysis {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 using Kind = mech::ElementCoordinate::Kind;
 
@@ -125,7 +124,8 @@ ElementDriveBlock::ElementDriveBlock(std::string name, const mech::Mechanism& me
 
 mech::ElementContext ElementDriveBlock::Context(Scratch& s, double t, std::span<const double> state,
                                                 std::span<const double> modes, bool driven) const {
-  const double w = kTwoPi * drive_.frequency, angle = w * t + drive_.phase, a = driven ? drive_.amplitude : 0.0;
+  const double w = 2.0 * std::numbers::pi * drive_.frequency, angle = w * t + drive_.phase,
+               a = driven ? drive_.amplitude : 0.0;
   const double shift = a * std::sin(angle), rate = a * w * std::cos(angle);
   s.kin = kin0_;
   s.kin.time = t;
@@ -168,7 +168,7 @@ void ElementDriveBlock::DoInitialize(const blocks::BlockContext& ctx) const {
 }
 
 void ElementDriveBlock::DoCalcOutput(int port, const blocks::BlockContext& ctx) const {
-  const double w = kTwoPi * drive_.frequency, angle = w * ctx.time() + drive_.phase;
+  const double w = 2.0 * std::numbers::pi * drive_.frequency, angle = w * ctx.time() + drive_.phase;
   if (port == kX) {
     ctx.output(port)[0] = drive_.amplitude * std::sin(angle);
   } else if (port == kV) {

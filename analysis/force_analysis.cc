@@ -4,11 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 
 #include "analysis/element_drive_block.h"
 #include "blocks/framework/diagram_builder.h"
 #include "blocks/library/mechanism_block.h"
 #include "blocks/solver/simulator.h"
+#include "blocks/support/message_number.h"
 #include "blocks/support/suggest.h"
 #include "mech/errors.h"
 #include "run/model.h"
@@ -16,15 +18,10 @@
 namespace mechflow::analysis {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
+using blocks::MessageNumber;
+
 constexpr double kPeriodicTolerance = 1e-6;
 constexpr double kMaxRowsPerCase = 1e7;
-
-std::string Number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", v);
-  return text;
-}
 
 struct FoundElement {
   const mech::Mechanism* mechanism = nullptr;
@@ -56,7 +53,7 @@ ForceAnalysisCase Failed(ForceAnalysisCase c, const std::string& what) {
   out.amplitude = c.amplitude;
   out.frequency = c.frequency;
   out.x0 = c.x0;
-  out.failure = what + " is not a finite number (an amplitude of " + Number(c.amplitude) +
+  out.failure = what + " is not a finite number (an amplitude of " + MessageNumber(c.amplitude) +
                 " is more than the element's geometry or force law can represent; give a smaller one)";
   return out;
 }
@@ -69,7 +66,7 @@ ForceAnalysisCase RunCase(const diagrams::LoadedDiagram& loaded, const FoundElem
   blocks::DiagramBuilder builder;
   // Half a row of phase: the turning points fall between rows, so a force
   // that jumps there (dry friction) is never sampled on its jump.
-  const double phase = kTwoPi / (2.0 * request.samples);
+  const double phase = 2.0 * std::numbers::pi / (2.0 * request.samples);
   auto block = std::make_unique<ElementDriveBlock>("drive", *found.mechanism, found.index, request.component,
                                                    HarmonicDrive{amplitude, frequency, phase});
   out.x0 = block->initial_coordinate();
@@ -104,8 +101,10 @@ ForceAnalysisCase RunCase(const diagrams::LoadedDiagram& loaded, const FoundElem
   for (std::size_t k = before; k < rows; ++k)
     for (int c = 1; c <= 3; ++c)
       if (!std::isfinite(r.at(static_cast<int>(k), c)))
-        return Failed(std::move(out), std::string(c == 3 ? "the reaction" : c == 1 ? "x" : "v") + " at t = " +
-                                          Number(r.at(static_cast<int>(k), 0)) + " s");
+        return Failed(std::move(out), std::string(c == 3   ? "the reaction"
+                                                  : c == 1 ? "x"
+                                                           : "v") +
+                                          " at t = " + MessageNumber(r.at(static_cast<int>(k), 0)) + " s");
   const std::vector<double> reaction = r.Column(3);
   out.x = Period(r.Column(1), last, samples);
   out.v = Period(r.Column(2), last, samples);
@@ -161,7 +160,7 @@ std::pair<double, double> FirstHarmonic(const std::vector<double>& values, doubl
   const int n = static_cast<int>(values.size());
   double s = 0.0, c = 0.0;
   for (int k = 0; k < n; ++k) {
-    const double phase = kTwoPi * k / n + phase0;
+    const double phase = 2.0 * std::numbers::pi * k / n + phase0;
     s += values[k] * std::sin(phase);
     c += values[k] * std::cos(phase);
   }
@@ -178,15 +177,15 @@ ForceAnalysis RunForceAnalysis(const ForceAnalysisRequest& request) {
   // the drive's velocity a w and acceleration a w^2 must be numbers
   for (double a : request.amplitudes)
     for (double f : request.frequencies)
-      if (const double w = kTwoPi * f; !std::isfinite(a * w * w) || !std::isfinite(a * w))
-        throw InputError("force analysis: amplitude " + Number(a) + " at " + Number(f) +
+      if (const double w = 2.0 * std::numbers::pi * f; !std::isfinite(a * w * w) || !std::isfinite(a * w))
+        throw InputError("force analysis: amplitude " + MessageNumber(a) + " at " + MessageNumber(f) +
                          " Hz: the drive's acceleration a (2 pi f)^2 overflows; give a smaller amplitude or frequency");
   if (request.cycles < 2) throw InputError("force analysis: --cycles must be at least 2 (two periods to compare)");
   if (request.samples < 16) throw InputError("force analysis: at least 16 samples per period");
   // every case keeps its rows in memory
   if (double(request.cycles) * request.samples > kMaxRowsPerCase)
     throw InputError("force analysis: --cycles " + std::to_string(request.cycles) + " times --samples " +
-                     std::to_string(request.samples) + " rows per case is more than " + Number(kMaxRowsPerCase) +
+                     std::to_string(request.samples) + " rows per case is more than " + MessageNumber(kMaxRowsPerCase) +
                      "; fewer cycles or samples per period");
 
   // every combination of the varied values, last one fastest

@@ -1,12 +1,12 @@
 #include "analysis/linearization.h"
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
-
-#include <Eigen/Eigenvalues>
-#include <Eigen/QR>
 
 #include "blocks/framework/evaluation.h"
 #include "blocks/library/friction_from_normal_force.h"
@@ -18,8 +18,6 @@ namespace mechflow::analysis {
 
 using namespace blocks;  // linearisation works on the dataflow framework's diagrams and contexts
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 // Index of the largest |f_i| (0 when f is empty).
 int LargestEntry(const std::vector<double>& f, int n) {
@@ -278,8 +276,8 @@ std::vector<Mode> ModalAnalysis(const Eigen::MatrixXd& A, const std::vector<bool
     m.eigenvalue = lambda;
     const double magnitude = std::abs(lambda);
     const bool real = std::abs(lambda.imag()) <= 1e-12 * scale;
-    m.frequency_hz = real ? 0.0 : std::abs(lambda.imag()) / kTwoPi;
-    m.natural_frequency_hz = magnitude / kTwoPi;
+    m.frequency_hz = real ? 0.0 : std::abs(lambda.imag()) / (2.0 * std::numbers::pi);
+    m.natural_frequency_hz = magnitude / (2.0 * std::numbers::pi);
     m.decay_rate = -lambda.real();
     if (magnitude <= 1e-9 * fastest) {
       m.kind = ModeKind::kRigidBody;

@@ -6,19 +6,15 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 
+#include "blocks/support/message_number.h"
 #include "mech/errors.h"
 
 namespace mechflow::analysis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-std::string Number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", v);
-  return text;
-}
+using blocks::MessageNumber;
 
 struct PlanDeleter {
   void operator()(fftw_plan_s* p) const { fftw_destroy_plan(p); }
@@ -36,7 +32,8 @@ Spectrum WelchPsd(const std::vector<double>& samples, double dt, const WelchOpti
   const int n = static_cast<int>(samples.size());
   if (!(dt > 0.0) || !std::isfinite(dt)) throw InputError("spectrum: the sampling interval must be > 0");
   if (!(options.overlap >= 0.0 && options.overlap <= kMaxOverlap))
-    throw InputError("spectrum: overlap " + Number(options.overlap) + " is not from 0 to " + Number(kMaxOverlap) +
+    throw InputError("spectrum: overlap " + MessageNumber(options.overlap) + " is not from 0 to " +
+                     MessageNumber(kMaxOverlap) +
                      " (each sample is transformed about 1 / (1 - overlap) times); 0.5 is usual");
   int segment = options.segment;
   if (segment == 0) {
@@ -53,8 +50,8 @@ Spectrum WelchPsd(const std::vector<double>& samples, double dt, const WelchOpti
   const int segments = (n - segment) / step + 1;
   if (double(segments) * segment > double(kMaxCoverage) * n)
     throw InputError("spectrum: " + std::to_string(segments) + " segments of " + std::to_string(segment) +
-                     " samples (overlap " + Number(options.overlap) + ") would transform the " + std::to_string(n) +
-                     " samples more than " + std::to_string(kMaxCoverage) +
+                     " samples (overlap " + MessageNumber(options.overlap) + ") would transform the " +
+                     std::to_string(n) + " samples more than " + std::to_string(kMaxCoverage) +
                      " times over; lower the overlap (0.5 is usual) or lengthen the segment");
 
   double mean = 0.0;
@@ -62,7 +59,8 @@ Spectrum WelchPsd(const std::vector<double>& samples, double dt, const WelchOpti
   mean /= n;
   std::vector<double> window(segment, 1.0);
   if (options.window == Window::kHann)
-    for (int k = 0; k < segment; ++k) window[k] = 0.5 - 0.5 * std::cos(2 * kPi * k / segment);  // periodic Hann
+    for (int k = 0; k < segment; ++k)
+      window[k] = 0.5 - 0.5 * std::cos(2 * std::numbers::pi * k / segment);  // periodic Hann
   double power = 0.0;
   for (double w : window) power += w * w;
 

@@ -7,6 +7,7 @@
 
 #include "analysis/force_analysis.h"
 #include "blocks/outputs/csv.h"
+#include "blocks/support/message_number.h"
 #include "cli/interrupt.h"
 #include "cli/output_folder.h"
 #include "cli/plot.h"
@@ -15,26 +16,24 @@
 namespace mechflow::cli {
 namespace {
 
-constexpr double kDegrees = 57.29577951308232;
+using blocks::MessageNumber;
 
-std::string Number(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.10g", v);
-  return text;
-}
+constexpr double kDegrees = 57.29577951308232;
 
 // Amplitudes and frequencies: every value > 0 (`what` says which).
 std::vector<double> PositiveValues(const std::string& text, const std::string& option, const std::string& what) {
   std::vector<double> values = ParseValues(text, option);
   for (double v : values)
-    if (!(v > 0)) throw UsageError(option + ": '" + text + "' holds " + Number(v) + "; " + what + " must be > 0");
+    if (!(v > 0))
+      throw UsageError(option + ": '" + text + "' holds " + MessageNumber(v) + "; " + what + " must be > 0");
   return values;
 }
 
 std::string CaseLabel(const analysis::ForceAnalysisRequest& request, const analysis::ForceAnalysisCase& c) {
   std::string label;
-  for (std::size_t i = 0; i < c.varied.size(); ++i) label += request.vary[i].first.front() + "=" + Number(c.varied[i]) + " ";
-  return label + "a=" + Number(c.amplitude) + " f=" + Number(c.frequency);
+  for (std::size_t i = 0; i < c.varied.size(); ++i)
+    label += request.vary[i].first.front() + "=" + MessageNumber(c.varied[i]) + " ";
+  return label + "a=" + MessageNumber(c.amplitude) + " f=" + MessageNumber(c.frequency);
 }
 
 }  // namespace
@@ -214,10 +213,10 @@ int ForceAnalysisCommand(const Arguments& args, std::ostream& out, std::ostream&
     table << (by_frequency ? "frequency [Hz]" : request.vary.front().first.front());
     for (int j = 0; j < curves; ++j) {
       const analysis::ForceAnalysisCase& c = case_of(j, 0);
-      std::string label = "a=" + Number(c.amplitude);
-      if (!by_frequency) label += " f=" + Number(c.frequency);
+      std::string label = "a=" + MessageNumber(c.amplitude);
+      if (!by_frequency) label += " f=" + MessageNumber(c.frequency);
       for (std::size_t i = by_frequency ? 0 : 1; i < c.varied.size(); ++i)
-        label += " " + request.vary[i].first.front() + "=" + Number(c.varied[i]);
+        label += " " + request.vary[i].first.front() + "=" + MessageNumber(c.varied[i]);
       table << ",K " << label << ",delta " << label;
       k_curves.push_back({0, 1 + 2 * j, label, true});
       delta_curves.push_back({0, 2 + 2 * j, label, true});

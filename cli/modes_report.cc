@@ -5,19 +5,16 @@
 #include <cstdio>
 #include <ostream>
 
+#include "blocks/support/message_number.h"
 #include "mech/errors.h"
 
 namespace mechflow::cli {
 namespace {
 
+using blocks::Formatted;
+
 // Modes per block of columns in the mode-shape table.
 constexpr std::size_t kShapeColumns = 6;
-
-std::string Format(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
 
 std::string Role(const analysis::StateRoles& roles, std::size_t i) {
   const bool coordinate = i < roles.coordinate.size() && roles.coordinate[i];
@@ -33,10 +30,10 @@ std::string Kind(const analysis::Mode& m) {
     case analysis::ModeKind::kOscillating:
       return m.damping_ratio < 0 ? "oscillating, growing" : "oscillating";
     case analysis::ModeKind::kDecaying:
-      return "decaying at " + Format("%.6g", m.decay_rate) + " 1/s (time constant " +
-             Format("%.6g", 1 / m.decay_rate) + " s)";
+      return "decaying at " + Formatted("%.6g", m.decay_rate) + " 1/s (time constant " +
+             Formatted("%.6g", 1 / m.decay_rate) + " s)";
     case analysis::ModeKind::kGrowing:
-      return "growing at " + Format("%.6g", -m.decay_rate) + " 1/s (unstable)";
+      return "growing at " + Formatted("%.6g", -m.decay_rate) + " 1/s (unstable)";
     case analysis::ModeKind::kRigidBody:
       return "rigid-body (free motion)";
   }

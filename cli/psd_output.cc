@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "blocks/outputs/csv.h"
+#include "blocks/support/message_number.h"
 #include "cli/plot.h"
 #include "cli/xy_plot.h"
 #include "mech/errors.h"
@@ -13,11 +14,7 @@
 namespace mechflow::cli {
 namespace {
 
-std::string Number(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.10g", v);
-  return text;
-}
+using blocks::MessageNumber;
 
 // The rows from `from` on, on a uniform grid: as they are when their steps
 // agree to 1e-6, else linearly interpolated at the mean step (an event can
@@ -27,7 +24,7 @@ std::vector<std::vector<double>> UniformRows(const PsdRequest& r, double* dt) {
   while (first < r.time.size() && r.time[first] < r.from) ++first;
   const std::size_t n = r.time.size() - first;
   if (n < 16)
-    throw InputError("spectrum: " + std::to_string(n) + " rows from t = " + Number(std::max(r.from, 0.0)) +
+    throw InputError("spectrum: " + std::to_string(n) + " rows from t = " + MessageNumber(std::max(r.from, 0.0)) +
                      " s on; at least 16 are needed");
   const double t0 = r.time[first], t1 = r.time.back();
   *dt = (t1 - t0) / (n - 1);
@@ -35,8 +32,8 @@ std::vector<std::vector<double>> UniformRows(const PsdRequest& r, double* dt) {
   bool uniform = true;
   for (std::size_t k = first + 1; k < r.time.size(); ++k) {
     if (!(r.time[k] > r.time[k - 1]))  // interpolating rows out of order would make up a signal
-      throw InputError("spectrum: the row at t = " + Number(r.time[k]) + " s is not after the one before (t = " +
-                       Number(r.time[k - 1]) + " s); the rows must be in rising time order");
+      throw InputError("spectrum: the row at t = " + MessageNumber(r.time[k]) + " s is not after the one before (t = " +
+                       MessageNumber(r.time[k - 1]) + " s); the rows must be in rising time order");
     uniform = uniform && std::abs(r.time[k] - r.time[k - 1] - *dt) <= 1e-6 * *dt;
   }
   std::vector<std::vector<double>> out;
@@ -67,10 +64,11 @@ std::string WritePsd(const PsdRequest& request, const OutputFolder& folder, std:
   std::vector<analysis::Spectrum> spectra;
   for (const auto& v : rows) spectra.push_back(analysis::WelchPsd(v, dt, request.options));
   const analysis::Spectrum& first = spectra.front();
-  out << "power spectral density (Welch: " << first.segment << " samples per segment = " << Number(first.segment * dt)
-      << " s, " << first.segments << " segments overlapping by " << Number(request.options.overlap * 100) << " %, "
+  out << "power spectral density (Welch: " << first.segment
+      << " samples per segment = " << MessageNumber(first.segment * dt) << " s, " << first.segments
+      << " segments overlapping by " << MessageNumber(request.options.overlap * 100) << " %, "
       << (request.options.window == analysis::Window::kHann ? "Hann" : "rectangular")
-      << " window, one-sided, mean removed; resolution " << Number(first.resolution) << " Hz)\n";
+      << " window, one-sided, mean removed; resolution " << MessageNumber(first.resolution) << " Hz)\n";
   std::ostringstream csv;
   csv << "frequency [Hz]";
   for (const PsdSignal& s : request.signals) csv << "," << blocks::CsvField("PSD " + s.name + " [signal^2/Hz]");
@@ -83,7 +81,7 @@ std::string WritePsd(const PsdRequest& request, const OutputFolder& folder, std:
   for (std::size_t i = 0; i < spectra.size(); ++i) {
     out << request.signals[i].name << ": peaks (frequency [Hz], level [signal^2/Hz])";
     for (const analysis::SpectralPeak& p : analysis::FindPeaks(spectra[i], request.peaks))
-      out << "  " << Number(p.frequency) << " " << Number(p.level);
+      out << "  " << MessageNumber(p.frequency) << " " << MessageNumber(p.level);
     out << "\n";
   }
   const std::string csv_name = request.stem + ".psd.csv", plot = request.stem + ".psd.png";

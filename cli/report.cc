@@ -18,6 +18,7 @@
 #include "blocks/solver/analytic_jacobian.h"
 #include "blocks/support/excerpt.h"
 #include "blocks/support/input_file.h"
+#include "blocks/support/message_number.h"
 #include "blocks/support/suggest.h"
 #include "cli/instance_tree.h"
 #include "diagrams/units.h"
@@ -28,14 +29,10 @@
 namespace mechflow::cli {
 namespace {
 
+using blocks::Formatted;
+
 // A number for people to read: a negative zero (a product or a sign
 // flipped at rest) is written 0, never "-0".
-std::string Format(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value == 0.0 ? 0.0 : value);
-  return buffer;
-}
-
 // Text as DOT shows it. Graphviz reads a quoted string keeping every
 // backslash but \" (a quote); a label then turns \\ into a backslash and
 // drops the backslash of other escapes. So a name's backslashes are doubled
@@ -77,9 +74,9 @@ void PrintScriptChanges(const scripting::ControlScript& script, const scripting:
       ++count;
     }
     if (!first) continue;
-    out << "  " << identifiers.spelling(id) << ": " << count << " times, first " << Format("%g", first->value)
-        << " at t = " << Format("%g", first->time) << " s, last " << Format("%g", last->value) << " at t = "
-        << Format("%g", last->time) << " s\n";
+    out << "  " << identifiers.spelling(id) << ": " << count << " times, first " << Formatted("%g", first->value)
+        << " at t = " << Formatted("%g", first->time) << " s, last " << Formatted("%g", last->value) << " at t = "
+        << Formatted("%g", last->time) << " s\n";
   }
 }
 
@@ -121,8 +118,8 @@ void PrintSignalRanges(const blocks::Results& r, std::ostream& out) {
   out << "signal" << std::string(width - 6, ' ') << "           min    at t [s]            max    at t [s]\n";
   for (int c = 1; c < r.num_columns(); ++c) {
     const blocks::ColumnRange& range = r.range(c);
-    out << r.columns()[c] << std::string(width - r.columns()[c].size(), ' ') << Format(" %14.6g", range.min)
-        << Format(" %11.6g", range.min_time) << Format(" %14.6g", range.max) << Format(" %11.6g", range.max_time)
+    out << r.columns()[c] << std::string(width - r.columns()[c].size(), ' ') << Formatted(" %14.6g", range.min)
+        << Formatted(" %11.6g", range.min_time) << Formatted(" %14.6g", range.max) << Formatted(" %11.6g", range.max_time)
         << "\n";
   }
 }
@@ -139,19 +136,19 @@ void PrintFigures(const std::vector<blocks::ReportFigure>& figures, bool finishe
       continue;
     }
     if (f.kind == blocks::ReportKind::kCrossing) {
-      out << "reached at t = " << Format("%.9g", f.time) << " s" << upto << "\n";
+      out << "reached at t = " << Formatted("%.9g", f.time) << " s" << upto << "\n";
       continue;
     }
     const bool over_run = !blocks::IsExtremum(f.kind) && f.kind != blocks::ReportKind::kPeriod;
-    out << Format("%.6g", f.value) << (f.unit.empty() ? "" : " " + f.unit) << (over_run ? " over the run to t = " : " at t = ")
-        << Format("%.6g", f.time) << " s" << upto << "\n";
+    out << Formatted("%.6g", f.value) << (f.unit.empty() ? "" : " " + f.unit) << (over_run ? " over the run to t = " : " at t = ")
+        << Formatted("%.6g", f.time) << " s" << upto << "\n";
   }
 }
 
 void PrintEventLog(const blocks::Diagram& diagram, const std::vector<blocks::EventRecord>& events,
                    std::ostream& out) {
   for (const blocks::EventRecord& e : events) {
-    out << "event: t = " << Format("%.9g", e.time) << " s: ";
+    out << "event: t = " << Formatted("%.9g", e.time) << " s: ";
     const blocks::Block& block = diagram.block(e.block);
     const std::string name = block.CrossingName(e.crossing, e.direction);
     if (!name.empty())
@@ -175,7 +172,7 @@ void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks
       if (local < 0 || local >= m.element(i).num_crossings()) continue;
       const std::string warning = m.element(i).CrossingWarning(local, e.direction);
       if (warning.empty() || !warned.insert({e.block, i}).second) continue;
-      out << "warning: t = " << Format("%.6g", e.time) << " s: " << m.element(i).origin() << ": "
+      out << "warning: t = " << Formatted("%.6g", e.time) << " s: " << m.element(i).origin() << ": "
           << block->name() << "." << m.element(i).name() << ": " << warning << "\n";
     }
   }
@@ -228,11 +225,11 @@ namespace {
 // that unit is not SI; a value without unit as it is
 std::string IdentifierValue(const scripting::IdentifierTable& ids, int i) {
   const double si = ids.value(i);
-  if (ids.unit(i).empty()) return Format("%.10g", si);
-  std::string text = Format("%.10g", si / ids.to_si(i)) + " " + ids.unit(i);
+  if (ids.unit(i).empty()) return Formatted("%.10g", si);
+  std::string text = Formatted("%.10g", si / ids.to_si(i)) + " " + ids.unit(i);
   std::string error;
   const std::optional<diagrams::Unit> unit = diagrams::ParseUnit(ids.unit(i), &error);
-  if (unit && unit->to_si != 1.0) text += " = " + Format("%.10g", si) + " " + unit->dimension.SiUnit();
+  if (unit && unit->to_si != 1.0) text += " = " + Formatted("%.10g", si) + " " + unit->dimension.SiUnit();
   return text;
 }
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "blocks/framework/block_factory.h"
+#include "blocks/support/message_number.h"
 #include "blocks/support/suggest.h"
 #include "diagrams/evaluator.h"
 #include "diagrams/instance_scope.h"
@@ -15,6 +16,8 @@
 
 namespace mechflow::diagrams {
 namespace {
+
+using blocks::MessageNumber;
 
 constexpr int kMaxCount = 100000;
 
@@ -46,12 +49,6 @@ bool IsExpressionParameter(const std::string& type, const std::string& name) {
   const blocks::ParamSpec* spec = t ? t->FindParam(name) : nullptr;
   if (!spec || kTextExpressions.count(name)) return true;
   return spec->kind != blocks::ParamKind::kText && spec->kind != blocks::ParamKind::kPath;
-}
-
-std::string Format(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", v);
-  return text;
 }
 
 // "d[1].inner" -> "d[1]"; "d[1]" -> "" (the diagram)
@@ -200,8 +197,8 @@ class Flattener {
     const std::string what = count->loc.str() + ": count";
     const double n = ids_.evaluate(scope.Rewrite(count->value, what), what);
     if (!(n >= 1 && n <= kMaxCount && n == std::floor(n)))
-      throw InputError(what + " is " + count->value + " = " + Format(n) + "; expected a whole number from 1 to " +
-                       std::to_string(kMaxCount));
+      throw InputError(what + " is " + count->value + " = " + MessageNumber(n) +
+                       "; expected a whole number from 1 to " + std::to_string(kMaxCount));
     *total = static_cast<int>(n);
     for (int k = 0; k < *total; ++k) paths.emplace_back(base + "[" + std::to_string(k) + "]", k);
     return paths;
@@ -539,7 +536,7 @@ class Flattener {
       const std::string text = body.substr(open + 1, close - open - 1);
       const double k = ids_.evaluate(scope.Rewrite(text, what), what);
       if (!(k >= 0 && k < kMaxCount && k == std::floor(k)))
-        throw InputError(what + ": the index [" + text + "] is " + Format(k) +
+        throw InputError(what + ": the index [" + text + "] is " + MessageNumber(k) +
                          "; expected a whole number >= 0 (the first element of an array attaches as first= says)");
       out += body.substr(i, open - i) + "[" + std::to_string(static_cast<int>(k)) + "]";
       i = close + 1;

@@ -3,17 +3,12 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "diagrams/evaluator.h"
 #include "diagrams/expression_dimension.h"
 #include "mech/errors.h"
 
 namespace mechflow::diagrams {
 namespace {
-
-std::string Trimmed(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return "";
-  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
-}
 
 // "file:line: rest" -> "file:line: warning: rest"
 std::string AsWarning(const std::string& message) {
@@ -42,7 +37,7 @@ void UnitCheck::CheckAttribute(const std::string& text, const std::string& attri
   std::string error;
   const std::optional<Unit> expected = ParseUnit(si_unit, &error);
   if (!expected) throw std::logic_error("attribute unit '" + si_unit + "': " + error);
-  const std::string t = Trimmed(text);
+  const std::string t = Trim(text);
   const int id = ids_->Find(t);
   if (id >= 0 && scripting::IsLuaName(t)) {
     if (id >= static_cast<int>(units_.size()) || !units_[id] || units_[id]->dimension.SameAs(expected->dimension))

@@ -9,6 +9,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "diagrams/evaluator.h"
+
 namespace mechflow::diagrams {
 namespace {
 
@@ -43,12 +45,6 @@ constexpr Named kNamed[] = {
     {{1, -1, -2, 0, 0, 0, 0, 0}, "a pressure", "Pa"},
     {{1, -3, 0, 0, 0, 0, 0, 0}, "a density", "kg/m^3"},
 };
-
-std::string Trimmed(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return "";
-  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
-}
 
 // What a visit of a parsed unit found: its factor to SI, its dimension, or why
 // no factor converts it.
@@ -148,7 +144,7 @@ class UnitSystem {
                "); install the Debian package libudunits2-data (scripts/install-deps.sh does)";
       return std::nullopt;
     }
-    const std::string trimmed = Trimmed(text);
+    const std::string trimmed = Trim(text);
     ut_unit* unit = ut_parse(system_, trimmed.c_str(), UT_UTF8);
     if (!unit) {
       *error = "unknown unit '" + trimmed +

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-
 #include <lua.hpp>
 
 #include "blocks/framework/block.h"
+#include "blocks/support/message_number.h"
 #include "blocks/support/suggest.h"
 #include "mech/errors.h"
 #include "scripting/compiled_expression.h"
@@ -20,17 +20,12 @@
 namespace mechflow::scripting {
 namespace {
 
+using blocks::MessageNumber;
+
 // sim:every may keep this many timers: each is looked at whenever the
 // integrator stops, and a script registering them in a loop must not grow
 // the list without end.
 constexpr std::size_t kMaxTimers = 10000;
-
-// "%.10g" of a number, for messages
-std::string Number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", v);
-  return text;
-}
 
 // Lua allows a function 200 locals; the prologue's binder takes one, and the
 // script needs some of its own.
@@ -199,7 +194,7 @@ void ControlScript::Call(int ref, const char* what, blocks::ControlPoint& point)
   const bool ok = lua_.Call(1, 0, &error);
   point_ = nullptr;
   if (!ok)
-    throw SimulationError("control script " + name_ + ": " + what + "(sim) at t = " + Number(point.time()) +
+    throw SimulationError("control script " + name_ + ": " + what + "(sim) at t = " + MessageNumber(point.time()) +
                           " s failed: " + error);
 }
 
@@ -430,7 +425,8 @@ bool ControlScript::DoSet(const char* name, double value) {
   try {
     point_->Changed();  // evaluates the outputs: no C++ exception may cross Lua's frames
   } catch (const std::exception& e) {
-    error_ = "sim:set: the model fails with " + WithInstancePaths(identifiers_.name(id)) + " = " + Number(value) + ": " + e.what();
+    error_ = "sim:set: the model fails with " + WithInstancePaths(identifiers_.name(id)) + " = " +
+             MessageNumber(value) + ": " + e.what();
     return false;
   }
   return true;
