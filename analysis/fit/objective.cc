@@ -1,0 +1,50 @@
+#include "analysis/fit/objective.h"
+
+namespace mechflow::analysis::fit {
+
+void Objective::Keep(const std::vector<double>& u, const Evaluation& e) {
+  for (const std::string& f : e.failures)
+    if (failures_.size() < 20) failures_.insert(f);
+  last_u_ = u;
+  last_ = e;
+  have_last_ = true;
+}
+
+const Evaluation& Objective::At(const std::vector<double>& u) {
+  if (have_last_ && u == last_u_) return last_;
+  const Evaluation e = residuals_.EvaluateUnit({u}).front();
+  history.push_back(e.Cost());
+  Keep(u, e);
+  return last_;
+}
+
+void Objective::Linearise(const std::vector<double>& u, Eigen::VectorXd* r, Eigen::MatrixXd* jacobian) {
+  const int n = parameters();
+  std::vector<std::vector<double>> points;
+  const bool known = have_last_ && u == last_u_;
+  if (!known) points.push_back(u);
+  std::vector<double> h(n);
+  for (int j = 0; j < n; ++j) {
+    std::vector<double> p = u;
+    h[j] = u[j] + step_ <= 1.0 ? step_ : -step_;  // inside the bounds: backwards at the upper one
+    p[j] += h[j];
+    points.push_back(std::move(p));
+  }
+  const std::vector<Evaluation> e = residuals_.EvaluateUnit(points);
+  if (!known) {
+    history.push_back(e.front().Cost());
+    Keep(u, e.front());
+  }
+  const std::vector<double>& base = last_.residuals;
+  *r = Eigen::Map<const Eigen::VectorXd>(base.data(), static_cast<Eigen::Index>(base.size()));
+  jacobian->resize(size(), n);
+  const std::size_t offset = known ? 0 : 1;
+  for (int j = 0; j < n; ++j) {
+    const std::vector<double>& moved = e[offset + j].residuals;
+    for (int i = 0; i < size(); ++i) (*jacobian)(i, j) = (moved[i] - base[i]) / h[j];
+    for (const std::string& f : e[offset + j].failures)
+      if (failures_.size() < 20) failures_.insert(f);
+  }
+}
+
+}  // namespace mechflow::analysis::fit

@@ -1,0 +1,106 @@
+#include "analysis/fit/residuals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "blocks/outputs/csv.h"
+
+namespace mechflow::analysis::fit {
+
+double Evaluation::Cost() const {
+  double sum = 0.0;
+  for (const double r : residuals) sum += r * r;
+  return sum;
+}
+
+std::vector<run::BatchModel> ExperimentModels(const Setup& setup) {
+  std::vector<run::BatchModel> models;
+  for (const Experiment& e : setup.experiments) {
+    run::BatchModel m{setup.description, setup.common};
+    m.options.variants.insert(m.options.variants.end(), e.variants.begin(), e.variants.end());
+    m.options.overrides.insert(m.options.overrides.end(), e.overrides.begin(), e.overrides.end());
+    models.push_back(std::move(m));
+  }
+  return models;
+}
+
+Residuals::Residuals(const Setup& setup) : setup_(setup), batch_(ExperimentModels(setup), setup.threads) {
+  for (const Match& m : setup.matches) {
+    auto it = std::find(signals_.begin(), signals_.end(), m.signal);
+    if (it == signals_.end()) it = signals_.insert(signals_.end(), m.signal);
+    column_.push_back(1 + static_cast<int>(it - signals_.begin()));
+  }
+  penalty_.assign(setup.matches.size(), 0.0);
+  for (const Experiment& e : setup.experiments) {
+    size_ += static_cast<int>(e.times.size() * setup.matches.size());
+    for (std::size_t k = 0; k < setup.matches.size(); ++k)
+      for (const double v : e.measured[k]) penalty_[k] = std::max(penalty_[k], std::abs(v));
+  }
+  for (std::size_t k = 0; k < penalty_.size(); ++k)
+    penalty_[k] = 10.0 * (penalty_[k] > 0 ? penalty_[k] : 1.0) * setup.matches[k].weight;
+}
+
+std::vector<Evaluation> Residuals::EvaluateUnit(const std::vector<std::vector<double>>& points) {
+  std::vector<std::vector<double>> values;
+  for (const auto& u : points) values.push_back(FromUnit(setup_.parameters, u));
+  return Evaluate(values);
+}
+
+std::vector<Evaluation> Residuals::Evaluate(const std::vector<std::vector<double>>& points) {
+  std::vector<run::BatchJob> jobs;
+  for (const std::vector<double>& values : points) {
+    for (std::size_t e = 0; e < setup_.experiments.size(); ++e) {
+      const Experiment& experiment = setup_.experiments[e];
+      run::BatchJob job;
+      job.model = static_cast<int>(e);
+      for (std::size_t j = 0; j < values.size(); ++j) job.set.emplace_back(setup_.parameters[j].name, values[j]);
+      job.options.log = signals_;
+      job.options.times = experiment.times;
+      job.options.t_end = experiment.times.back();  // nothing after the last measurement is needed
+      job.options.interrupt = setup_.interrupt;
+      jobs.push_back(std::move(job));
+    }
+  }
+  const std::vector<run::BatchOutcome> outcomes = batch_.Run(jobs);
+  std::vector<Evaluation> evaluations;
+  for (std::size_t p = 0; p < points.size(); ++p)
+    evaluations.push_back(Collect(points[p], outcomes, p * setup_.experiments.size()));
+  return evaluations;
+}
+
+Evaluation Residuals::Collect(const std::vector<double>& values, const std::vector<run::BatchOutcome>& outcomes,
+                              std::size_t first) const {
+  Evaluation ev;
+  ev.residuals.reserve(size_);
+  for (std::size_t e = 0; e < setup_.experiments.size(); ++e) {
+    const Experiment& experiment = setup_.experiments[e];
+    const run::BatchOutcome& outcome = outcomes[first + e];
+    const std::size_t n = experiment.times.size();
+    // rows are at exactly the measured times, as many as the run reached
+    const std::size_t reached = outcome.columns.empty() ? 0 : std::min(n, outcome.columns.front().size());
+    if (reached < n) {
+      std::string at;
+      for (std::size_t j = 0; j < values.size(); ++j)
+        at += (j ? ", " : "") + setup_.parameters[j].name + "=" + blocks::CsvNumber(values[j]);
+      const std::string what = outcome.result.status == run::Status::kOk ? "ended" : "failed";
+      ev.failures.push_back("the run for " + experiment.file + " at " + at + " " + what + " at t = " +
+                            blocks::CsvNumber(outcome.result.t_reached) + " s" +
+                            (outcome.result.reason.empty() ? "" : ": " + outcome.result.reason) + " (" +
+                            std::to_string(n - reached) + " measured instants not reached)");
+    }
+    ev.simulated.emplace_back();
+    for (std::size_t k = 0; k < setup_.matches.size(); ++k) {
+      std::vector<double> sim(n, std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t i = 0; i < reached; ++i) sim[i] = outcome.columns[column_[k]][i];
+      const double w = setup_.matches[k].weight;
+      for (std::size_t i = 0; i < n; ++i)
+        ev.residuals.push_back(i < reached && std::isfinite(sim[i]) ? w * (sim[i] - experiment.measured[k][i])
+                                                                    : penalty_[k]);
+      ev.simulated.back().push_back(std::move(sim));
+    }
+  }
+  return ev;
+}
+
+}  // namespace mechflow::analysis::fit

@@ -1,0 +1,131 @@
+// `mechflow fit`: the damped oscillator's frequency and damping ratio from
+// its closed-form motion written as a data file; the files it writes (the
+// set file read back by `mechflow run --set-file`); bad input with file:line.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/cli/mechflow_command.h"
+#include "tests/numbers.h"
+
+namespace mechflow {
+namespace fit_command_test {
+
+using ::testing::HasSubstr;
+using testing::ReadFile;
+using testing::RunMechflow;
+
+namespace fs = std::filesystem;
+
+const std::string kOscillator = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/damped_oscillator_blocks.xml";
+
+double Displacement(double t, double f, double beta) {
+  const double w = 2 * mechflow::testing::kPi * f, wd = w * std::sqrt(1 - beta * beta);
+  return 0.5 * std::exp(-beta * w * t) * (std::cos(wd * t) + beta * w / wd * std::sin(wd * t));
+}
+
+// x of the oscillator with f = 1.2 Hz, beta = 0.15 at 0.05 s steps to 4 s.
+fs::path WriteData(const fs::path& dir, const std::string& name) {
+  fs::create_directories(dir);
+  std::ofstream csv(dir / name);
+  csv.precision(17);
+  csv << "time,x_meas\n";
+  for (int i = 1; i <= 80; ++i) csv << 0.05 * i << "," << Displacement(0.05 * i, 1.2, 0.15) << "\n";
+  return dir / name;
+}
+
+std::string Fit(const fs::path& data, const fs::path& out, const std::string& more = "") {
+  return "fit " + kOscillator + " --data " + data.string() + " --match x.y=x_meas --free f=0.5:2 " +
+         "--free beta=0.01:0.5:log --jobs 2 --out " + out.string() + " " + more;
+}
+
+TEST(FitCommandTest, FitsOscillatorAndWritesItsFiles) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "fit_command";
+  const fs::path data = WriteData(dir, "measured.csv");
+  const auto fit = RunMechflow(Fit(data, dir / "out", "--holdout " + data.string()));
+  ASSERT_EQ(fit.exit_code, 0) << fit.out << fit.err;
+  EXPECT_THAT(fit.out, HasSubstr("2 parameters, 1 experiment (80 measured values), Levenberg-Marquardt (Ceres)"));
+  EXPECT_THAT(fit.out, HasSubstr("cost (sum of squared weighted residuals, 80 of them): before "));
+  EXPECT_THAT(fit.out, HasSubstr("holdout: cost "));
+  EXPECT_THAT(fit.out, HasSubstr(" runs/s)"));
+  std::istringstream table(ReadFile(dir / "out" / "damped_oscillator_blocks.fit.csv"));
+  std::string line;
+  std::getline(table, line);
+  EXPECT_EQ(line, "parameter,value,standard_error,lower,upper,at_bound");
+  std::getline(table, line);
+  EXPECT_THAT(line, ::testing::StartsWith("f,1.2"));  // 1.2 to the solver's accuracy
+  EXPECT_NEAR(std::stod(line.substr(2)), 1.2, 1e-6);
+  EXPECT_THAT(line, ::testing::EndsWith(",0.5,2,no"));
+  std::getline(table, line);
+  EXPECT_NEAR(std::stod(line.substr(5)), 0.15, 1e-6);
+  EXPECT_THAT(ReadFile(dir / "out" / "damped_oscillator_blocks.fit.correlation.csv"),
+              ::testing::StartsWith("parameter,f,beta\nf,1,"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "damped_oscillator_blocks.fit.data1.csv"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "damped_oscillator_blocks.fit.history.csv"));
+  // the set file, as `run --set-file` reads it: the run goes through the data
+  const auto run = RunMechflow("run " + kOscillator + " --set-file " +
+                               (dir / "out" / "damped_oscillator_blocks.fit.set").string() + " --t-end 1 --no-plot --out " +
+                               (dir / "run").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::istringstream rows(ReadFile(dir / "run" / "damped_oscillator_blocks.csv"));
+  std::getline(rows, line);
+  for (int i = 0; std::getline(rows, line); ++i) {
+    const double t = std::stod(line), x = std::stod(line.substr(line.find(',') + 1));
+    ASSERT_NEAR(x, Displacement(t, 1.2, 0.15), 1e-6) << "t = " << t;
+  }
+}
+
+TEST(FitCommandTest, BadDataNamesFileAndLine) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "fit_bad";
+  fs::create_directories(dir);
+  std::ofstream(dir / "unsorted.csv") << "time,x_meas\n0.1,0.5\n0.3,0.4\n0.2,0.3\n";
+  std::ofstream(dir / "nan.csv") << "time,x_meas\n0.1,0.5\n0.2,nan\n";
+  std::ofstream(dir / "late.csv") << "time,x_meas\n0.1,0.5\n\n12,0.4\n";
+  auto r = RunMechflow(Fit(dir / "unsorted.csv", dir / "out"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("unsorted.csv:4: time 0.2 is not after the row before"));
+  r = RunMechflow(Fit(dir / "nan.csv", dir / "out"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("nan.csv:3: 'nan' is not a finite number"));
+  r = RunMechflow(Fit(dir / "late.csv", dir / "out"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("late.csv:4: time 12 is outside the run (0 to 10 s)"));
+}
+
+TEST(FitCommandTest, GuardsRefuseBeforeFitting) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "fit_guards";
+  const fs::path data = WriteData(dir, "measured.csv");
+  auto r = RunMechflow(Fit(data, dir / "out", "--free m=500:2000"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("m has no effect on x.y"));
+  r = RunMechflow(Fit(data, dir / "out", "--constraint 'f<=2'"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--constraint 'f<=2': constraints between parameters are not available yet"));
+  r = RunMechflow(Fit(data, dir / "out", "--method newton"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--method: 'newton' is not lm or derivative-free"));
+  r = RunMechflow(Fit(data, dir / "out", "--free c=1:10"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("is defined by an expression"));
+  r = RunMechflow(Fit(data, dir / "out", "--set f=1.1"));  // after its --data: that experiment's
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("f is a free parameter, fitted to all the data"));
+}
+
+TEST(FitCommandTest, StartOnBoundMovedInside) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "fit_bound";
+  const fs::path data = WriteData(dir, "measured.csv");
+  const auto r = RunMechflow("fit " + kOscillator + " --data " + data.string() +
+                             " --match x.y=x_meas --free f=1:2 --free beta=0.05:0.5 --no-plot --out " +
+                             (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("note: the start of f, 1, is on a bound; moved inside to 1.01"));
+}
+
+}  // namespace fit_command_test
+}  // namespace mechflow
