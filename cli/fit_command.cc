@@ -25,7 +25,8 @@ const std::vector<std::string> kFitOptions = {"--data",   "--match",  "--free", 
 std::string FitHelp() {
   return "usage: mechflow fit FILE --data MEAS.csv [--variant V]... [--set NAME=VALUE]...\n"
          "                  [--data ...] --match SIGNAL=COLUMN[:WEIGHT]... --free NAME=LOWER:UPPER[:log]...\n"
-         "                  [--method lm|derivative-free] [--holdout OTHER.csv [--variant V]... [--set ...]]\n"
+         "                  [--constraint A<=B]... [--method lm|derivative-free]\n"
+         "                  [--holdout OTHER.csv [--variant V]... [--set NAME=VALUE]...]\n"
          "                  [--jobs N] [--t-end T] [--out DIR] [--no-plot] [--overwrite]\n"
          "\n"
          "Fits identifiers of the diagram FILE (friction coefficients, stiffnesses) to\n"
@@ -52,6 +53,8 @@ std::string FitHelp() {
          "  --method M        lm (default): Levenberg-Marquardt (Ceres) with forward\n"
          "                    differences, for smooth costs; derivative-free: BOBYQA (NLopt),\n"
          "                    for costs that stick/slip or contact make non-smooth\n"
+         "  --constraint A<=B  between two free parameters (or A>=B): a point breaking it is\n"
+         "                    not run, it counts as a failed run (repeatable)\n"
          "  --holdout FILE    data not used in fitting, scored at the fitted values\n"
          "  --jobs N          runs at a time (default: the number of cores)\n"
          "  --t-end T, --unsafe-lua, --allow-read, --library  as for mechflow run\n"
@@ -59,7 +62,7 @@ std::string FitHelp() {
          "Refused before fitting: a parameter that moves no matched output, a start\n"
          "outside the bounds, measured times outside the run, a bad data row\n"
          "(file:line). A run that fails during the fit gives large residuals and a\n"
-         "warning. --constraint and MPI ranks are not available yet.\n"
+         "warning. MPI ranks are not available yet.\n"
          "\n"
          "Exit codes: 0 fitted, 1 stopped without converging (everything written),\n"
          "2 bad input, 130 / 143 ended by SIGINT / SIGTERM.\n";
@@ -107,6 +110,7 @@ int FitCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   setup.common.library = args.library;
   std::vector<DataSpec> data;
   analysis::fit::Method method = analysis::fit::Method::kLevenbergMarquardt;
+  std::vector<std::string> constraints;
   for (const auto& [option, value] : args.command_options) {
     if (option == "--data" || option == "--holdout") {
       data.push_back({value, option == "--holdout", {}, {}});
@@ -123,10 +127,12 @@ int FitCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
       else if (value == "derivative-free") method = analysis::fit::Method::kDerivativeFree;
       else throw UsageError("--method: '" + value + "' is not lm or derivative-free");
     } else if (option == "--constraint") {
-      throw UsageError("--constraint '" + value + "': constraints between parameters are not available yet; fit "
-                       "without it and check the result, or fix one parameter with --set");
+      constraints.push_back(value);
     }
   }
+  // after the loop: a constraint may name a --free given after it
+  for (const std::string& c : constraints)
+    setup.constraints.push_back(analysis::fit::ParseConstraint(c, setup.parameters));
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   setup.threads = args.jobs.value_or(cores);
   // the diagram as given: its common options checked, its outputs' name

@@ -87,6 +87,11 @@ Fitter::Fitter(Setup setup) : setup_([&] {
 }
 
 void Fitter::Probe() {
+  std::vector<double> start;
+  for (const FreeParameter& p : setup_.parameters) start.push_back(p.start);
+  if (const std::string broken = Broken(setup_.constraints, setup_.parameters, start); !broken.empty())
+    throw InputError("the start values break a constraint: " + broken +
+                     "; start elsewhere (--set NAME=VALUE before the first --data)");
   const std::size_t n = setup_.parameters.size();
   std::vector<std::vector<double>> points;
   std::vector<double> u0(n);

@@ -49,7 +49,10 @@ std::vector<Evaluation> Residuals::EvaluateUnit(const std::vector<std::vector<do
 
 std::vector<Evaluation> Residuals::Evaluate(const std::vector<std::vector<double>>& points) {
   std::vector<run::BatchJob> jobs;
+  std::vector<std::string> broken;
   for (const std::vector<double>& values : points) {
+    broken.push_back(Broken(setup_.constraints, setup_.parameters, values));
+    if (!broken.back().empty()) continue;
     for (std::size_t e = 0; e < setup_.experiments.size(); ++e) {
       const Experiment& experiment = setup_.experiments[e];
       run::BatchJob job;
@@ -64,8 +67,24 @@ std::vector<Evaluation> Residuals::Evaluate(const std::vector<std::vector<double
   }
   const std::vector<run::BatchOutcome> outcomes = batch_.Run(jobs);
   std::vector<Evaluation> evaluations;
-  for (std::size_t p = 0; p < points.size(); ++p)
-    evaluations.push_back(Collect(points[p], outcomes, p * setup_.experiments.size()));
+  std::size_t first = 0;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    if (broken[p].empty()) {
+      evaluations.push_back(Collect(points[p], outcomes, first));
+      first += setup_.experiments.size();
+      continue;
+    }
+    Evaluation ev;  // not run: as a run that failed at once
+    ev.failures.push_back(broken[p] + " (not run)");
+    for (const Experiment& e : setup_.experiments) {
+      ev.simulated.emplace_back();
+      for (std::size_t k = 0; k < setup_.matches.size(); ++k) {
+        ev.residuals.insert(ev.residuals.end(), e.times.size(), penalty_[k]);
+        ev.simulated.back().emplace_back(e.times.size(), std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+    evaluations.push_back(std::move(ev));
+  }
   return evaluations;
 }
 

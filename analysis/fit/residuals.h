@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/fit/constraint.h"
 #include "analysis/fit/experiment.h"
 #include "analysis/fit/parameters.h"
 #include "run/batch.h"
@@ -31,6 +32,7 @@ struct Setup {
   std::vector<Match> matches;
   std::vector<Experiment> experiments;
   std::vector<FreeParameter> parameters;
+  std::vector<Constraint> constraints;  // between parameters: a point breaking one is not run
   int threads = 1;
   const volatile std::sig_atomic_t* interrupt = nullptr;  // Ctrl-C: runs end (failed)
 };

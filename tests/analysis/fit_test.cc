@@ -227,5 +227,22 @@ TEST(Fit, RunThatFailsIsLargeResidual) {
   EXPECT_NEAR(r.values[0], 2.9, 1e-6);
 }
 
+// A point that breaks a constraint is not run: large residuals, a message.
+TEST(Fit, ConstraintKeepsPointsFromRunning) {
+  fit::Setup s = Oscillator({Measured(1.2, 0.15, 0.0, 1)});
+  s.constraints = {ParseConstraint("beta >= f", s.parameters)};  // beta <= 0.5 < f: never kept
+  EXPECT_EQ(s.constraints[0].lower, 0);
+  EXPECT_THROW(ParseConstraint("beta<f", s.parameters), InputError);
+  EXPECT_THROW(ParseConstraint("beta<=m", s.parameters), InputError);
+  Residuals residuals(s);
+  const Evaluation e = residuals.Evaluate({{1.2, 0.15}}).front();
+  EXPECT_EQ(residuals.runs(), 0);
+  ASSERT_EQ(e.failures.size(), 1u);
+  EXPECT_EQ(e.failures[0], "f=1.2 above beta=0.15 breaks --constraint beta >= f (not run)");
+  EXPECT_EQ(e.residuals.size(), 80u);
+  Fitter fitter(std::move(s));
+  EXPECT_THROW(fitter.Probe(), InputError);
+}
+
 }  // namespace fit_test
 }  // namespace mechflow::analysis::fit

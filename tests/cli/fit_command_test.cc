@@ -103,9 +103,12 @@ TEST(FitCommandTest, GuardsRefuseBeforeFitting) {
   auto r = RunMechflow(Fit(data, dir / "out", "--free m=500:2000"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("m has no effect on x.y"));
-  r = RunMechflow(Fit(data, dir / "out", "--constraint 'f<=2'"));
+  r = RunMechflow(Fit(data, dir / "out", "--constraint 'f<2'"));
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("--constraint 'f<=2': constraints between parameters are not available yet"));
+  EXPECT_THAT(r.err, HasSubstr("--constraint 'f<2': expected A<=B or A>=B"));
+  r = RunMechflow(Fit(data, dir / "out", "--constraint 'f<=beta'"));  // starts at f = 1, beta = 0.1
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("the start values break a constraint: f=1 above beta=0.1 breaks --constraint f<=beta"));
   r = RunMechflow(Fit(data, dir / "out", "--method newton"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("--method: 'newton' is not lm or derivative-free"));
