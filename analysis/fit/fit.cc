@@ -140,10 +140,10 @@ FitResult Fitter::Run(const FitOptions& options) {
           : DerivativeFree(objective, u0, options.max_evaluations > 0 ? options.max_evaluations : 200 * static_cast<int>(n),
                            setup_.interrupt);
   const std::vector<double>& u = result.optimiser.u;
-  Eigen::VectorXd r;
-  Eigen::MatrixXd jacobian;
-  objective.Linearise(u, &r, &jacobian);
   result.fitted = objective.At(u);
+  const std::vector<double>& fitted = result.fitted.residuals;
+  const Eigen::VectorXd r = Eigen::Map<const Eigen::VectorXd>(fitted.data(), static_cast<Eigen::Index>(fitted.size()));
+  const Eigen::MatrixXd jacobian = objective.CentralJacobian(u, options.statistics_step);
   result.cost_after = result.fitted.Cost();
   result.statistics = Estimate(setup_.parameters, u, jacobian, r);
   result.values = FromUnit(setup_.parameters, u);

@@ -26,7 +26,8 @@ struct FitOptions {
   Method method = Method::kLevenbergMarquardt;
   int max_iterations = 100;   // Levenberg-Marquardt's
   int max_evaluations = 0;    // the derivative-free method's runs per experiment (0: 200 per parameter)
-  double step = 1e-3;         // forward-difference step, a fraction of each parameter's range
+  double step = 1e-3;         // the optimiser's forward-difference step, a fraction of each parameter's range
+  double statistics_step = 1e-4;  // the central differences' at the result, for the standard errors
 };
 
 struct FitResult {

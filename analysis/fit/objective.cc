@@ -1,5 +1,7 @@
 #include "analysis/fit/objective.h"
 
+#include <algorithm>
+
 namespace mechflow::analysis::fit {
 
 void Objective::Keep(const std::vector<double>& u, const Evaluation& e) {
@@ -45,6 +47,31 @@ void Objective::Linearise(const std::vector<double>& u, Eigen::VectorXd* r, Eige
     for (const std::string& f : e[offset + j].failures)
       if (failures_.size() < 20) failures_.insert(f);
   }
+}
+
+Eigen::MatrixXd Objective::CentralJacobian(const std::vector<double>& u, double step) {
+  const int n = parameters();
+  std::vector<std::vector<double>> points;
+  std::vector<double> width(n);
+  for (int j = 0; j < n; ++j) {
+    // within the bounds: one side shortened at a bound
+    const double below = std::min(step, u[j]), above = std::min(step, 1.0 - u[j]);
+    std::vector<double> p = u;
+    p[j] = u[j] + above;
+    points.push_back(p);
+    p[j] = u[j] - below;
+    points.push_back(p);
+    width[j] = above + below;
+  }
+  const std::vector<Evaluation> e = residuals_.EvaluateUnit(points);
+  Eigen::MatrixXd jacobian(size(), n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < size(); ++i) jacobian(i, j) = (e[2 * j].residuals[i] - e[2 * j + 1].residuals[i]) / width[j];
+    for (const Evaluation& side : {e[2 * j], e[2 * j + 1]})
+      for (const std::string& f : side.failures)
+        if (failures_.size() < 20) failures_.insert(f);
+  }
+  return jacobian;
 }
 
 }  // namespace mechflow::analysis::fit

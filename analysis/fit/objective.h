@@ -27,6 +27,10 @@ class Objective {
   const Evaluation& At(const std::vector<double>& u);
   // The residuals at `u` and the Jacobian d r / d u (size() x parameters()).
   void Linearise(const std::vector<double>& u, Eigen::VectorXd* r, Eigen::MatrixXd* jacobian);
+  // The Jacobian by central differences of `step` (2 runs per parameter):
+  // the local slope the standard errors need, where the optimiser's larger
+  // forward step would average over a cost that curves.
+  Eigen::MatrixXd CentralJacobian(const std::vector<double>& u, double step);
 
   // Every failure message met, each once (the first of many alike kept short).
   const std::set<std::string>& failures() const { return failures_; }
