@@ -46,7 +46,9 @@ std::string FitHelp() {
          "  --variant, --set  before the first --data: for every experiment; after a --data\n"
          "                    or --holdout: for that one only (its test's load, speed, ...)\n"
          "  --match SIGNAL=COLUMN[:WEIGHT]  the output port SIGNAL (block.port) against the\n"
-         "                    data's COLUMN, weighted (1/sigma of its noise; default 1)\n"
+         "                    data's COLUMN, weighted (1/sigma of its noise; default 1);\n"
+         "                    SIGNAL report:LABEL is a <report> figure's value, report-time:LABEL\n"
+         "                    its time, against COLUMN's one value (one row, or the same in each)\n"
          "  --free NAME=LOWER:UPPER[:log]  an identifier defined by a number, fitted between\n"
          "                    the bounds (required; log: on a log scale), from its value in\n"
          "                    the diagram (moved inside when on a bound)\n"
@@ -164,7 +166,8 @@ int FitCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   ClaimStems(folder, args.file, {{stem, ResultsNameOrigin(loaded, std::nullopt)}}, args.overwrite, true, out);
   const Setup& s = fitter.setup();
   std::size_t measured = 0;
-  for (const Experiment& e : s.experiments) measured += e.times.size() * s.matches.size();
+  for (const Experiment& e : s.experiments)
+    for (const auto& m : s.matches) measured += m.is_signal() ? e.times.size() : 1;
   out << "mechflow fit " << args.file << ": " << s.parameters.size() << " parameter"
       << (s.parameters.size() == 1 ? "" : "s") << ", " << s.experiments.size() << " experiment"
       << (s.experiments.size() == 1 ? "" : "s") << " (" << measured << " measured values), "
@@ -206,7 +209,8 @@ int FitCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   if (!holdout.empty()) {
     const analysis::fit::Evaluation scored = analysis::fit::Score(holdout_setup, result.values);
     std::size_t n = 0;
-    for (const Experiment& e : holdout) n += e.times.size() * s.matches.size();
+    for (const Experiment& e : holdout)
+      for (const auto& m : s.matches) n += m.is_signal() ? e.times.size() : 1;
     out << "holdout: cost " << blocks::CsvNumber(scored.Cost()) << " over " << n << " values (RMS weighted residual "
         << blocks::CsvNumber(std::sqrt(scored.Cost() / static_cast<double>(n))) << "; the fit's: "
         << blocks::CsvNumber(std::sqrt(result.cost_after / result.residuals)) << ")\n";

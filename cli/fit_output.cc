@@ -35,14 +35,18 @@ std::string DataName(const FitReport& r, std::size_t e) {
 
 std::string PlotScript(const FitReport& r, const std::string& plot_name) {
   const auto& setup = *r.setup;
-  const int panels = static_cast<int>(setup.experiments.size() * setup.matches.size()) + 1;
+  int signals = 0;
+  for (const auto& m : setup.matches) signals += m.is_signal();
+  const int panels = static_cast<int>(setup.experiments.size()) * signals + 1;
   std::ostringstream s;
   s << GnuplotPreamble(plot_name, panels, 260, 28, r.stem + ": measured and fitted");
   s << "set xlabel 'time [s]'\n";
   for (std::size_t e = 0; e < setup.experiments.size(); ++e) {
-    for (std::size_t k = 0; k < setup.matches.size(); ++k) {
-      const auto& m = setup.matches[k];
-      const int measured = 2 + 3 * static_cast<int>(k);  // time, then measured, fitted, start per match
+    int column = 2;  // time, then measured, fitted, start per signal's match
+    for (const auto& m : setup.matches) {
+      if (!m.is_signal()) continue;
+      const int measured = column;
+      column += 3;
       s << "set title " << GnuplotQuote(setup.experiments[e].file + ": " + m.signal) << "\nset ylabel "
         << GnuplotQuote(m.signal) << "\nunset logscale y\nplot " << GnuplotQuote(DataName(r, e)) << " using 1:"
         << measured + 2 << " every ::1 with lines lw 1 " << CurveStyle(11) << " title 'start', \\\n     '' using 1:"
@@ -83,6 +87,12 @@ void PrintFit(const FitReport& report, std::ostream& out) {
       out << "\n";
     }
   }
+  for (std::size_t e = 0; e < setup.experiments.size(); ++e)
+    for (std::size_t k = 0; k < setup.matches.size(); ++k)
+      if (!setup.matches[k].is_signal())
+        out << setup.experiments[e].file << ": " << setup.matches[k].signal << ": measured "
+            << Short(setup.experiments[e].measured[k][0]) << ", start " << Short(r.initial.simulated[e][k][0])
+            << ", fitted " << Short(r.fitted.simulated[e][k][0]) << "\n";
   out << "cost (sum of squared weighted residuals, " << r.residuals << " of them): before " << Short(r.cost_before)
       << ", after " << Short(r.cost_after) << "\n";
 }
@@ -133,14 +143,16 @@ std::vector<std::string> WriteFit(const FitReport& report, const OutputFolder& f
     std::ostringstream data;
     data << "time";
     for (const auto& m : setup.matches)
-      data << "," << CsvField(m.column + " measured") << "," << CsvField(m.signal + " fitted") << ","
-           << CsvField(m.signal + " start");
+      if (m.is_signal())
+        data << "," << CsvField(m.column + " measured") << "," << CsvField(m.signal + " fitted") << ","
+             << CsvField(m.signal + " start");
     data << "\n";
     for (std::size_t i = 0; i < experiment.times.size(); ++i) {
       data << CsvNumber(experiment.times[i]);
       for (std::size_t k = 0; k < setup.matches.size(); ++k)
-        data << "," << CsvNumber(experiment.measured[k][i]) << "," << Field(r.fitted.simulated[e][k][i]) << ","
-             << Field(r.initial.simulated[e][k][i]);
+        if (setup.matches[k].is_signal())
+          data << "," << CsvNumber(experiment.measured[k][i]) << "," << Field(r.fitted.simulated[e][k][i]) << ","
+               << Field(r.initial.simulated[e][k][i]);
       data << "\n";
     }
     write(DataName(report, e), data.str());

@@ -28,6 +28,14 @@ Match ParseMatch(const std::string& text) {
                        "' is not a number > 0");
     if (m.column.empty()) throw InputError("--match '" + blocks::Excerpt(text) + "'" + usage);
   }
+  for (const auto& [prefix, kind] : {std::pair<std::string, Match::Kind>{"report:", Match::Kind::kFigureValue},
+                                     {"report-time:", Match::Kind::kFigureTime}}) {
+    if (m.signal.rfind(prefix, 0) == 0) {
+      m.kind = kind;
+      m.figure = m.signal.substr(prefix.size());
+      if (m.figure.empty()) throw InputError("--match '" + blocks::Excerpt(text) + "': " + prefix + " needs a <report> label");
+    }
+  }
   return m;
 }
 
@@ -41,6 +49,17 @@ Experiment ReadExperiment(const std::string& text, const std::string& path, cons
   e.times = std::move(table.time);
   e.measured = std::move(table.values);
   e.lines = std::move(table.lines);
+  // a figure is one number per experiment: its column holds it in every row
+  for (std::size_t k = 0; k < matches.size(); ++k) {
+    if (matches[k].is_signal()) continue;
+    for (std::size_t i = 1; i < e.times.size(); ++i)
+      if (e.measured[k][i] != e.measured[k][0])
+        throw InputError(path + ":" + std::to_string(e.lines[i]) + ": " + matches[k].column + " is " +
+                         blocks::CsvNumber(e.measured[k][i]) + ", not " + blocks::CsvNumber(e.measured[k][0]) +
+                         " as in the first row; it is matched to the figure '" + matches[k].figure +
+                         "', one number per data file (give it one row, or the same value in every row)");
+    e.measured[k].resize(1);
+  }
   return e;
 }
 

@@ -39,14 +39,23 @@ void CheckSetup(Setup* setup) {
         if (Lower(id.name) == Lower(p.name)) p.start = id.value;
     }
     const std::vector<std::string> loggable = model.LoggableSignals();
+    const diagrams::LoadedDiagram& loaded = model.Loaded();
     for (const Match& m : setup->matches) {
+      if (!m.is_signal()) {
+        std::vector<std::string> labels;
+        for (const blocks::ReportRequest& r : loaded.reports) labels.push_back(r.label);
+        if (std::find(labels.begin(), labels.end(), m.figure) == labels.end())
+          throw InputError("--match " + m.signal + "=" + m.column + ": " + setup->diagram + " has no <report> '" +
+                           blocks::Excerpt(m.figure) + "'" + blocks::DidYouMean(m.figure, labels) +
+                           (labels.empty() ? "; it has none" : "; its reports: " + blocks::JoinNames(labels)));
+        continue;
+      }
       const std::string port = m.signal.substr(0, m.signal.find('['));
       if (std::find(loggable.begin(), loggable.end(), port) == loggable.end())
         throw InputError("--match " + m.signal + "=" + m.column + ": " + setup->diagram + " has no output port '" +
                          blocks::Excerpt(m.signal) + "'" + blocks::DidYouMean(m.signal, loggable) +
                          " (give block.port, as <log signal> does)");
     }
-    const diagrams::LoadedDiagram& loaded = model.Loaded();
     CheckTimesInRun(experiment, loaded.solver.t_start, loaded.solver.t_end);
   }
 }

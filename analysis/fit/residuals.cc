@@ -27,18 +27,23 @@ std::vector<run::BatchModel> ExperimentModels(const Setup& setup) {
 
 Residuals::Residuals(const Setup& setup) : setup_(setup), batch_(ExperimentModels(setup), setup.threads) {
   for (const Match& m : setup.matches) {
+    if (!m.is_signal()) {
+      column_.push_back(-1);
+      continue;
+    }
     auto it = std::find(signals_.begin(), signals_.end(), m.signal);
     if (it == signals_.end()) it = signals_.insert(signals_.end(), m.signal);
     column_.push_back(1 + static_cast<int>(it - signals_.begin()));
   }
   penalty_.assign(setup.matches.size(), 0.0);
   for (const Experiment& e : setup.experiments) {
-    size_ += static_cast<int>(e.times.size() * setup.matches.size());
+    for (const Match& m : setup.matches) size_ += m.is_signal() ? static_cast<int>(e.times.size()) : 1;
     for (std::size_t k = 0; k < setup.matches.size(); ++k)
       for (const double v : e.measured[k]) penalty_[k] = std::max(penalty_[k], std::abs(v));
   }
   for (std::size_t k = 0; k < penalty_.size(); ++k)
     penalty_[k] = 10.0 * (penalty_[k] > 0 ? penalty_[k] : 1.0) * setup.matches[k].weight;
+  for (const Match& m : setup.matches) figures_ = figures_ || !m.is_signal();
 }
 
 std::vector<Evaluation> Residuals::EvaluateUnit(const std::vector<std::vector<double>>& points) {
@@ -60,7 +65,8 @@ std::vector<Evaluation> Residuals::Evaluate(const std::vector<std::vector<double
       for (std::size_t j = 0; j < values.size(); ++j) job.set.emplace_back(setup_.parameters[j].name, values[j]);
       job.options.log = signals_;
       job.options.times = experiment.times;
-      job.options.t_end = experiment.times.back();  // nothing after the last measurement is needed
+      if (!figures_)  // nothing after the last measurement is needed; a figure may come later
+        job.options.t_end = experiment.times.back();
       job.options.interrupt = setup_.interrupt;
       jobs.push_back(std::move(job));
     }
@@ -79,8 +85,9 @@ std::vector<Evaluation> Residuals::Evaluate(const std::vector<std::vector<double
     for (const Experiment& e : setup_.experiments) {
       ev.simulated.emplace_back();
       for (std::size_t k = 0; k < setup_.matches.size(); ++k) {
-        ev.residuals.insert(ev.residuals.end(), e.times.size(), penalty_[k]);
-        ev.simulated.back().emplace_back(e.times.size(), std::numeric_limits<double>::quiet_NaN());
+        const std::size_t n = setup_.matches[k].is_signal() ? e.times.size() : 1;
+        ev.residuals.insert(ev.residuals.end(), n, penalty_[k]);
+        ev.simulated.back().emplace_back(n, std::numeric_limits<double>::quiet_NaN());
       }
     }
     evaluations.push_back(std::move(ev));
@@ -110,6 +117,15 @@ Evaluation Residuals::Collect(const std::vector<double>& values, const std::vect
     }
     ev.simulated.emplace_back();
     for (std::size_t k = 0; k < setup_.matches.size(); ++k) {
+      const Match& match = setup_.matches[k];
+      if (!match.is_signal()) {
+        double sim = std::numeric_limits<double>::quiet_NaN();
+        for (const blocks::ReportFigure& f : outcome.result.figures)
+          if (f.label == match.figure && f.found) sim = match.kind == Match::Kind::kFigureValue ? f.value : f.time;
+        ev.residuals.push_back(std::isfinite(sim) ? match.weight * (sim - experiment.measured[k][0]) : penalty_[k]);
+        ev.simulated.back().push_back({sim});
+        continue;
+      }
       std::vector<double> sim(n, std::numeric_limits<double>::quiet_NaN());
       for (std::size_t i = 0; i < reached; ++i) sim[i] = outcome.columns[column_[k]][i];
       const double w = setup_.matches[k].weight;

@@ -1,6 +1,7 @@
 #pragma once
 // The residuals of a fit: for every experiment, every match and every
-// measured instant, WEIGHT * (simulated - measured), in that order. One
+// measured instant, WEIGHT * (simulated - measured), in that order (a
+// <report> figure's match: one residual per experiment). One
 // point of parameters takes one run per experiment; many points are run
 // together on the batch's threads (run/batch.h), each experiment's model
 // made once per thread and rebuilt with each point's values.
@@ -40,7 +41,7 @@ struct Setup {
 // The simulated signals and residuals of one point.
 struct Evaluation {
   std::vector<double> residuals;
-  // [experiment][match][instant]; NaN where the run did not get to
+  // [experiment][match][instant] (a figure: its one value); NaN where the run did not get to
   std::vector<std::vector<std::vector<double>>> simulated;
   std::vector<std::string> failures;  // a message per run that failed or stopped short
   double Cost() const;               // the sum of squared residuals
@@ -70,6 +71,7 @@ class Residuals {
   std::vector<std::string> signals_;  // logged, each once
   std::vector<int> column_;           // per match: its column in a run's rows (time is 0)
   std::vector<double> penalty_;       // per match: the residual of an instant not reached
+  bool figures_ = false;              // some match is a <report> figure: runs go to the diagram's t_end
   run::Batch batch_;
 };
 

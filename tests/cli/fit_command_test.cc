@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -128,6 +129,51 @@ TEST(FitCommandTest, StartOnBoundMovedInside) {
                              (dir / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("note: the start of f, 1, is on a bound; moved inside to 1.01"));
+}
+
+// The tension mechanism's contact stiffness from a measured peak contact
+// force and its time (its <report>), made by the diagram with the stiffness
+// it gives (200000 N/m^2): recovered from half of it.
+TEST(FitCommandTest, ContactStiffnessFromPeakForce) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "fit_peak";
+  fs::create_directories(dir);
+  const std::string diagram = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/tension_mechanism.xml";
+  const auto run = RunMechflow("run " + diagram + " --no-plot --no-animate --out " + (dir / "truth").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::istringstream report(ReadFile(dir / "truth" / "tension_mechanism.report.csv"));
+  std::string line;
+  std::getline(report, line);
+  std::getline(report, line);  // peak contact force,peak,m.contact_force,VALUE,N,TIME
+  std::vector<std::string> f;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = line.find(',', start);
+    f.push_back(line.substr(start, comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  ASSERT_EQ(f.size(), 6u) << line;
+  std::ofstream(dir / "peak.csv") << "time,F_peak,t_peak\n0," << f[3] << "," << f[5] << "\n";
+  const std::string fit = "fit " + diagram + " --set Stiffnes=100000 --data " + (dir / "peak.csv").string() +
+                          " --match 'report:peak contact force=F_peak' --match 'report-time:peak contact force=t_peak:1000'"
+                          " --free Stiffnes=1e4:1e6:log --no-plot --out " + (dir / "fit").string();
+  const auto r = RunMechflow(fit);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_THAT(r.out, HasSubstr("1 experiment (2 measured values)"));
+  EXPECT_THAT(r.out, HasSubstr("report:peak contact force: measured 285.219, start 284.848, fitted 285.219"));
+  std::istringstream table(ReadFile(dir / "fit" / "tension_mechanism.fit.csv"));
+  std::getline(table, line);
+  std::getline(table, line);
+  EXPECT_NEAR(std::stod(line.substr(line.find(',') + 1)), 200000, 1);
+  // a report the diagram does not have; a figure's column that changes
+  auto bad = RunMechflow("fit " + diagram + " --data " + (dir / "peak.csv").string() +
+                         " --match 'report:peak force=F_peak' --free Stiffnes=1e4:1e6:log --out " + (dir / "fit").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("has no <report> 'peak force'"));
+  std::ofstream(dir / "two.csv") << "time,F_peak\n0,285\n0.1,286\n";
+  bad = RunMechflow("fit " + diagram + " --data " + (dir / "two.csv").string() +
+                    " --match 'report:peak contact force=F_peak' --free Stiffnes=1e4:1e6:log --out " + (dir / "fit").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("two.csv:3: F_peak is 286, not 285 as in the first row"));
 }
 
 }  // namespace fit_command_test
