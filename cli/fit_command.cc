@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <thread>
 
 #include "analysis/fit/fit.h"
@@ -64,7 +65,8 @@ std::string FitHelp() {
          "Refused before fitting: a parameter that moves no matched output, a start\n"
          "outside the bounds, measured times outside the run, a bad data row\n"
          "(file:line). A run that fails during the fit gives large residuals and a\n"
-         "warning. MPI ranks are not available yet.\n"
+         "warning. Under mpirun (built with MPI), each round of runs is shared by the\n"
+         "processes, each with --jobs threads; the result is the threaded one, bit for bit.\n"
          "\n"
          "Exit codes: 0 fitted, 1 stopped without converging (everything written),\n"
          "2 bad input, 130 / 143 ended by SIGINT / SIGTERM.\n";
@@ -90,17 +92,9 @@ std::pair<std::string, double> ParseSet(const std::string& text) {
 
 }  // namespace
 
-int FitCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
-  // threads only for now: under mpirun every rank would fit alone
-  {
-    const Ranks ranks;
-    if (ranks.size() > 1) {
-      if (ranks.root())
-        err << "mechflow fit: runs on threads of one process (--jobs N); spreading a fit's runs over MPI ranks "
-               "is not available yet: run it without mpirun\n";
-      return 2;
-    }
-  }
+namespace {
+
+int Fit(const Arguments& args, const Ranks& ranks, std::ostream& out, std::ostream& err) {
   Setup setup;
   setup.diagram = args.file;
   setup.common.variants = args.variants;
@@ -136,7 +130,12 @@ int FitCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   for (const std::string& c : constraints)
     setup.constraints.push_back(analysis::fit::ParseConstraint(c, setup.parameters));
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  setup.threads = args.jobs.value_or(cores);
+  setup.threads = args.jobs.value_or(std::max(1, cores / ranks.local_size()));
+  if (ranks.size() > 1) {
+    setup.processes.rank = ranks.rank();
+    setup.processes.size = ranks.size();
+    setup.processes.all_gather = [&ranks](const std::string& mine) { return ranks.AllGather(mine); };
+  }
   // the diagram as given: its common options checked, its outputs' name
   run::Model base(args.file, setup.common);
   setup.description = base.description();
@@ -163,7 +162,7 @@ int FitCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     Setup checked = holdout_setup;
     analysis::fit::CheckSetup(&checked);
   }
-  ClaimStems(folder, args.file, {{stem, ResultsNameOrigin(loaded, std::nullopt)}}, args.overwrite, true, out);
+  ClaimStems(folder, args.file, {{stem, ResultsNameOrigin(loaded, std::nullopt)}}, args.overwrite, ranks.root(), out);
   const Setup& s = fitter.setup();
   std::size_t measured = 0;
   for (const Experiment& e : s.experiments)
@@ -172,7 +171,8 @@ int FitCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
       << (s.parameters.size() == 1 ? "" : "s") << ", " << s.experiments.size() << " experiment"
       << (s.experiments.size() == 1 ? "" : "s") << " (" << measured << " measured values), "
       << (method == analysis::fit::Method::kLevenbergMarquardt ? "Levenberg-Marquardt (Ceres)" : "BOBYQA (NLopt)")
-      << ", " << s.threads << " run" << (s.threads == 1 ? "" : "s") << " at a time\n";
+      << ", " << s.threads << " run" << (s.threads == 1 ? "" : "s") << " at a time"
+      << (ranks.size() > 1 ? " in each of " + std::to_string(ranks.size()) + " processes" : "") << "\n";
   for (const std::string& note : fitter.notes()) out << "note: " << note << "\n";
   const auto start = std::chrono::steady_clock::now();
   fitter.Probe();
@@ -217,10 +217,36 @@ int FitCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     for (const std::string& f : scored.failures) err << "warning: holdout: " << f << "\n";
   }
   std::string warning;
-  for (const std::string& name : WriteFit(report, folder, !args.no_plot, &warning))
-    out << "wrote " << folder.PathOf(name) << "\n";
+  if (ranks.root())  // the others hold the same numbers
+    for (const std::string& name : WriteFit(report, folder, !args.no_plot, &warning))
+      out << "wrote " << folder.PathOf(name) << "\n";
   if (!warning.empty()) err << "warning: no plot: " << warning << "\n";
   return result.optimiser.converged ? 0 : 1;
+}
+
+}  // namespace
+
+int FitCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
+  std::unique_ptr<Ranks> ranks;
+  try {
+    ranks = std::make_unique<Ranks>();
+  } catch (const std::exception& e) {
+    err << "mechflow fit: " << e.what() << "\n";
+    return 2;
+  }
+  // every process runs the same fit; only the first prints and writes
+  std::ostream null_stream(nullptr);
+  std::ostream& here_out = ranks->root() ? out : null_stream;
+  std::ostream& here_err = ranks->root() ? err : null_stream;
+  try {
+    return Fit(args, *ranks, here_out, here_err);
+  } catch (const InputError& e) {
+    here_err << e.what() << "\n";
+    return 2;
+  } catch (const UsageError& e) {
+    here_err << "mechflow fit: " << e.what() << "\n";
+    return 2;
+  }
 }
 
 }  // namespace mechflow::cli

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "blocks/outputs/csv.h"
@@ -52,7 +53,96 @@ std::vector<Evaluation> Residuals::EvaluateUnit(const std::vector<std::vector<do
   return Evaluate(values);
 }
 
+namespace {
+
+// An evaluation as bytes for the other processes, and back: raw doubles (the
+// same bits on every process of one machine type), strings with their lengths.
+void Put(std::string* out, std::size_t n) { out->append(reinterpret_cast<const char*>(&n), sizeof n); }
+void Put(std::string* out, const std::vector<double>& v) {
+  Put(out, v.size());
+  out->append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+}
+
+std::string Pack(const Evaluation& e) {
+  std::string out;
+  Put(&out, e.residuals);
+  Put(&out, e.simulated.size());
+  for (const auto& experiment : e.simulated) {
+    Put(&out, experiment.size());
+    for (const auto& match : experiment) Put(&out, match);
+  }
+  Put(&out, e.failures.size());
+  for (const std::string& f : e.failures) {
+    Put(&out, f.size());
+    out += f;
+  }
+  return out;
+}
+
+class Reader {
+ public:
+  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
+  std::size_t Size() {
+    std::size_t n = 0;
+    std::memcpy(&n, bytes_.data() + at_, sizeof n);
+    at_ += sizeof n;
+    return n;
+  }
+  std::vector<double> Doubles() {
+    std::vector<double> v(Size());
+    std::memcpy(v.data(), bytes_.data() + at_, v.size() * sizeof(double));
+    at_ += v.size() * sizeof(double);
+    return v;
+  }
+  std::string Text() {
+    const std::size_t n = Size();
+    std::string s = bytes_.substr(at_, n);
+    at_ += n;
+    return s;
+  }
+  bool done() const { return at_ >= bytes_.size(); }
+
+ private:
+  const std::string& bytes_;
+  std::size_t at_ = 0;
+};
+
+Evaluation Unpack(Reader* in) {
+  Evaluation e;
+  e.residuals = in->Doubles();
+  e.simulated.resize(in->Size());
+  for (auto& experiment : e.simulated) {
+    experiment.resize(in->Size());
+    for (auto& match : experiment) match = in->Doubles();
+  }
+  e.failures.resize(in->Size());
+  for (std::string& f : e.failures) f = in->Text();
+  return e;
+}
+
+}  // namespace
+
 std::vector<Evaluation> Residuals::Evaluate(const std::vector<std::vector<double>>& points) {
+  for (const std::vector<double>& values : points)
+    if (Broken(setup_.constraints, setup_.parameters, values).empty())
+      runs_ += static_cast<long long>(setup_.experiments.size());
+  const Processes& processes = setup_.processes;
+  if (processes.size <= 1) return EvaluateHere(points);
+  // this process's share: points rank, rank + size, ...
+  std::vector<std::vector<double>> mine;
+  for (std::size_t p = processes.rank; p < points.size(); p += processes.size) mine.push_back(points[p]);
+  std::string packed;
+  for (const Evaluation& e : EvaluateHere(mine)) packed += Pack(e);
+  const std::vector<std::string> parts = processes.all_gather(packed);
+  std::vector<Evaluation> all(points.size());
+  for (int r = 0; r < processes.size; ++r) {
+    Reader in(parts.at(r));
+    for (std::size_t p = r; p < points.size(); p += processes.size) all[p] = Unpack(&in);
+  }
+  return all;
+}
+
+std::vector<Evaluation> Residuals::EvaluateHere(const std::vector<std::vector<double>>& points) {
   std::vector<run::BatchJob> jobs;
   std::vector<std::string> broken;
   for (const std::vector<double>& values : points) {

@@ -14,6 +14,7 @@
 // message; the fit does not stop.
 
 #include <csignal>
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -25,6 +26,16 @@
 
 namespace mechflow::analysis::fit {
 
+// Processes sharing a fit's runs (MPI ranks, from the command line): point p
+// of each round of runs is run by process p mod size, on its threads, and
+// every process gets every point's evaluation through all_gather, so all
+// run the same optimiser on the same numbers and end with the same result,
+// the one a single process gives, bit for bit. One process: size 1.
+struct Processes {
+  int rank = 0, size = 1;
+  std::function<std::vector<std::string>(const std::string&)> all_gather;  // collective
+};
+
 // What a fit is given: the diagram, what to match, where, and what is free.
 struct Setup {
   std::string diagram;                      // the file, for messages
@@ -35,6 +46,7 @@ struct Setup {
   std::vector<FreeParameter> parameters;
   std::vector<Constraint> constraints;  // between parameters: a point breaking one is not run
   int threads = 1;
+  Processes processes;
   const volatile std::sig_atomic_t* interrupt = nullptr;  // Ctrl-C: runs end (failed)
 };
 
@@ -59,10 +71,11 @@ class Residuals {
   // The same, given as unit points u (analysis/fit/parameters.h).
   std::vector<Evaluation> EvaluateUnit(const std::vector<std::vector<double>>& points);
 
-  long long runs() const { return batch_.runs(); }
+  long long runs() const { return runs_; }  // by every process
   int threads() const { return batch_.threads(); }
 
  private:
+  std::vector<Evaluation> EvaluateHere(const std::vector<std::vector<double>>& points);
   Evaluation Collect(const std::vector<double>& values, const std::vector<run::BatchOutcome>& outcomes,
                      std::size_t first) const;
 
@@ -71,6 +84,7 @@ class Residuals {
   std::vector<std::string> signals_;  // logged, each once
   std::vector<int> column_;           // per match: its column in a run's rows (time is 0)
   std::vector<double> penalty_;       // per match: the residual of an instant not reached
+  long long runs_ = 0;
   bool figures_ = false;              // some match is a <report> figure: runs go to the diagram's t_end
   run::Batch batch_;
 };

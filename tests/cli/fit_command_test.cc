@@ -1,6 +1,8 @@
 // `mechflow fit`: the damped oscillator's frequency and damping ratio from
 // its closed-form motion written as a data file; the files it writes (the
 // set file read back by `mechflow run --set-file`); bad input with file:line.
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -174,6 +176,36 @@ TEST(FitCommandTest, ContactStiffnessFromPeakForce) {
                     " --match 'report:peak contact force=F_peak' --free Stiffnes=1e4:1e6:log --out " + (dir / "fit").string());
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_THAT(bad.err, HasSubstr("two.csv:3: F_peak is 286, not 285 as in the first row"));
+}
+
+// mpirun -n 2: the processes share each round of runs and write the files of
+// the threaded fit, byte for byte (rank 0 alone writes).
+TEST(FitCommandTest, TwoMpiRanksEqualThreads) {
+#ifndef MECHFLOW_MPIEXEC
+  GTEST_SKIP() << "built without MECHFLOW_MPI";
+#else
+  // as the sweep's test: shared memory between the ranks only, no leak check in them
+  const std::string prefix = "env OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none "
+                             "ASAN_OPTIONS=\"${ASAN_OPTIONS}:detect_leaks=0\" " +
+                             std::string(MECHFLOW_MPIEXEC) + " -n 2 --oversubscribe " +
+                             (getuid() == 0 ? "--allow-run-as-root " : "");
+  const auto probe = RunMechflow("--version", prefix);
+  if (probe.exit_code != 0 || probe.out != "mechflow 0.1.0\nmechflow 0.1.0\n")
+    GTEST_SKIP() << "mpirun cannot start two processes here (exit " << probe.exit_code << "): " << probe.err;
+  const fs::path dir = fs::path(::testing::TempDir()) / "fit_mpi";
+  fs::remove_all(dir);
+  const fs::path data = WriteData(dir, "measured.csv");
+  const auto threads = RunMechflow(Fit(data, dir / "threads", "--no-plot"));
+  const auto mpi = RunMechflow(Fit(data, dir / "ranks", "--no-plot --jobs 1"), prefix);
+  ASSERT_EQ(threads.exit_code, 0) << threads.err;
+  ASSERT_EQ(mpi.exit_code, 0) << mpi.err;
+  EXPECT_THAT(mpi.out, HasSubstr("1 run at a time in each of 2 processes"));
+  EXPECT_EQ(mpi.out.find("parameter "), mpi.out.rfind("parameter "));  // printed once
+  for (const char* name : {"fit.csv", "fit.set", "fit.correlation.csv", "fit.history.csv", "fit.data1.csv"})
+    EXPECT_EQ(ReadFile(dir / "threads" / ("damped_oscillator_blocks." + std::string(name))),
+              ReadFile(dir / "ranks" / ("damped_oscillator_blocks." + std::string(name))))
+        << name;
+#endif
 }
 
 }  // namespace fit_command_test
