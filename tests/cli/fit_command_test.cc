@@ -178,6 +178,59 @@ TEST(FitCommandTest, ContactStiffnessFromPeakForce) {
   EXPECT_THAT(bad.err, HasSubstr("two.csv:3: F_peak is 286, not 285 as in the first row"));
 }
 
+// The seed's ElastFriction2 element (both stiffnesses and the friction
+// coefficient) from the force-displacement loop `mechflow force-analysis`
+// draws of it (the reaction R over the last of 10 cycles of x = a sin(2 pi t)):
+// a diagram that drives the element alike, started from other values,
+// recovers the seed's 400 N/m, 100 N/m and 0.2.
+TEST(FitCommandTest, ElastFriction2FromItsForceAnalysisLoop) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "fit_ef2";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto analysis = RunMechflow("force-analysis " + std::string(MECHFLOW_SOURCE_DIR) +
+                                    "/diagrams/examples/elast_friction2.xml --element friction --amplitude 0.05 "
+                                    "--frequency 1 --cycles 10 --samples 100 --out " + (dir / "fa").string());
+  ASSERT_EQ(analysis.exit_code, 0) << analysis.err;
+  // x', v, R at t = 9.005, 9.015, ... s, the first row again at the end to close the loop
+  std::istringstream loop(ReadFile(dir / "fa" / "elast_friction2.force_analysis.loops.csv"));
+  std::string line;
+  std::getline(loop, line);
+  std::vector<double> reaction;
+  while (std::getline(loop, line)) reaction.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+  ASSERT_EQ(reaction.size(), 101u);
+  std::ofstream data(dir / "loop.csv");
+  data.precision(17);
+  data << "time,F\n";  // the element's force, -R
+  for (int k = 0; k < 100; ++k) data << 9 + (k + 0.5) / 100 << "," << -reaction[k] << "\n";
+  data.close();
+  std::ofstream(dir / "driven.xml") << R"xml(<diagram name="driven_ef2">
+  <identifiers>
+    <identifier name="cspring" value="300" unit="N/m"/><identifier name="cspring2" value="150" unit="N/m"/>
+    <identifier name="ffr" value="0.3"/>
+  </identifiers>
+  <mechanism name="m" gravity="0 0 -9.81">
+    <body name="Box" mass="10" inertia="1 1 1"/>
+    <joint name="jBox" type="generalized" body1="Base0" body2="Box">
+      <et type="tc" axis="1 0 0" value="1"/><et type="tt" axis="1 0 0" value="0.05*sin(2*pi*t)"/>
+    </joint>
+    <force name="friction" type="elastic_friction2" body1="Base0" point1="0 0 0" body2="Box"
+           c1="cspring" c2="cspring2" mu="ffr" mu0="ffr" l0="1"/>
+    <sensor name="force" kind="element" element="friction"/>
+  </mechanism>
+  <solver t_end="10" rtol="1e-8" atol="1e-10"/>
+</diagram>)xml";
+  const auto r = RunMechflow("fit " + (dir / "driven.xml").string() + " --data " + (dir / "loop.csv").string() +
+                             " --match m.force=F --free cspring=100:1000:log --free cspring2=30:300:log "
+                             "--free ffr=0.05:0.6 --no-plot --out " + (dir / "fit").string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  std::istringstream table(ReadFile(dir / "fit" / "driven_ef2.fit.csv"));
+  std::getline(table, line);
+  for (const double truth : {400.0, 100.0, 0.2}) {
+    std::getline(table, line);
+    EXPECT_NEAR(std::stod(line.substr(line.find(',') + 1)), truth, 1e-6 * truth) << line;
+  }
+}
+
 // mpirun -n 2: the processes share each round of runs and write the files of
 // the threaded fit, byte for byte (rank 0 alone writes).
 TEST(FitCommandTest, TwoMpiRanksEqualThreads) {
