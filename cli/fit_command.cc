@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <thread>
 
 #include "analysis/fit/fit.h"
@@ -185,10 +186,22 @@ int Fit(const Arguments& args, const Ranks& ranks, std::ostream& out, std::ostre
     return 128 + signal;
   }
   const FitReport report{stem, args.file, &s, &result};
-  PrintFit(report, out);
-  out << result.runs << " runs in " << blocks::CsvNumber(std::round(seconds * 100) / 100) << " s ("
+  std::ostringstream summary;  // printed, and written as NAME.fit.txt
+  PrintFit(report, summary);
+  summary << result.runs << " runs in " << blocks::CsvNumber(std::round(seconds * 100) / 100) << " s ("
       << static_cast<long long>(std::round(result.runs / std::max(seconds, 1e-9))) << " runs/s); "
       << result.optimiser.iterations << " iterations: " << result.optimiser.report << "\n";
+  if (!holdout.empty()) {
+    const analysis::fit::Evaluation scored = analysis::fit::Score(holdout_setup, result.values);
+    std::size_t n = 0;
+    for (const Experiment& e : holdout)
+      for (const auto& m : s.matches) n += m.is_signal() ? e.times.size() : 1;
+    summary << "holdout: cost " << blocks::CsvNumber(scored.Cost()) << " over " << n << " values (RMS weighted residual "
+        << blocks::CsvNumber(std::sqrt(scored.Cost() / static_cast<double>(n))) << "; the fit's: "
+        << blocks::CsvNumber(std::sqrt(result.cost_after / result.residuals)) << ")\n";
+    for (const std::string& f : scored.failures) err << "warning: holdout: " << f << "\n";
+  }
+  out << summary.str();
   for (const auto& group : result.statistics.indistinct) {
     std::string names;
     for (const std::string& n : group) names += (names.empty() ? "" : ", ") + n;
@@ -206,19 +219,9 @@ int Fit(const Arguments& args, const Ranks& ranks, std::ostream& out, std::ostre
     if (result.at_bound[j])
       err << "warning: " << s.parameters[j].name << " ended on a bound (" << blocks::CsvNumber(result.values[j])
           << "); the data may want it beyond: widen its bounds if they allow\n";
-  if (!holdout.empty()) {
-    const analysis::fit::Evaluation scored = analysis::fit::Score(holdout_setup, result.values);
-    std::size_t n = 0;
-    for (const Experiment& e : holdout)
-      for (const auto& m : s.matches) n += m.is_signal() ? e.times.size() : 1;
-    out << "holdout: cost " << blocks::CsvNumber(scored.Cost()) << " over " << n << " values (RMS weighted residual "
-        << blocks::CsvNumber(std::sqrt(scored.Cost() / static_cast<double>(n))) << "; the fit's: "
-        << blocks::CsvNumber(std::sqrt(result.cost_after / result.residuals)) << ")\n";
-    for (const std::string& f : scored.failures) err << "warning: holdout: " << f << "\n";
-  }
   std::string warning;
   if (ranks.root())  // the others hold the same numbers
-    for (const std::string& name : WriteFit(report, folder, !args.no_plot, &warning))
+    for (const std::string& name : WriteFit(report, summary.str(), folder, !args.no_plot, &warning))
       out << "wrote " << folder.PathOf(name) << "\n";
   if (!warning.empty()) err << "warning: no plot: " << warning << "\n";
   return result.optimiser.converged ? 0 : 1;

@@ -97,7 +97,7 @@ void PrintFit(const FitReport& report, std::ostream& out) {
       << ", after " << Short(r.cost_after) << "\n";
 }
 
-std::vector<std::string> WriteFit(const FitReport& report, const OutputFolder& folder, bool plot,
+std::vector<std::string> WriteFit(const FitReport& report, const std::string& summary, const OutputFolder& folder, bool plot,
                                   std::string* plot_warning) {
   const auto& setup = *report.setup;
   const auto& r = *report.result;
@@ -114,6 +114,7 @@ std::vector<std::string> WriteFit(const FitReport& report, const OutputFolder& f
           << CsvNumber(p.lower) << "," << CsvNumber(p.upper) << "," << (r.at_bound[j] ? "yes" : "no") << "\n";
   }
   write(report.stem + ".fit.csv", table.str());
+  write(report.stem + ".fit.txt", summary);
 
   std::ostringstream set;
   set << "# fitted by mechflow fit " << report.diagram << "; use with: mechflow run " << report.diagram

@@ -1,5 +1,6 @@
 #pragma once
-// What `mechflow fit` prints and writes: the parameter table (NAME.fit.csv),
+// What `mechflow fit` prints and writes: what it printed (NAME.fit.txt), the
+// parameter table (NAME.fit.csv),
 // the fitted values as --set lines (NAME.fit.set, for `mechflow run
 // --set-file`), the correlation matrix (NAME.fit.correlation.csv), the cost
 // history (NAME.fit.history.csv), per experiment the measured and simulated
@@ -27,7 +28,8 @@ void PrintFit(const FitReport& report, std::ostream& out);
 
 // Writes the files; returns their names in the order written. The plot is
 // drawn last: "" or a warning why not (gnuplot missing) in `plot_warning`.
-std::vector<std::string> WriteFit(const FitReport& report, const OutputFolder& folder, bool plot,
+// `summary`: what was printed (the table, correlations, costs, runs), as NAME.fit.txt.
+std::vector<std::string> WriteFit(const FitReport& report, const std::string& summary, const OutputFolder& folder, bool plot,
                                   std::string* plot_warning);
 
 }  // namespace mechflow::cli

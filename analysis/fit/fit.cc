@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "blocks/outputs/csv.h"
 #include "blocks/support/excerpt.h"
 #include "blocks/support/suggest.h"
+#include "diagrams/units.h"
 #include "mech/errors.h"
 
 namespace mechflow::analysis::fit {
@@ -35,8 +37,14 @@ void CheckSetup(Setup* setup) {
     for (FreeParameter& p : setup->parameters) {
       model.Set(p.name, p.lower);  // an unknown or derived identifier is refused in --set's words
       if (e > 0) continue;
-      for (const run::Identifier& id : ids)
-        if (Lower(id.name) == Lower(p.name)) p.start = id.value;
+      for (const run::Identifier& id : ids) {
+        if (Lower(id.name) != Lower(p.name)) continue;
+        // the value is SI; bounds and --set are in the unit of its definition (N/mm)
+        std::string error;
+        const std::optional<diagrams::Unit> unit =
+            id.unit.empty() ? std::nullopt : diagrams::ParseUnit(id.unit, &error);
+        p.start = unit ? id.value / unit->to_si : id.value;
+      }
     }
     const std::vector<std::string> loggable = model.LoggableSignals();
     const diagrams::LoadedDiagram& loaded = model.Loaded();

@@ -157,6 +157,25 @@ TEST(Fit, MovesStartOnBoundInside) {
   EXPECT_NEAR(fitter.Run({}).values[0], 1.2, 1e-6);
 }
 
+// An identifier in N/mm starts from its value in N/mm, as --set and the bounds
+// give it, not from its SI value.
+TEST(Fit, StartsInTheUnitOfTheDefinition) {
+  fit::Setup s = Oscillator({Measured(1.2, 0.15, 0.0, 1)});
+  s.description = diagrams::ReadDiagramText(R"(<diagram name="units">
+  <identifiers><identifier name="k" value="5" unit="N/mm"/><identifier name="m" value="1000" unit="kg"/></identifiers>
+  <blocks><block type="integrator" name="x" initial="1"/><block type="gain" name="g" k="-k/m"/></blocks>
+  <connections><connect from="x.y" to="g.u"/><connect from="g.y" to="x.u"/></connections>
+  <solver t_end="10" rtol="1e-10" atol="1e-12"/></diagram>)", "units.xml");
+  for (std::size_t i = 0; i < s.experiments[0].times.size(); ++i)
+    s.experiments[0].measured[0][i] = std::exp(-4.0 * s.experiments[0].times[i]);  // k = 4 N/mm
+  s.parameters = {ParseFree("k=1:10")};
+  Fitter fitter(std::move(s));
+  EXPECT_TRUE(fitter.notes().empty());
+  const FitResult r = fitter.Run({});
+  EXPECT_DOUBLE_EQ(r.start[0], 5.0);
+  EXPECT_NEAR(r.values[0], 4.0, 1e-6);
+}
+
 TEST(Fit, RefusesBadSetups) {
   fit::Setup outside = Oscillator({Measured(1.2, 0.15, 0.0, 1)});
   outside.parameters[0] = ParseFree("f=2:3");

@@ -69,6 +69,12 @@ TEST(FitCommandTest, FitsOscillatorAndWritesItsFiles) {
   EXPECT_THAT(ReadFile(dir / "out" / "damped_oscillator_blocks.fit.correlation.csv"),
               ::testing::StartsWith("parameter,f,beta\nf,1,"));
   EXPECT_TRUE(fs::exists(dir / "out" / "damped_oscillator_blocks.fit.data1.csv"));
+  // what was printed from the table on, written
+  const std::string summary = ReadFile(dir / "out" / "damped_oscillator_blocks.fit.txt");
+  EXPECT_THAT(summary, ::testing::StartsWith("parameter "));
+  EXPECT_THAT(fit.out, HasSubstr(summary));
+  EXPECT_THAT(summary, HasSubstr("cost (sum of squared weighted residuals"));
+  EXPECT_THAT(summary, HasSubstr(" runs in "));
   EXPECT_TRUE(fs::exists(dir / "out" / "damped_oscillator_blocks.fit.history.csv"));
   // the set file, as `run --set-file` reads it: the run goes through the data
   const auto run = RunMechflow("run " + kOscillator + " --set-file " +
@@ -254,7 +260,7 @@ TEST(FitCommandTest, TwoMpiRanksEqualThreads) {
   ASSERT_EQ(mpi.exit_code, 0) << mpi.err;
   EXPECT_THAT(mpi.out, HasSubstr("1 run at a time in each of 2 processes"));
   EXPECT_EQ(mpi.out.find("parameter "), mpi.out.rfind("parameter "));  // printed once
-  for (const char* name : {"fit.csv", "fit.set", "fit.correlation.csv", "fit.history.csv", "fit.data1.csv"})
+  for (const char* name : {"fit.csv", "fit.set", "fit.correlation.csv", "fit.history.csv", "fit.data1.csv"})  // not fit.txt: times differ
     EXPECT_EQ(ReadFile(dir / "threads" / ("damped_oscillator_blocks." + std::string(name))),
               ReadFile(dir / "ranks" / ("damped_oscillator_blocks." + std::string(name))))
         << name;
