@@ -15,7 +15,6 @@ void Objective::Keep(const std::vector<double>& u, const Evaluation& e) {
 const Evaluation& Objective::At(const std::vector<double>& u) {
   if (have_last_ && u == last_u_) return last_;
   const Evaluation e = residuals_.EvaluateUnit({u}).front();
-  history.push_back(e.Cost());
   Keep(u, e);
   return last_;
 }
@@ -34,7 +33,6 @@ void Objective::Linearise(const std::vector<double>& u, Eigen::VectorXd* r, Eige
   }
   const std::vector<Evaluation> e = residuals_.EvaluateUnit(points);
   if (!known) {
-    history.push_back(e.front().Cost());
     Keep(u, e.front());
   }
   const std::vector<double>& base = last_.residuals;

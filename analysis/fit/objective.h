@@ -34,7 +34,6 @@ class Objective {
 
   // Every failure message met, each once (the first of many alike kept short).
   const std::set<std::string>& failures() const { return failures_; }
-  std::vector<double> history;  // the cost of every point evaluated, in order
 
  private:
   void Keep(const std::vector<double>& u, const Evaluation& e);
