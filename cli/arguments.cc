@@ -11,6 +11,7 @@
 #include "blocks/support/excerpt.h"
 #include "blocks/support/input_file.h"
 #include "blocks/support/suggest.h"
+#include "cli/fit_command.h"
 #include "cli/force_analysis_command.h"
 #include "cli/help_topics.h"
 #include "cli/output_budget.h"
@@ -21,13 +22,14 @@ namespace mechflow::cli {
 namespace {
 
 const std::vector<std::string> kCommands = {"run",   "check",          "graph", "modes",
-                                            "sweep", "force-analysis", "psd",   "help"};
+                                            "sweep", "force-analysis", "psd",   "fit",  "help"};
 
 // The options only `command` takes; their values are its to read.
 const std::vector<std::string>& CommandOptions(const std::string& command) {
   static const std::vector<std::string> none;
   if (command == "force-analysis") return kForceAnalysisOptions;
   if (command == "psd") return kPsdOptions;
+  if (command == "fit") return kFitOptions;
   return none;
 }
 
@@ -216,6 +218,7 @@ std::string HelpText(const std::string& command) {
   if (command == "force-analysis") return ForceAnalysisHelp();
   if (!command.empty() && IsTypeTopic(command)) return TypeHelp(command);
   if (command == "psd") return PsdHelp();
+  if (command == "fit") return FitHelp();
   if (command == "sweep")
     return "usage: mechflow sweep FILE --vary NAME=V1,V2,... [--vary ...] [--variant NAME]...\n"
            "                      [--set NAME=VALUE]... [--t-end T] [--jobs N] [--out DIR] [--quiet | --verbose]\n"
@@ -269,6 +272,7 @@ std::string HelpText(const std::string& command) {
          "  sweep   run every combination of identifier values, in parallel\n"
          "  force-analysis  dynamic stiffness, phase and loops of one force element\n"
          "  psd     power spectral density of logged signals in a results file\n"
+         "  fit     fit friction and contact parameters to measured data\n"
          "  help    help on a command, block type or diagram element: mechflow help run,\n"
          "          mechflow help integrator, mechflow help force\n"
          "\n"
@@ -331,8 +335,12 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       return args[++i];
     };
     const bool runs = a.command == "run" || a.command == "sweep";
+    const bool fit = a.command == "fit";
     if (arg == "--help" || arg == "-h") {
       a.help = true;
+    } else if (fit && std::find(kFitOptions.begin(), kFitOptions.end(), arg) != kFitOptions.end()) {
+      // in order: a --variant or --set after a --data is that experiment's
+      a.command_options.emplace_back(arg, value(arg));
     } else if (arg == "--set") {
       AddSet(value(arg), "--set", &a);
     } else if (arg == "--set-file") {
@@ -368,9 +376,9 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.gltf = true;
     } else if (arg == "--no-animate" && a.command == "run") {
       a.no_animate = true;
-    } else if (arg == "--no-plot" && runs) {
+    } else if (arg == "--no-plot" && (runs || fit)) {
       a.no_plot = true;
-    } else if (arg == "--overwrite" && (runs || a.command == "modes")) {
+    } else if (arg == "--overwrite" && (runs || fit || a.command == "modes")) {
       a.overwrite = true;
     } else if (arg == "--quiet" && runs) {
       a.quiet = true;
@@ -388,7 +396,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       a.command_options.emplace_back(arg, value(arg));
     } else if (arg == "--vary" && (a.command == "sweep" || a.command == "force-analysis")) {
       a.vary.push_back(ParseVary(value(arg)));
-    } else if (arg == "--jobs" && a.command == "sweep") {
+    } else if (arg == "--jobs" && (a.command == "sweep" || fit)) {
       a.jobs = ParseCount(value(arg), arg, 1, 4096);
     } else if (arg.rfind("--", 0) == 0) {
       std::vector<std::string> options = {"--set", "--set-file", "--variant", "--t-end", "--out", "--unsafe-lua", "--help"};
@@ -398,6 +406,7 @@ Arguments ParseArguments(const std::vector<std::string>& args) {
       if (a.command == "modes") options.insert(options.end(), {"--equilibrium", "--overwrite"});
       if (a.command == "run") options.insert(options.end(), {"--animate", "--gltf", "--no-animate"});
       if (a.command == "sweep") options.insert(options.end(), {"--vary", "--jobs"});
+      if (fit) options.insert(options.end(), {"--jobs", "--no-plot", "--overwrite"});
       if (a.command == "force-analysis") options.push_back("--vary");
       options.insert(options.end(), CommandOptions(a.command).begin(), CommandOptions(a.command).end());
       throw UsageError("unknown option '" + arg + "'" + blocks::DidYouMean(arg, options) + "; see mechflow help " +

@@ -14,6 +14,7 @@
 #include "analysis/linearization.h"
 #include "blocks/library/mechanism_block.h"
 #include "cli/animation_output.h"
+#include "cli/fit_command.h"
 #include "cli/force_analysis_command.h"
 #include "cli/interrupt.h"
 #include "cli/modes_report.h"
@@ -300,6 +301,7 @@ int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& 
     if (args.command == "sweep") return SweepCommand(args, out_or_nothing, err);
     if (args.command == "force-analysis") return ForceAnalysisCommand(args, out, err);
     if (args.command == "psd") return PsdCommand(args, out, err);
+    if (args.command == "fit") return FitCommand(args, out, err);
   } catch (const InputError& e) {
     err << e.what() << "\n";
     return 2;

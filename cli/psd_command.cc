@@ -6,7 +6,7 @@
 #include "blocks/support/input_file.h"
 #include "cli/interrupt.h"
 #include "cli/psd_output.h"
-#include "cli/results_table.h"
+#include "run/results_table.h"
 #include "mech/errors.h"
 
 namespace mechflow::cli {
@@ -79,7 +79,7 @@ int PsdCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
     throw UsageError("reads a results file: --set, --set-file, --variant, --t-end and --unsafe-lua do not apply "
                      "(give them to the run that wrote it)");
   const OutputFolder folder(args.out_dir);
-  ResultsColumns table = ReadResultsColumns(blocks::ReadInputFile(args.file, "results file"), args.file, wanted);
+  run::ResultsColumns table = run::ReadResultsColumns(blocks::ReadInputFile(args.file, "results file"), args.file, wanted);
   request.time = std::move(table.time);
   for (std::size_t i = 0; i < wanted.size(); ++i) request.signals.push_back({wanted[i], std::move(table.values[i])});
   request.stem = std::filesystem::path(args.file).stem().string();

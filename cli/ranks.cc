@@ -69,6 +69,22 @@ std::vector<std::string> Ranks::GatherToRoot(const std::string& mine) const {
   return parts;
 }
 
+std::vector<std::string> Ranks::AllGather(const std::string& mine) const {
+  if (!mpi_) return {mine};
+  int length = static_cast<int>(mine.size());
+  std::vector<int> lengths(size_), offsets(size_);
+  Check(MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
+  int total = 0;
+  for (int r = 0; r < size_; ++r) offsets[r] = total, total += lengths[r];
+  std::string all(total, '\0');
+  Check(MPI_Allgatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR,
+                       MPI_COMM_WORLD),
+        "MPI_Allgatherv");
+  std::vector<std::string> parts;
+  for (int r = 0; r < size_; ++r) parts.push_back(all.substr(offsets[r], lengths[r]));
+  return parts;
+}
+
 int Ranks::Max(int value) const {
   if (!mpi_) return value;
   int result = value;
@@ -91,6 +107,7 @@ Ranks::Ranks() {
 
 Ranks::~Ranks() = default;
 std::vector<std::string> Ranks::GatherToRoot(const std::string& mine) const { return {mine}; }
+std::vector<std::string> Ranks::AllGather(const std::string& mine) const { return {mine}; }
 int Ranks::Max(int value) const { return value; }
 
 #endif

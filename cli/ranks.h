@@ -1,5 +1,5 @@
 #pragma once
-// Ranks: the processes of one `mechflow sweep`. Started by mpirun (and built
+// Ranks: the processes of one `mechflow sweep` or `mechflow fit`. Started by mpirun (and built
 // with MECHFLOW_MPI) they are the MPI ranks of MPI_COMM_WORLD; otherwise there
 // is one rank and nothing is exchanged, so a plain `mechflow sweep` neither
 // needs nor starts MPI.
@@ -31,6 +31,8 @@ class Ranks {
   // Collective: every rank passes its bytes; rank 0 gets all of them in rank
   // order, the other ranks an empty list.
   std::vector<std::string> GatherToRoot(const std::string& mine) const;
+  // Collective: every rank passes its bytes and gets everyone's, in rank order.
+  std::vector<std::string> AllGather(const std::string& mine) const;
   // Collective: the largest `value` over the ranks, on every rank.
   int Max(int value) const;
 

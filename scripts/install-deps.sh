@@ -26,6 +26,7 @@ packages=(
   libeigen3-dev libsundials-dev libsuitesparse-dev libtinyxml2-dev liblua5.4-dev
   libudunits2-dev libudunits2-data
   gnuplot-nox libfftw3-dev
+  libceres-dev libnlopt-dev libnlopt-cxx-dev   # `mechflow fit`: its optimisers
   curl ca-certificates          # three.js's archive from the npm registry
 )
 if [ "$mode" = all ]; then

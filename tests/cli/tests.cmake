@@ -22,3 +22,4 @@ mechflow_test(contact_start_test unit tests/cli/contact_start_test.cc)
 mechflow_test(help_topics_test unit tests/cli/help_topics_test.cc)
 # the instance tree of check and the clusters of graph
 mechflow_test(instance_tree_test unit tests/cli/instance_tree_test.cc)
+mechflow_test(fit_command_test unit tests/cli/fit_command_test.cc)

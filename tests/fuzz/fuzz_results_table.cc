@@ -2,12 +2,12 @@
 // fields, a byte-order mark, strictly rising times), asking for the columns
 // "x" and "y".
 
-#include "cli/results_table.h"
+#include "run/results_table.h"
 #include "tests/fuzz/fuzz_target.h"
 
 namespace {
 
-void ReadColumns(const std::string& text) { mechflow::cli::ReadResultsColumns(text, "fuzz.csv", {"x", "y"}); }
+void ReadColumns(const std::string& text) { mechflow::run::ReadResultsColumns(text, "fuzz.csv", {"x", "y"}); }
 
 }  // namespace
 

@@ -1,2 +1,3 @@
 # Tests of run/.
 mechflow_test(run_model_test unit tests/run/model_test.cc)
+mechflow_test(run_batch_test unit tests/run/batch_test.cc)

@@ -1,16 +1,17 @@
 #pragma once
 // Reading back a results CSV (as `mechflow run` writes it, or any CSV with a
 // header line and time in its first column): `mechflow psd` takes its
-// signals from one.
+// signals from one, `mechflow fit` its measurements.
 
 #include <string>
 #include <vector>
 
-namespace mechflow::cli {
+namespace mechflow::run {
 
 struct ResultsColumns {
   std::vector<double> time;                 // the first column, strictly rising
   std::vector<std::vector<double>> values;  // one per wanted column, in the order asked
+  std::vector<int> lines;                   // each row's line in the file (from 2; blank lines skipped)
 };
 
 // The time column and the columns named `wanted` of a CSV file's `text`
@@ -21,4 +22,4 @@ struct ResultsColumns {
 ResultsColumns ReadResultsColumns(const std::string& text, const std::string& path,
                                   const std::vector<std::string>& wanted);
 
-}  // namespace mechflow::cli
+}  // namespace mechflow::run

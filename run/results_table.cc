@@ -1,4 +1,4 @@
-#include "cli/results_table.h"
+#include "run/results_table.h"
 
 #include <algorithm>
 #include <charconv>
@@ -11,7 +11,7 @@
 #include "blocks/support/suggest.h"
 #include "mech/errors.h"
 
-namespace mechflow::cli {
+namespace mechflow::run {
 namespace {
 
 // The fields of one CSV line (RFC 4180: "..." may hold commas, "" a quote).
@@ -87,9 +87,10 @@ ResultsColumns ReadResultsColumns(const std::string& file_text, const std::strin
                        blocks::CsvNumber(table.time.back()) + "); the rows must be in rising time order, each time "
                        "once (sort the file, or drop the repeated rows)");
     table.time.push_back(t);
+    table.lines.push_back(row);
     for (std::size_t i = 0; i < columns.size(); ++i) table.values[i].push_back(number(columns[i]));
   }
   return table;
 }
 
-}  // namespace mechflow::cli
+}  // namespace mechflow::run
