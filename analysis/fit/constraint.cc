@@ -3,6 +3,7 @@
 #include "blocks/outputs/csv.h"
 #include "blocks/support/excerpt.h"
 #include "mech/errors.h"
+#include "scripting/identifiers.h"
 
 namespace mechflow::analysis::fit {
 namespace {
@@ -10,11 +11,6 @@ namespace {
 std::string Trim(const std::string& s) {
   const auto first = s.find_first_not_of(" \t"), last = s.find_last_not_of(" \t");
   return first == std::string::npos ? "" : s.substr(first, last - first + 1);
-}
-
-std::string Lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 }  // namespace
@@ -32,7 +28,7 @@ Constraint ParseConstraint(const std::string& text, const std::vector<FreeParame
   const std::string a = Trim(text.substr(0, at)), b = Trim(text.substr(at + 2));
   const auto index = [&](const std::string& name) {
     for (std::size_t j = 0; j < parameters.size(); ++j)
-      if (Lower(parameters[j].name) == Lower(name)) return static_cast<int>(j);
+      if (scripting::ToLower(parameters[j].name) == scripting::ToLower(name)) return static_cast<int>(j);
     throw InputError(usage + "; '" + blocks::Excerpt(name) + "' is not one");
   };
   Constraint c;

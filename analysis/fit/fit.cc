@@ -9,16 +9,9 @@
 #include "blocks/support/suggest.h"
 #include "diagrams/units.h"
 #include "mech/errors.h"
+#include "scripting/identifiers.h"
 
 namespace mechflow::analysis::fit {
-namespace {
-
-std::string Lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-}  // namespace
 
 void CheckSetup(Setup* setup) {
   if (setup->experiments.empty()) throw InputError("no measured data: give --data FILE");
@@ -29,7 +22,7 @@ void CheckSetup(Setup* setup) {
     run::Model model(models[e].description, models[e].options);  // variants, --set: refused here if bad
     for (const auto& [name, value] : experiment.overrides)
       for (const FreeParameter& p : setup->parameters)
-        if (Lower(name) == Lower(p.name))
+        if (scripting::ToLower(name) == scripting::ToLower(p.name))
           throw InputError("--set " + name + " after --data " + experiment.file + ": " + p.name +
                            " is a free parameter, fitted to all the data; leave it out of --set, or fit it in a "
                            "separate run");
@@ -38,7 +31,7 @@ void CheckSetup(Setup* setup) {
       model.Set(p.name, p.lower);  // an unknown or derived identifier is refused in --set's words
       if (e > 0) continue;
       for (const run::Identifier& id : ids) {
-        if (Lower(id.name) != Lower(p.name)) continue;
+        if (scripting::ToLower(id.name) != scripting::ToLower(p.name)) continue;
         // the value is SI; bounds and --set are in the unit of its definition (N/mm)
         std::string error;
         const std::optional<diagrams::Unit> unit =
@@ -95,7 +88,7 @@ Fitter::Fitter(Setup setup) : setup_([&] {
   if (setup.parameters.empty()) throw InputError("nothing to fit: give --free NAME=LOWER:UPPER");
   for (std::size_t j = 0; j < setup.parameters.size(); ++j)
     for (std::size_t k = 0; k < j; ++k)
-      if (Lower(setup.parameters[j].name) == Lower(setup.parameters[k].name))
+      if (scripting::ToLower(setup.parameters[j].name) == scripting::ToLower(setup.parameters[k].name))
         throw InputError("--free " + setup.parameters[j].name + " is given twice");
   return std::move(setup);
 }()), residuals_(setup_) {

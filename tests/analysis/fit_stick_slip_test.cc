@@ -55,7 +55,7 @@ fit::Setup StickSlip(const std::vector<double>& truth, unsigned seed, bool near 
   s.diagram = kStickSlip;
   s.description = diagrams::ReadDiagramFile(kStickSlip);
   s.common.overrides = {{"mu_s", near ? 0.6 : 0.5}, {"mu_d", near ? 0.4 : 0.3}};  // the start
-  s.matches = {{"x.y", "x", 1.0 / kSigma}};
+  s.matches = {{.signal = "x.y", .column = "x", .weight = 1.0 / kSigma}};
   s.experiments = {std::move(e)};
   s.parameters = {ParseFree("mu_s=0.3:1"), ParseFree("mu_d=0.1:0.55")};
   s.threads = 2;
