@@ -155,7 +155,7 @@ class Diagram:
             if unknown:
                 raise TypeError(f"run_many: unknown keyword {unknown[0]!r} (run() takes {', '.join(_RUN_KEYWORDS)})")
             requests.append(_run_keywords(**keywords))
-        threads = os.cpu_count() or 1 if threads is None else int(threads)
+        threads = (os.cpu_count() or 1) if threads is None else int(threads)
         results = [_many_result(raw) for raw in self._model.run_many(requests, threads, _on_main_thread())]
         if any(r.status == "interrupted" for r in results):
             done = sum(r.status != "interrupted" for r in results)

@@ -1,7 +1,7 @@
 # The Python module's tests (unittest), labelled python: each file a CTest
 # test, run by the interpreter the module is built for, importing it from the
 # build tree; the mechflow command gives the reference numbers.
-if(MECHFLOW_PYTHON)
+if(MECHFLOW_WITH_PYTHON)
   foreach(name run run_many errors analysis interrupt pip)
     add_test(NAME python.${name} COMMAND ${Python_EXECUTABLE} -m unittest -v test_${name}
              WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}/tests/python)
