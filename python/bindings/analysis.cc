@@ -125,7 +125,7 @@ py::dict ForceAnalysisToPython(const std::string& path, const diagrams::LoadOpti
 
 void BindAnalysis(py::module_& m) {
   m.def("psd", &Psd, py::arg("samples"), py::arg("dt"), py::arg("segment"), py::arg("overlap"), py::arg("window"),
-        py::arg("peaks"), py::arg("handle_sigint"));
+        py::arg("peaks"), py::arg("handle_sigint"), "Welch PSD and its peaks as a dict of arrays (mechflow.psd)");
 }
 
 }  // namespace mechflow::python

@@ -359,27 +359,29 @@ py::dict ForceAnalysisToPython(const std::string& path, const diagrams::LoadOpti
                                bool handle_sigint);
 
 void BindModel(py::module_& m) {
-  py::class_<PyModel>(m, "Model")
+  py::class_<PyModel>(m, "Model", "A diagram read once (run::Model); mechflow.Diagram wraps it")
       .def(py::init<const std::string&, const std::vector<std::string>&, const py::object&,
                     const std::vector<std::string>&, const std::vector<std::string>&, bool>(),
            py::arg("path"), py::arg("variants"), py::arg("set"), py::arg("library"), py::arg("allow_read"),
-           py::arg("unsafe_lua"))
+           py::arg("unsafe_lua"), "Reads and builds the file; DiagramError for bad input")
       .def_property_readonly("path", &PyModel::path)
       .def_property_readonly("name", &PyModel::name)
       .def_property_readonly("comment", &PyModel::comment)
-      .def("identifiers", &PyModel::Identifiers)
-      .def("signals", &PyModel::Signals)
-      .def("warnings", &PyModel::Warnings)
-      .def("check", &PyModel::Check)
-      .def("run", &PyModel::Run, py::arg("kwargs"), py::arg("handle_sigint"))
-      .def("run_many", &PyModel::RunMany, py::arg("requests"), py::arg("threads"), py::arg("handle_sigint"))
-      .def("modes", &PyModel::Modes, py::arg("equilibrium"), py::arg("set"))
+      .def("identifiers", &PyModel::Identifiers, "(name, value in unit, unit, comment, derived, SI value) tuples")
+      .def("signals", &PyModel::Signals, "Every loggable \"block.port\"")
+      .def("warnings", &PyModel::Warnings, "The loader's warnings")
+      .def("check", &PyModel::Check, "`mechflow check` as a dict")
+      .def("run", &PyModel::Run, py::arg("kwargs"), py::arg("handle_sigint"),
+           "One run from run() keywords; a dict of its rows and report")
+      .def("run_many", &PyModel::RunMany, py::arg("requests"), py::arg("threads"), py::arg("handle_sigint"),
+           "Runs on C++ threads without the GIL; their dicts in input order")
+      .def("modes", &PyModel::Modes, py::arg("equilibrium"), py::arg("set"), "`mechflow modes` as a dict of arrays")
       .def(
           "force_analysis",
           [](PyModel& self, const py::dict& kwargs, bool handle_sigint) {
             return ForceAnalysisToPython(self.path(), self.base(), kwargs, handle_sigint);
           },
-          py::arg("kwargs"), py::arg("handle_sigint"));
+          py::arg("kwargs"), py::arg("handle_sigint"), "`mechflow force-analysis` as a dict of arrays");
 }
 
 }  // namespace mechflow::python

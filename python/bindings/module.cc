@@ -1,5 +1,7 @@
 // The _mechflow extension: the mechflow package's C++ half.
 
+#include <cctype>
+
 #include "analysis/interrupted.h"
 #include "mech/errors.h"
 #include "python/bindings/bindings.h"
@@ -45,6 +47,21 @@ Settings ToSettings(const py::handle& mapping) {
 }
 
 diagrams::LoadOptions WithSettings(diagrams::LoadOptions base, const Settings& settings) {
+  // a later setting replaces an earlier one of the same name, number or
+  // expression (the loader applies every number before every expression)
+  const auto lower = [](std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  const auto replaced = [&](const auto& entry) {
+    for (const auto& n : settings.numbers)
+      if (lower(n.first) == lower(entry.first)) return true;
+    for (const auto& e : settings.expressions)
+      if (lower(e.first) == lower(entry.first)) return true;
+    return false;
+  };
+  std::erase_if(base.overrides, replaced);
+  std::erase_if(base.expression_overrides, replaced);
   base.overrides.insert(base.overrides.end(), settings.numbers.begin(), settings.numbers.end());
   base.expression_overrides.insert(base.expression_overrides.end(), settings.expressions.begin(),
                                    settings.expressions.end());

@@ -53,6 +53,11 @@ class RunTest(unittest.TestCase):
         self.assertAlmostEqual(ids["cstiff"].value, 4 * np.pi**2 * 9 * 2000, delta=1e-6)
         self.assert_same_as_cli(d.run(t_end=1), support.example("damping_ratio.xml"), "--t-end", "1", "--set",
                                 "mass=2000", "--set", "f=2*1.5")
+        # a run's number replaces the load's expression (and the reverse)
+        self.assert_same_as_cli(d.run(t_end=1, set={"F": 2}), support.example("damping_ratio.xml"), "--t-end", "1",
+                                "--set", "mass=2000", "--set", "f=2")
+        self.assert_same_as_cli(d.run(t_end=1, set={"mass": "500*3"}), support.example("damping_ratio.xml"),
+                                "--t-end", "1", "--set", "mass=1500", "--set", "f=2*1.5")
 
     def test_log_chooses_the_columns(self):
         d = mechflow.load(support.example("damping_ratio.xml"))

@@ -32,6 +32,23 @@ class RunManyTest(unittest.TestCase):
         self.assertIsInstance(many[2].error, mechflow.DiagramError)
         self.assertEqual(len(many[3]), 101)
 
+    def test_a_run_that_fails_part_way_keeps_its_rows(self):
+        from test_errors import FAILING
+        d = mechflow.load(support.write(support.temp_dir("many_fails_"), "fails.xml", FAILING))
+        many = d.run_many([{}, {"t_end": 0.3}])
+        self.assertEqual([r.status for r in many], ["failed", "ok"])
+        error = many[0].error
+        self.assertIsInstance(error, mechflow.SimulationError)
+        self.assertIn("too late", str(error))
+        self.assertEqual(error.time, many[0].t_reached)
+        self.assertIs(error.result, many[0])
+        single = None
+        try:
+            d.run()
+        except mechflow.SimulationError as e:
+            single = e.result
+        np.testing.assert_array_equal(many[0]["box.x"], single["box.x"])
+
     def test_time_on_one_and_two_threads(self):
         d = mechflow.load(support.example("damping_ratio.xml"))
         runs = [{"set": {"beta": 0.05 + 0.01 * k}} for k in range(8)]
