@@ -97,7 +97,7 @@ RunRecord RunOne(const diagrams::DiagramDescription& description, const diagrams
     run::PreparedRun prepared = model.Prepare(run_options);
     record.result = prepared.Run(&sink);
     record.ran = true;
-    record.data = sink.columns();
+    record.data = sink.TakeColumns();
     record.data.resize(record.result.columns.size());  // no rows: empty columns
     for (const blocks::EventRecord& e : record.result.events)
       record.event_names.push_back(CrossingName(*prepared.loaded().diagram, e));

@@ -60,6 +60,16 @@ class InterruptTest(unittest.TestCase):
         self.assertLess(waited, 1.5)
         return out
 
+    def test_pythons_handler_is_back_after_a_run(self):
+        import mechflow
+        d = mechflow.load(support.example("damping_ratio.xml"))
+        d.run(t_end=0.1)
+        d.run_many([{"t_end": 0.1}] * 2, threads=2)
+        with self.assertRaises(KeyboardInterrupt) as e:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(1)  # Python runs its handler between bytecodes: at once
+        self.assertNotIsInstance(e.exception, mechflow.RunInterrupted)
+
     def test_a_run_ends_with_keyboard_interrupt(self):
         out = self.interrupt("one")
         self.assertIn("interrupted interrupted", out)
