@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 
 #include "blocks/support/suggest.h"
 #include "diagrams/xml_reader.h"
@@ -115,9 +116,8 @@ LoadOptions Model::Effective(const RunOptions& options) const {
 }
 
 PreparedRun Model::Prepare(const RunOptions& options) {
-  if (!options.times.empty())
-    throw InputError("run: output at given times is not supported yet (the output grid is uniform); set the "
-                     "interval instead and interpolate the rows");
+  if (!options.times.empty() && options.interval)
+    throw InputError("run: output at given times and an output interval exclude each other; give one");
   const LoadOptions effective = Effective(options);
   if (used_ || dirty_ || !Same(effective, built_with_)) Build(effective);
   used_ = true;
@@ -142,7 +142,11 @@ PreparedRun::PreparedRun(const diagrams::LoadedDiagram& loaded, const RunOptions
       units.resize(units.size() + logged.back().width);  // the unit of a signal not in a <log>: unknown
     }
   }
-  sim_ = std::make_unique<blocks::Simulator>(*loaded.diagram, loaded.solver, logged);
+  blocks::SolverOptions solver = loaded.solver;
+  solver.output_times = options.times;
+  const std::string problem = solver.OutputTimesProblem();
+  if (!problem.empty()) throw InputError("run: " + problem);
+  sim_ = std::make_unique<blocks::Simulator>(*loaded.diagram, solver, logged);
   sim_->SetReports(loaded.reports);
   sim_->SetControl(loaded.control.get());
   sim_->SetInterruptFlag(options.interrupt);
@@ -163,7 +167,9 @@ RunResult PreparedRun::Run(blocks::RowSink* sink) {
   }
   sim_->StreamRows(sink, keep);
   RunResult r;
+  const auto start = std::chrono::steady_clock::now();
   r.outcome = sim_->Run(options_.progress);
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.t_reached = r.outcome.t_reached;
   r.signal = r.outcome.interrupted;
   if (r.outcome.stopped) {

@@ -59,8 +59,9 @@ struct RunOptions {
   // Signals to log ("block.port", "block.port[i]"); none given: the diagram's
   // <log>s and recorders (with their labels and units).
   std::optional<std::vector<std::string>> log;
-  // Output at these instants only. Not supported yet: the output grid is the
-  // uniform interval; a non-empty list is refused (InputError).
+  // Rows at exactly these instants (increasing, within the run) instead of
+  // the interval's grid; excludes `interval`. The rows are the solver's
+  // dense output there, as on the grid: no interpolation between rows.
   std::vector<double> times;
   // Columns (by name) kept in memory besides what goes to the sink
   // (blocks::Results::Column after the run).
@@ -82,6 +83,7 @@ struct RunResult {
   std::vector<blocks::ReportFigure> figures;
   std::vector<Column> columns;  // names and units, time first
   long long rows = 0;           // rows recorded
+  double wall_seconds = 0.0;    // the simulator's run alone (no load, build or sink set-up)
 };
 
 class Model;

@@ -16,6 +16,15 @@ double DecimalGridTime(double t) {
   return std::abs(decimal - t) <= 4.0 * ulp ? decimal : t;
 }
 
-double OutputGrid::Time(long k) const { return std::min(DecimalGridTime(t0_ + k * interval_), t_end_); }
+double OutputGrid::Time(long k) const {
+  if (!times_.empty())
+    return k < static_cast<long>(times_.size()) ? times_[k] : std::numeric_limits<double>::infinity();
+  return std::min(DecimalGridTime(t0_ + k * interval_), t_end_);
+}
+
+long OutputGrid::Count() const {
+  if (!times_.empty()) return static_cast<long>(times_.size());
+  return std::lround((t_end_ - t0_) / interval_) + 1;
+}
 
 }  // namespace mechflow::blocks

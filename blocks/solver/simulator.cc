@@ -36,7 +36,7 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
       options_(Checked(diagram, options)),
       logged_(std::move(logged)),
       results_(LoggedColumnNames(logged_)),
-      grid_(options_.t_start, options_.output_interval, options_.t_end),
+      grid_(options_.t_start, options_.output_interval, options_.t_end, options_.output_times),
       solver_choice_(ChooseLinearSolver(diagram, options_)),
       rows_(diagram, &ctx_, logged_, &results_),
       frozen_(diagram.num_states(), options_.rtol, options_.atol),
@@ -73,7 +73,7 @@ RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
       }
       const bool at_stop = flag == CV_TSTOP_RETURN || t_ret >= stop;
       if (ScanStep(t_ret, stop, at_stop) || !at_stop) continue;
-      ArriveAtStop(t_ret, stop);
+      ArriveAtStop(t_ret);
       if (at_.t >= options_.t_end) break;
     }
     EndRun(&outcome);
@@ -100,8 +100,8 @@ void Simulator::BeginRun(const std::function<void(double)>& progress) {
   reports_.Reset(t0);
   frozen_.Forget();
   sample_hits_.Reset(t0);
-  at_ = Cursor{t0, 1, 0};
-  const long expected_rows = std::lround((options_.t_end - t0) / options_.output_interval) + 2;
+  at_ = Cursor{t0, 0, 0};
+  const long expected_rows = grid_.Count() + 1;  // and a stopped or failed run's last row
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
   ctx_.time = t0;
   ctx_.x = cvode_->y();
@@ -116,8 +116,11 @@ void Simulator::StartAt(double t0) {
   if (control_.active() && control_.NextTimer() == t0) control_.Call(t0, y, &RunControl::Timer);
   SettleModes(diagram_, &ctx_);
   cvode_->Start(t0);
-  rows_.Record(t0, y);
-  Progress(t0);
+  if (grid_.Time(0) == t0) {
+    rows_.Record(t0, y);
+    Progress(t0);
+    at_.next_output = 1;
+  }
   crossings_.Start(t0, y);
 }
 
@@ -267,7 +270,7 @@ bool Simulator::RowInStep(double t_check, double* x) {
   return changed || control_.stop_requested() || Interrupted();
 }
 
-void Simulator::ArriveAtStop(double t_ret, double stop) {
+void Simulator::ArriveAtStop(double t_ret) {
   // a sample hit or control timer (also one at t_end): update before the row is taken
   double* y = cvode_->y();
   std::copy(cvode_->step_end.data(), cvode_->step_end.data() + cvode_->n(), y);
@@ -277,7 +280,9 @@ void Simulator::ArriveAtStop(double t_ret, double stop) {
   sample_hits_.Handle(t_ret);
   if (control_.active() && SameInstant(control_.NextTimer(), t_ret)) control_.Call(t_ret, y, &RunControl::Timer);
   if (t_ret < options_.t_end) Reinitialize(t_ret);
-  if (NextRowTime(stop) > t_ret) return;
+  // no output time here (a sample hit or timer between them, or past the last given time)
+  const double due = grid_.Time(at_.next_output);
+  if (due > t_ret && !(std::isfinite(due) && SameInstant(t_ret, due))) return;
   if (control_.active() && control_.Call(t_ret, y, &RunControl::Output)) Reinitialize(t_ret);
   frozen_.Check(*cvode_);
   rows_.Record(t_ret, y);

@@ -169,7 +169,7 @@ class Simulator {
   bool RowInStep(double t_check, double* x);
   // At the stop the step reached: sample hits, timers, re-initialisation, and
   // the row due there.
-  void ArriveAtStop(double t_ret, double stop);
+  void ArriveAtStop(double t_ret);
   // How the run ended, the last row of a stopped run, and the control's finish.
   void EndRun(RunOutcome* outcome);
   // Settles the modes and restarts CVODE and the crossing search at t.

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "blocks/outputs/csv.h"
+
 namespace mechflow::blocks {
 
 std::string SolverOptions::Problem() const {
@@ -16,6 +18,24 @@ std::string SolverOptions::Problem() const {
     return "initial_step must be >= 0 (0 means automatic)";
   if (max_steps < 1) return "max_steps must be >= 1";
   if (!(output_interval >= 0.0) || !std::isfinite(output_interval)) return "output interval must be >= 0";
+  return OutputTimesProblem();
+}
+
+std::string SolverOptions::OutputTimesProblem() const {
+  const auto at = [](std::size_t i, double t) {
+    return "output time " + std::to_string(i + 1) + " (" + CsvNumber(t) + " s)";
+  };
+  for (std::size_t i = 0; i < output_times.size(); ++i) {
+    const double t = output_times[i];
+    if (!std::isfinite(t)) return at(i, t) + " is not a finite number";
+    if (t < t_start) return at(i, t) + " is before t_start = " + CsvNumber(t_start) + " s";
+    if (t > t_end)
+      return at(i, t) + " is after t_end = " + CsvNumber(t_end) + " s: run to t_end = " + CsvNumber(output_times.back()) +
+             " s at least";
+    if (i > 0 && !(t > output_times[i - 1]))
+      return at(i, t) + " is not after the one before (" + CsvNumber(output_times[i - 1]) +
+             " s): the times must increase";
+  }
   return "";
 }
 

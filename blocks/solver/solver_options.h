@@ -2,6 +2,7 @@
 // The settings of one simulator run and the counters it reports.
 
 #include <string>
+#include <vector>
 
 namespace mechflow::blocks {
 
@@ -20,6 +21,9 @@ struct SolverOptions {
   double initial_step = 0.0; // [s], 0: CVODE's own estimate
   long max_steps = 500000;   // steps allowed between two output times
   double output_interval = 0.0;  // [s], 0: (t_end - t_start) / 1000
+  // Rows at exactly these instants instead of the interval's grid (to compare
+  // with measured samples): increasing, within [t_start, t_end].
+  std::vector<double> output_times;
   LinearSolverKind linear_solver = LinearSolverKind::kAuto;
   // Dense runs of diagrams with rate pairs (x_q' = x_v, Block::rate_pairs)
   // eliminate the positions from each Newton system
@@ -30,6 +34,7 @@ struct SolverOptions {
 
   // Empty when usable, otherwise what is wrong (e.g. "rtol must be > 0").
   std::string Problem() const;
+  std::string OutputTimesProblem() const;  // the part of Problem about output_times
 };
 
 // Solver counters accumulated over the whole run (across re-initialisations).

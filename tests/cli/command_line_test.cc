@@ -109,7 +109,7 @@ TEST(CommandLineTest, NumbersAreTheWholeTextOrRefused) {
   for (const std::string text : {"1e1", "2.0", "0x10", "-1", "0", "4097", "", "3 "})
     EXPECT_THROW(ParseCount(text, "--jobs", 1, 4096), UsageError) << text;
   // every numeric option goes through them
-  for (const std::vector<std::string> args :
+  for (const std::vector<std::string>& args :
        {std::vector<std::string>{"run", "d.xml", "--t-end", "1abc"}, {"run", "d.xml", "--rtol", "0x10"},
         {"run", "d.xml", "--interval=nan"}, {"sweep", "d.xml", "--vary", "k=1,2abc"},
         {"sweep", "d.xml", "--vary", "k=1:2:1e1"}, {"sweep", "d.xml", "--vary", "k=1", "--jobs", "1e1"},
@@ -125,7 +125,7 @@ TEST(CommandLineTest, SetFileIsARegularFile) {
   const fs::path fifo = dir / "fifo";
   fs::remove(fifo);
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-  for (const std::string path : {std::string("/dev/zero"), fifo.string(), dir.string()}) {
+  for (const std::string& path : {std::string("/dev/zero"), fifo.string(), dir.string()}) {
     try {
       ParseArguments({"run", "d.xml", "--set-file", path});
       ADD_FAILURE() << "accepted " << path;

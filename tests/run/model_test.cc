@@ -2,9 +2,11 @@
 
 #include "run/model.h"
 
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -165,14 +167,80 @@ TEST(RunModel, RefusesWhatItCannotDo) {
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("set the identifiers it depends on instead"));
   }
-  run::RunOptions at_times;
-  at_times.times = {0.1, 0.2};
-  EXPECT_THROW(model.Run(at_times), InputError);
   // a refused value leaves the model as it was
   model.Set("mass", -1.0);
   EXPECT_THROW(model.Run(Short(0.1)), InputError);
   model.Set("mass", 1000.0);
   EXPECT_EQ(model.Run(Short(0.1)).status, run::Status::kOk);
+}
+
+// x' = cos(t) with a sampled hold of sin(t) (period 0.1) beside it: rows
+// at irregular instants, between steps, on a sample hit and at t_end, are
+// exactly those instants and hold sin(t) to the tolerance; the hold shows the
+// value of the last hit before each instant.
+TEST(RunModel, RowsAtExactlyTheGivenTimes) {
+  const std::string xml = R"(<diagram name="sine">
+  <blocks>
+    <block type="sine" name="c" amplitude="1" frequency="0.15915494309189535" phase="1.5707963267948966"/>
+    <block type="integrator" name="x" initial="0"/>
+    <block type="sine" name="s" amplitude="1" frequency="0.15915494309189535"/>
+    <block type="sample_hold" name="h" period="0.1"/>
+  </blocks>
+  <connections><connect from="c.y" to="x.u"/><connect from="s.y" to="h.u"/></connections>
+  <solver t_end="2" rtol="1e-10" atol="1e-12"/>
+  <output interval="0.5"><log signal="x.y"/><log signal="h.y"/></output>
+</diagram>)";
+  run::Model model(diagrams::ReadDiagramText(xml, "sine.xml"));
+  run::RunOptions o;
+  o.times = {0.0137, 0.3, 0.30000001, 0.7, 1.2345678, 2.0};
+  const auto rows = Rows(model, o);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0], o.times);
+  for (std::size_t i = 0; i < o.times.size(); ++i) {
+    const double t = o.times[i];
+    EXPECT_NEAR(rows[1][i], std::sin(t), 1e-8) << t;
+    EXPECT_NEAR(rows[2][i], std::sin(std::floor(t / 0.1 + 1e-9) * 0.1), 1e-12) << t;
+  }
+  // no row at t_start unless asked; a later t_end runs on without rows
+  o.times = {0.5};
+  o.t_end = 3.0;
+  run::MemorySink one;
+  const run::RunResult r = model.Run(o, &one);
+  EXPECT_EQ(r.t_reached, 3.0);
+  ASSERT_EQ(one.rows(), 1);
+  EXPECT_NEAR(one.columns()[1][0], std::sin(0.5), 1e-8);
+}
+
+TEST(RunModel, RefusesOutputTimesItCannotKeep) {
+  run::Model model(Example("damping_ratio.xml"));
+  const auto refusal = [&](std::vector<double> times, std::optional<double> interval = {}) {
+    run::RunOptions o = Short(1.0);
+    o.times = std::move(times);
+    o.interval = interval;
+    try {
+      model.Run(o);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_THAT(refusal({0.2, 0.1}), HasSubstr("output time 2 (0.1 s) is not after the one before (0.2 s)"));
+  EXPECT_THAT(refusal({0.2, 0.2}), HasSubstr("the times must increase"));
+  EXPECT_THAT(refusal({0.5, 1.5}), HasSubstr("output time 2 (1.5 s) is after t_end = 1 s: run to t_end = 1.5 s"));
+  EXPECT_THAT(refusal({-0.1}), HasSubstr("is before t_start = 0 s"));
+  EXPECT_THAT(refusal({0.1, std::nan("")}), HasSubstr("output time 2 (nan s) is not a finite number"));
+  EXPECT_THAT(refusal({0.1}, 0.01), HasSubstr("output at given times and an output interval exclude each other"));
+}
+
+// A control timer (every 0.01 s) between output times (every 0.02 s): rows
+// on the output grid only, not at each timer.
+TEST(RunModel, TimersBetweenOutputTimesAddNoRows) {
+  run::Model model(Example("pendulum_pd_control.xml"));
+  run::RunOptions o = Short(1.0);
+  o.interval = 0.02;
+  const auto rows = Rows(model, o);
+  ASSERT_EQ(rows[0].size(), 51u);
+  for (std::size_t k = 0; k < rows[0].size(); ++k) EXPECT_NEAR(rows[0][k], 0.02 * k, 1e-15) << k;
 }
 
 // The file is read with the folders the options give: --allow-read for a
