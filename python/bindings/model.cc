@@ -92,6 +92,12 @@ RunRecord RunOne(const diagrams::DiagramDescription& description, const diagrams
     run::RunOptions run_options;
     run_options.log = request.log;
     run_options.times = request.times;
+    // the overrides again, as the run's own: the model is built with them
+    // already (no second build), and Prepare refuses times with an interval
+    run_options.t_end = request.t_end;
+    run_options.rtol = request.rtol;
+    run_options.atol = request.atol;
+    run_options.interval = request.interval;
     run_options.interrupt = interrupt;
     run::MemorySink sink;
     run::PreparedRun prepared = model.Prepare(run_options);

@@ -119,7 +119,9 @@ class Diagram:
         set: {identifier: value} for this run only (after load's set=).
         log: the signals to log ("block.port", "block.port[i]"); by default
             the diagram's <log>s with their labels and units.
-        times: output at exactly these instants [s] instead of every interval.
+        times: rows at exactly these instants [s] instead of every interval
+            (increasing, within the run; not together with interval): no
+            row at the start unless it is one of them.
 
         Raises DiagramError for bad input, SimulationError (with .time and
         .result, the rows up to the failure) when the run fails, and

@@ -67,14 +67,17 @@ class ErrorsTest(unittest.TestCase):
         self.assertEqual(list(r["box.x"]), list(rows[:, 1]))
         self.assertIn(f"simulation failed at t = {error.time:g} s", done.stderr)
 
-    def test_times_are_passed_on(self):
+    def test_times_it_cannot_keep_are_refused(self):
         d = mechflow.load(support.example("damping_ratio.xml"))
-        try:
-            r = d.run(times=[0.25, 0.5, 1.0])
-        except mechflow.DiagramError as e:  # before the solver supports them: refused, saying so
-            self.assertIn("not supported yet", str(e))
-        else:
-            self.assertEqual(list(r.time), [0.25, 0.5, 1.0])
+        with self.assertRaises(mechflow.DiagramError) as e:
+            d.run(times=[0.2, 0.1])
+        self.assertIn("output time 2 (0.1 s) is not after the one before (0.2 s)", str(e.exception))
+        with self.assertRaises(mechflow.DiagramError) as e:
+            d.run(times=[0.5], interval=0.01)
+        self.assertIn("output at given times and an output interval exclude each other", str(e.exception))
+        with self.assertRaises(mechflow.DiagramError) as e:
+            d.run(times=[0.5, 11])
+        self.assertIn("is after t_end = 10 s", str(e.exception))
 
     def test_the_sandbox_is_the_command_lines(self):
         folder = support.temp_dir("sandbox_")

@@ -59,6 +59,19 @@ class RunTest(unittest.TestCase):
         self.assert_same_as_cli(d.run(t_end=1, set={"mass": "500*3"}), support.example("damping_ratio.xml"),
                                 "--t-end", "1", "--set", "mass=1500", "--set", "f=2*1.5")
 
+    def test_rows_at_exactly_the_given_times(self):
+        d = mechflow.load(support.example("damping_ratio.xml"))
+        times = [0.0137, 0.3, 0.30000001, 1.2345678, 2.0]
+        r = d.run(t_end=2, times=times, set={"beta": 0.2})
+        self.assertEqual(list(r.time), times)
+        # against the analytic solution: a 1 Hz oscillator with damping ratio 0.2 about its rest
+        # position q = 0 (the spring force holds the weight there), released at rest 0.5 m above it
+        zeta, w = 0.2, 2 * np.pi
+        wd = w * np.sqrt(1 - zeta**2)
+        t = np.array(times)
+        expected = 0.5 * np.exp(-zeta * w * t) * (np.cos(wd * t) + zeta * w / wd * np.sin(wd * t))
+        np.testing.assert_allclose(r["m.z"], expected, atol=1e-7)
+
     def test_log_chooses_the_columns(self):
         d = mechflow.load(support.example("damping_ratio.xml"))
         self.assertIn("m.z", d.signals)
