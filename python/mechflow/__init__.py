@@ -133,9 +133,9 @@ class Diagram:
         if raw["error_kind"]:  # refused before it ran: the error alone
             raise result.error
         if result.status == "interrupted":
-            raise RunInterrupted(f"run interrupted at t = {result.t_reached} s", result=result)
+            raise RunInterrupted(f"run interrupted at t = {result.t_reached:g} s", result=result)
         if result.status == "failed":
-            raise SimulationError(f"simulation failed at t = {result.t_reached} s: {result.reason}",
+            raise SimulationError(f"simulation failed at t = {result.t_reached:g} s: {result.reason}",
                                   time=result.t_reached, result=result)
         return result
 
@@ -212,7 +212,7 @@ def _many_result(raw):
         return Result(raw, error=Error(raw["error"]))
     result = Result(raw)
     if result.status == "failed":
-        result.error = SimulationError(f"simulation failed at t = {result.t_reached} s: {result.reason}",
+        result.error = SimulationError(f"simulation failed at t = {result.t_reached:g} s: {result.reason}",
                                        time=result.t_reached, result=result)
     return result
 
