@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "analysis/linearization.h"
+#include "analysis/modes.h"
 #include "blocks/library/mechanism_block.h"
 #include "cli/animation_output.h"
 #include "cli/fit_command.h"
@@ -230,26 +230,7 @@ int ModesCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
   ClaimStems(folder, args.file, {{loaded.description.name, "the diagram's name \"" + loaded.description.name + "\""}},
              args.overwrite, true, out);
   // where: the initial state, or the static equilibrium found from it
-  ModesReport report;
-  report.time = loaded.solver.t_start;
-  blocks::Context ctx;
-  analysis::PrepareContext(diagram, report.time, &ctx, &report.x);
-  if (args.equilibrium) report.equilibrium = analysis::FindEquilibrium(diagram, &ctx, &report.x);
-
-  // linearise; coordinates (a state whose rate is another state, or a
-  // mechanism's q) carry the mode shapes
-  const Eigen::MatrixXd A = analysis::StateJacobian(diagram, &ctx, report.x);
-  report.states = analysis::StateNames(diagram);
-  report.x.resize(report.states.size());
-  report.roles = analysis::FindStateRoles(A);
-  for (std::size_t i = 0; i < report.states.size(); ++i) {
-    if (report.states[i].find(".q:") != std::string::npos) report.roles.coordinate[i] = true;
-    if (report.states[i].find(".v:") != std::string::npos) report.roles.rate[i] = true;
-  }
-  std::vector<bool> normalise_on = report.roles.coordinate;
-  if (std::find(normalise_on.begin(), normalise_on.end(), true) == normalise_on.end()) normalise_on.clear();
-  report.modes = analysis::ModalAnalysis(A, normalise_on);
-  report.switching = analysis::DescribeLinearisedModes(diagram, ctx);
+  const ModesReport report = analysis::AnalyseModes(diagram, loaded.solver.t_start, args.equilibrium);
 
   const auto count = [](std::size_t n, const char* what) {
     return std::to_string(n) + " " + what + (n == 1 ? "" : "s");

@@ -6,20 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "analysis/linearization.h"
+#include "analysis/modes.h"
 
 namespace mechflow::cli {
 
 // Everything one linear analysis found, as the report shows it.
-struct ModesReport {
-  double time = 0.0;                                   // [s], where the diagram was linearised
-  std::optional<analysis::EquilibriumResult> equilibrium;  // set when linearised at a found equilibrium
-  std::vector<std::string> states;                     // "block.state", in state order
-  std::vector<double> x;                               // the state linearised at
-  analysis::StateRoles roles;                            // coordinates and rates, per state
-  std::vector<analysis::Mode> modes;                     // sorted by natural frequency
-  std::vector<std::string> switching;                  // analysis::DescribeLinearisedModes
-};
+using ModesReport = analysis::ModesAnalysis;
 
 // Prints where the diagram was linearised (state values and roles), the modes
 // sorted by natural frequency (f damped and undamped [Hz], damping ratio,

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "blocks/outputs/results.h"
@@ -60,6 +61,8 @@ class MemorySink final : public blocks::RowSink {
  public:
   void WriteRow(const double* values, int count) override;
   const std::vector<std::vector<double>>& columns() const { return columns_; }
+  // The columns, moved out (the sink is empty after): a long run's rows are not copied.
+  std::vector<std::vector<double>> TakeColumns() { return std::move(columns_); }
   long long rows() const { return columns_.empty() ? 0 : static_cast<long long>(columns_.front().size()); }
 
  private:

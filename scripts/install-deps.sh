@@ -5,7 +5,8 @@
 #                                  (scripts/run-example.sh: the first run stays short)
 #   scripts/install-deps.sh [all]  that and what the tests and benchmarks need too
 #                                  (GoogleTest, lld, OpenMPI, Simbody, Chromium, graphviz,
-#                                  the glTF validator)
+#                                  the glTF validator, pybind11 and Python's numpy, pandas,
+#                                  scipy, matplotlib for the Python module)
 # Does nothing when all is present; the packages need root (or passwordless
 # sudo), and it says so clearly when it has neither.
 set -euo pipefail
@@ -37,6 +38,9 @@ if [ "$mode" = all ]; then
     libsimbody-dev                # a contender of the pendulum-chain benchmark
     chromium                      # the browser tests of the animation viewer
     graphviz                      # `dot`, which draws `mechflow graph` (README tour)
+    pybind11-dev python3-dev      # the Python module (python/) and its tests
+    python3-numpy python3-pandas python3-scipy python3-matplotlib
+    python3-venv python3-setuptools python3-wheel   # its `pip install .` test
   )
 fi
 # Node.js and npm install the viewer's development dependencies (the glTF
