@@ -30,8 +30,10 @@ int CallOriginal(lua_State* L) {
 
 // Refuses the call: "<what>: <text>", raised as a limit's error.
 int Refuse(lua_State* L, const char* what, const char* text) {
+  // on the stack, and cut when long: Lua's error unwinds with longjmp, past
+  // any destructor
   char message[400];
-  std::snprintf(message, sizeof message, "%s: %s", what, text);
+  if (std::snprintf(message, sizeof message, "%s: %s", what, text) < 0) return LuaState::RaiseLimit(L, what);
   return LuaState::RaiseLimit(L, message);
 }
 

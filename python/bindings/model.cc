@@ -194,7 +194,9 @@ py::dict ToPython(RunRecord&& record) {
   d["columns"] = names;
   d["units"] = units;
   d["data"] = data;
-  d["stats"] = StatsToPython(r.stats);
+  py::dict stats = StatsToPython(r.stats);
+  stats["wall_seconds"] = r.wall_seconds;  // the simulation alone, without building or handing rows over
+  d["stats"] = stats;
   py::list events;
   for (std::size_t i = 0; i < r.events.size(); ++i) {
     py::dict e;

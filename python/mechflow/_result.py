@@ -31,7 +31,8 @@ class Result:
     r.t_reached            the time the run reached [s]
     r.figures              the <report> figures (Figure tuples)
     r.events               the zero-crossing events (Event tuples)
-    r.stats                the solver's counters (steps, rhs_evaluations, ...)
+    r.stats                the solver's counters (steps, rhs_evaluations, ...) and
+                           wall_seconds, the simulation's own time
     r.error                for a run of run_many that failed: its exception
                            (DiagramError, SimulationError), else None
     """

@@ -55,7 +55,11 @@ fit::Setup StickSlip(const std::vector<double>& truth, unsigned seed, bool near 
   s.diagram = kStickSlip;
   s.description = diagrams::ReadDiagramFile(kStickSlip);
   s.common.overrides = {{"mu_s", near ? 0.6 : 0.5}, {"mu_d", near ? 0.4 : 0.3}};  // the start
-  s.matches = {{.signal = "x.y", .column = "x", .weight = 1.0 / kSigma}};
+  fit::Match match;
+  match.signal = "x.y";
+  match.column = "x";
+  match.weight = 1.0 / kSigma;
+  s.matches = {match};
   s.experiments = {std::move(e)};
   s.parameters = {ParseFree("mu_s=0.3:1"), ParseFree("mu_d=0.1:0.55")};
   s.threads = 2;

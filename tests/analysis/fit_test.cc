@@ -51,7 +51,11 @@ fit::Setup Oscillator(std::vector<Experiment> experiments, double weight = 1.0) 
   fit::Setup s;
   s.diagram = Example("damped_oscillator_blocks.xml");
   s.description = diagrams::ReadDiagramFile(s.diagram);
-  s.matches = {{.signal = "x.y", .column = "x", .weight = weight}};
+  fit::Match match;
+  match.signal = "x.y";
+  match.column = "x";
+  match.weight = weight;
+  s.matches = {match};
   s.experiments = std::move(experiments);
   s.parameters = {ParseFree("f=0.5:2"), ParseFree("beta=0.01:0.5:log")};
   s.threads = 2;

@@ -2,7 +2,7 @@
 # test, run by the interpreter the module is built for, importing it from the
 # build tree; the mechflow command gives the reference numbers.
 if(MECHFLOW_WITH_PYTHON)
-  foreach(name run run_many errors analysis interrupt pip)
+  foreach(name run run_many errors analysis interrupt pip pandas_plot fit_friction)
     add_test(NAME python.${name} COMMAND ${Python_EXECUTABLE} -m unittest -v test_${name}
              WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}/tests/python)
     set_tests_properties(python.${name} PROPERTIES LABELS python ENVIRONMENT
