@@ -40,6 +40,8 @@ struct LoadOptions {
   // --library DIR: folders subsystem and part files are looked up in when
   // they are not beside the file that names them
   std::vector<std::string> library;
+
+  bool operator==(const LoadOptions&) const = default;
 };
 
 // Logged columns shown in one plot panel.

@@ -25,11 +25,13 @@ void Override(const scripting::IdentifierTable& ids, int i, const std::string& n
 }
 
 // Every field of diagrams::LoadOptions (a field added there belongs here too).
-bool Same(const LoadOptions& a, const LoadOptions& b) {
-  return a.variants == b.variants && a.overrides == b.overrides && a.expression_overrides == b.expression_overrides &&
-         a.t_end == b.t_end && a.rtol == b.rtol && a.atol == b.atol && a.interval == b.interval &&
-         a.results == b.results && a.unsafe_lua == b.unsafe_lua && a.allow_read == b.allow_read &&
-         a.library == b.library;
+// Whether a built diagram may serve another run: its runs keep their states,
+// signals and caches in their own blocks::Context (as parallel runs on one
+// diagram do), so only a control script (sim:set), a Lua block or an
+// expression that calls more than pure functions of numbers could carry
+// something from one run into the next.
+bool Rerunnable(const diagrams::LoadedDiagram& loaded) {
+  return !loaded.control && !(loaded.lua && loaded.lua->has_code_that_may_keep_state());
 }
 
 }  // namespace
@@ -119,7 +121,7 @@ PreparedRun Model::Prepare(const RunOptions& options) {
   if (!options.times.empty() && options.interval)
     throw InputError("run: output at given times and an output interval exclude each other; give one");
   const LoadOptions effective = Effective(options);
-  if (used_ || dirty_ || !Same(effective, built_with_)) Build(effective);
+  if ((used_ && !Rerunnable(*loaded_)) || dirty_ || effective != built_with_) Build(effective);
   used_ = true;
   return PreparedRun(*loaded_, options);
 }

@@ -8,21 +8,24 @@
 //
 // The file is read and parsed once; the parsed description is kept. A run
 // needs a diagram built from it (blocks, Lua state, identifiers, solver
-// settings): the diagram built by the load serves the first run; every later
-// run, and a run after Set or with other solver overrides, builds it again
-// from the kept description (diagrams::LoadDiagramDescription), as a fresh
-// load with the same --set would, so it gives the same numbers bit for bit.
-// A built diagram is not run twice although every example would give the same
-// rows (the control script restores what sim:set changed): Lua code may keep
-// state between calls (a local of a script's chunk, a Lua block's upvalue),
-// which a second run would start from. Identifier values cannot change in
-// place either: block parameters are evaluated into numbers when the diagram
-// is built (only Lua-bound reads follow sim:set).
-// Cost, measured (Release, examples run to their t_end, no rows kept): a load
-// (read, parse, build) 0.7 to 5 ms, a rebuild 0.15 to 0.5 ms, the run 10 to
-// 90 ms (damping_ratio, pendulum_pd_control, fidget, tension_mechanism,
-// cart_pendulum_friction): re-running on the built diagram would save about
-// 1 % of a run.
+// settings): the diagram built by the load serves the first run. A later run
+// with the same settings runs on it again when no Lua code that could keep
+// state runs during a run (no control script, no Lua block, no expression
+// calling more than pure functions of numbers): a run keeps its states,
+// signals and caches in its own context, so nothing of one run reaches the
+// next. Otherwise, and after Set or with other solver overrides,
+// the run builds the diagram again from the kept description
+// (diagrams::LoadDiagramDescription), as a fresh load with the same --set
+// would, so it gives the same numbers bit for bit: Lua code may keep state
+// between calls (a local of a script's chunk, a Lua block's upvalue), which a
+// second run would start from, and identifier values cannot change in place
+// (block parameters are evaluated into numbers when the diagram is built;
+// only Lua-bound reads follow sim:set).
+// Cost, measured (Release): a load (read, parse, build) 0.7 to 5 ms, a
+// rebuild 0.15 to 0.7 ms (elast_friction, variant Free: about 0.6 ms, a
+// quarter of its 2.5 ms run), the run 10 to 90 ms for the longer examples
+// (damping_ratio, pendulum_pd_control, fidget, tension_mechanism,
+// cart_pendulum_friction).
 //
 // Errors: InputError for bad input (a name Set does not know, a value the
 // model refuses when it is rebuilt), as the command line reports them.

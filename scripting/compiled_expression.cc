@@ -176,6 +176,7 @@ CompiledExpression::CompiledExpression(LuaState& lua, const std::string& express
       if (lua_type(L, -1) != LUA_TNUMBER && !LuaState::IsPureFunction(L, -1)) bounded_ = true;
     }
   }
+  if (bounded_) lua_.NoteCodeThatMayKeepState();
   std::string error;
   if (!lua_.Call(static_cast<int>(upvalues.size()), 1, &error) || !lua_isfunction(L, -1)) {
     lua_settop(L, top);

@@ -204,6 +204,7 @@ class LuaBlock : public blocks::Block {
     num_output_values_ = TotalWidth(outputs);
     num_args_ = 1 + static_cast<int>(states.size()) + num_input_values_;
     lua_.NoteRunTimeCode();  // called during runs: they must claim the state
+    lua_.NoteCodeThatMayKeepState();  // its upvalues and globals
     Compile(code, ids, !states.empty());
   }
 

@@ -87,6 +87,11 @@ class LuaState {
   // block, a compiled expression): its runs must claim the state.
   void NoteRunTimeCode() { ++run_time_code_; }
   bool has_run_time_code() const { return run_time_code_ > 0; }
+  // Of that, code that may keep something from one call to the next (a Lua
+  // block; an expression that calls what is not a pure function of numbers):
+  // a second run of the diagram could start from what the first left.
+  void NoteCodeThatMayKeepState() { ++stateful_code_; }
+  bool has_code_that_may_keep_state() const { return stateful_code_ > 0; }
 
   // Held by one run (of this state's diagram) while it lasts; movable.
   class RunClaim {
@@ -206,6 +211,7 @@ class LuaState {
   Memory memory_;
   CallBudget call_;
   int run_time_code_ = 0;
+  int stateful_code_ = 0;
   std::mutex claim_mutex_;  // guards the two below (claims are made once per run)
   std::thread::id claim_thread_;
   int claims_ = 0;
