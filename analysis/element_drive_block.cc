@@ -22,11 +22,14 @@ struct ElementDriveBlock::Scratch final : blocks::BlockScratch {
         args(1 + mechanism.num_inputs(), 0.0),
         sensors(element.num_sensors(), 0.0),
         rates(element.num_states(), 0.0),
-        loads(mechanism.model()) {}
+        loads(mechanism.model()),
+        element_scratch(element.MakeScratch()) {}
 
   mech::Kinematics kin;
+  std::uint64_t contexts = 0;  // how many Context made: the kinematics' stamp, new for each
   std::vector<double> q, v, args, sensors, rates;
   mech::Loads loads;
+  std::unique_ptr<mech::ElementScratch> element_scratch;
 };
 
 std::unique_ptr<blocks::BlockScratch> ElementDriveBlock::MakeScratch() const {
@@ -129,6 +132,7 @@ mech::ElementContext ElementDriveBlock::Context(Scratch& s, double t, std::span<
   const double shift = a * std::sin(angle), rate = a * w * std::cos(angle);
   s.kin = kin0_;
   s.kin.time = t;
+  s.kin.stamp = ++s.contexts;  // moved by hand below: what the element measured before no longer holds
   if (coordinate_.kind == Kind::kJoint) {
     s.q[coordinate_.q_index] = q0_[coordinate_.q_index] + shift;
     s.v[coordinate_.v_index] = rate;
@@ -153,6 +157,7 @@ mech::ElementContext ElementDriveBlock::Context(Scratch& s, double t, std::span<
   ctx.parameter_args = s.args;
   ctx.state = state;
   ctx.modes = modes;
+  ctx.scratch = s.element_scratch.get();
   return ctx;
 }
 

@@ -35,7 +35,7 @@ for model in falling oscillations fidget held_box; do exact "$work/${model}_regu
 cpu() {  # diagram -> best user+sys seconds of 3 runs, and the solver's counters
   local best=
   for _ in 1 2 3; do
-    /usr/bin/time -f "%U %S" -o "$work/time" "$mechflow" run "$1" --out "$work/out" > "$work/log" 2>&1
+    /usr/bin/time -f "%U %S" -o "$work/time" "$mechflow" run "$1" --out "$work/out_$(basename "$1" .xml)" --no-plot > "$work/log" 2>&1
     local s; s=$(awk '{printf "%.3f", $1 + $2}' "$work/time")
     if [ -z "$best" ] || awk -v a="$s" -v b="$best" 'BEGIN { exit !(a < b) }'; then best=$s; fi
   done

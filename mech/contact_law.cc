@@ -21,11 +21,15 @@ double ContactNormalForce(const ContactLaw& law, double delta, double rate) {
     const double s = std::min(delta / law.damping_depth, 1.0);
     damping *= s * s * (3 - 2 * s);
   }
-  return std::max(0.0, law.stiffness * std::pow(delta, law.exponent) + damping * rate);
+  // the linear law (exponent 1, the default) without pow: it is evaluated for every point many times a step
+  const double spring = law.exponent == 1.0 ? delta : std::pow(delta, law.exponent);
+  return std::max(0.0, law.stiffness * spring + damping * rate);
 }
 
 double ContactEnergy(const ContactLaw& law, double delta) {
-  return delta > 0 ? law.stiffness * std::pow(delta, law.exponent + 1) / (law.exponent + 1) : 0.0;
+  if (!(delta > 0)) return 0.0;
+  return law.exponent == 1.0 ? 0.5 * law.stiffness * delta * delta
+                             : law.stiffness * std::pow(delta, law.exponent + 1) / (law.exponent + 1);
 }
 
 void CheckContactLaw(const ContactLaw& law, const std::string& where) {

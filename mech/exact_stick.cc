@@ -43,7 +43,12 @@ void Solve(StickWorkspace* ws) {
   ws->f = -ws->a0;
   ws->f = ws->ldlt.transpositionsP() * ws->f;
   ws->ldlt.matrixL().solveInPlace(ws->f);
-  for (int i = 0; i < n; ++i) ws->f(i) = d(i) > kRedundant * largest ? ws->f(i) / d(i) : 0.0;
+  // 1/d, damped below the round-off bound: a pivot that shrinks toward it as
+  // redundant holds line up (a wheel set's two rims rocking level) gives a
+  // force that fades to none continuously. Cut off there, the force jumped
+  // where the integrator kept returning, and its step fell to nothing.
+  const double floor = kRedundant * largest;
+  for (int i = 0; i < n; ++i) ws->f(i) = d(i) > 0.0 ? ws->f(i) * d(i) / (d(i) * d(i) + floor * floor) : 0.0;
   ws->ldlt.matrixU().solveInPlace(ws->f);
   ws->f = ws->ldlt.transpositionsP().transpose() * ws->f;
 }

@@ -21,7 +21,8 @@
 // wheel set on the ground) leave the forces undecided by the balance; rigid
 // bodies do not say how they share a load, and none is made up: directions
 // in which S is singular get no force (one of the redundant holds carries
-// it). A hold whose motion no force changes and that the rest of the
+// it), and as S nears singular the force in that direction fades to none
+// continuously rather than at a cut-off the integrator could not step over. A hold whose motion no force changes and that the rest of the
 // mechanism still drives (a prescribed motion across a stuck contact) has
 // no holding force at all: SolveHoldingForces reports it.
 
@@ -37,7 +38,7 @@ struct StickWorkspace {
   explicit StickWorkspace(int num_holds);
 
   std::vector<double> force;   // per hold: its holding force while stuck exactly, else 0
-  std::vector<double> probe;   // per hold: the force of its probe pass (the size of its last holding force)
+  std::vector<double> probe;   // per hold: the force of its probe pass (its holding force's size when the last step ended)
   std::vector<int> stuck;      // the holds stuck exactly in this evaluation
   Eigen::MatrixXd S;           // num_holds x num_holds; rows and columns past the stuck ones are padding
   Eigen::VectorXd a0, f;

@@ -26,6 +26,14 @@ namespace mechflow::mech {
 
 enum class Crossing { kRising, kFalling, kEither };
 
+// An element's own scratch for a run's evaluations (ForceElement::MakeScratch):
+// what it measured on the current kinematics, kept for the many calls of one
+// evaluation (the exact-stick solve asks a contact about its points dozens of
+// times). Owned by the mechanism's workspace, one per element.
+struct ElementScratch {
+  virtual ~ElementScratch() = default;
+};
+
 // Everything an element may read during one evaluation.
 struct ElementContext {
   double t = 0.0;
@@ -44,6 +52,8 @@ struct ElementContext {
   // ZeroCrossings only: this element's sensors, when Evaluate computed them
   // on the same kinematics; empty otherwise.
   std::span<const double> sensors;
+  // This element's scratch (MakeScratch); null for an element that makes none.
+  ElementScratch* scratch = nullptr;
 };
 
 class DynamicsWorkspace;
@@ -133,6 +143,10 @@ class ForceElement {
   virtual ~ForceElement() = default;
   ForceElement(const ForceElement&) = delete;
   ForceElement& operator=(const ForceElement&) = delete;
+
+  // The scratch a workspace keeps for this element (ElementContext::scratch),
+  // made once per workspace so that evaluations allocate nothing.
+  virtual std::unique_ptr<ElementScratch> MakeScratch() const { return nullptr; }
 
   const std::string& name() const { return name_; }
   const std::string& origin() const { return origin_; }

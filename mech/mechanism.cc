@@ -23,6 +23,7 @@ ElementContext MakeElementContext(const Mechanism& mechanism, double t, std::spa
   ctx.modes = modes.empty() ? modes : modes.subspan(mechanism.mode_offset(e), element.num_modes());
   if (element.num_holds() > 0)
     ctx.stick_forces = std::span<const double>(ws.stick.force).subspan(mechanism.hold_offset(e), element.num_holds());
+  ctx.scratch = ws.element_scratch[e].get();
   return ctx;
 }
 
@@ -217,6 +218,7 @@ MechanismWorkspace::MechanismWorkspace(const Mechanism& mechanism)
       parameter_args(1 + mechanism.num_inputs(), 0.0),
       initial_stored_energy(mechanism.num_elements(), 0.0) {
   holding.reserve(mechanism.exact_stick_elements().size());
+  for (int e = 0; e < mechanism.num_elements(); ++e) element_scratch.push_back(mechanism.element(e).MakeScratch());
 }
 
 void EvaluatePositions(const Mechanism& mechanism, double t, std::span<const double> x, MechanismWorkspace* ws) {

@@ -106,6 +106,7 @@ struct MechanismWorkspace {
   std::vector<std::uint64_t> sensors_on;  // per element: the kinematics' stamp its sensors were computed on
   std::vector<double> rates;           // scratch x' when the caller wants none
   std::vector<double> parameter_args;  // [t, inputs...]
+  std::vector<std::unique_ptr<ElementScratch>> element_scratch;  // per element (null: it keeps none)
   // At the initial state: each element's stored energy (0 where it has
   // none) and the bodies' kinetic plus gravitational energy, the references
   // of the "dissipated" and energy_balance sensors.

@@ -79,9 +79,6 @@ void FindStuck(const Mechanism& mechanism, double t, std::span<const double> x, 
       for (int h = 0; h < element.num_holds(); ++h) {
         if (!element.StuckExactly(ctx, h)) continue;
         s.stuck.push_back(first + h);
-        // the probe's size: the last holding force's, so that the differences
-        // below lose no digits to a large load
-        s.probe[first + h] = std::max(1.0, std::abs(s.force[first + h]));
         if (ws->holding.empty() || ws->holding.back() != e) ws->holding.push_back(e);
       }
     }
@@ -146,9 +143,16 @@ void FollowSlips(const Mechanism& mechanism, double t, std::span<const double> x
 bool ZeroStuckVelocities(const Mechanism& mechanism, double t, std::span<double> x, std::span<const double> modes,
                          MechanismWorkspace* ws) {
   if (mechanism.exact_stick_elements().empty() || modes.empty()) return false;
+  StickWorkspace& s = ws->stick;
+  // The probes' sizes: the holding forces of the step just taken, so that S's
+  // differences lose no digits to a large load. Changed between steps only:
+  // within a step (its Newton iterations and Jacobian) the right-hand side
+  // must be one function of the state, and a probe following every
+  // evaluation's forces made it depend on the evaluations before (round-off
+  // that kept the Falling cube rocking at rest, its Newton iterations failing).
+  for (std::size_t g = 0; g < s.probe.size(); ++g) s.probe[g] = std::max(1.0, std::abs(s.force[g]));
   EvaluatePositions(mechanism, t, x, ws);
   FindStuck(mechanism, t, x, modes, ws);
-  StickWorkspace& s = ws->stick;
   const int k = static_cast<int>(s.stuck.size());
   double largest = 0.0;
   for (int i = 0; i < k; ++i) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "mech/dynamics.h"
@@ -102,12 +103,45 @@ ContactPointMotion PointsPlaneContact::Motion(const ElementContext& ctx, int i, 
                              kin.body_pose[body2_].R * normal_, tangent1_, tangent2_);
 }
 
-void PointsPlaneContact::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+struct PointsPlaneContact::Measured final : ElementScratch {
+  const Kinematics* kin = nullptr;  // measured on these kinematics
+  std::uint64_t stamp = 0;          // at this stamp of them
+  std::vector<ContactPointMotion> motion;
+  std::vector<double> depth, normal;  // penetration, normal force (0 when not pressed)
+  // MeasurePatch's last patch, for these kinematics and stuck points
+  Patch patch;
+  std::vector<char> stuck;
+  bool patch_valid = false;
+};
+
+std::unique_ptr<ElementScratch> PointsPlaneContact::MakeScratch() const {
+  auto measured = std::make_unique<Measured>();
+  measured->motion.resize(points_.size());
+  measured->depth.resize(points_.size());
+  measured->normal.resize(points_.size());
+  measured->stuck.resize(points_.size());
+  return measured;
+}
+
+PointsPlaneContact::Measured& PointsPlaneContact::Measure(const ElementContext& ctx) const {
+  auto* measured = static_cast<Measured*>(ctx.scratch);
+  if (!measured) throw std::logic_error("contact '" + name() + "' evaluated without the scratch it makes");
+  if (measured->kin == ctx.kin && measured->stamp == ctx.kin->stamp) return *measured;
   for (int i = 0; i < num_points(); ++i) {
-    double delta;
-    const ContactPointMotion m = Motion(ctx, i, &delta);
-    modes[i] = delta > 0 ? 1 : 0;
-    if (stick_) ContactStick::Start(m, StickModes(modes, i));
+    measured->motion[i] = Motion(ctx, i, &measured->depth[i]);
+    measured->normal[i] = NormalForce(measured->motion[i], measured->depth[i]);
+  }
+  measured->kin = ctx.kin;
+  measured->stamp = ctx.kin->stamp;
+  measured->patch_valid = false;
+  return *measured;
+}
+
+void PointsPlaneContact::Initialize(const ElementContext& ctx, std::span<double>, std::span<double> modes) const {
+  const Measured& at = Measure(ctx);
+  for (int i = 0; i < num_points(); ++i) {
+    modes[i] = at.depth[i] > 0 ? 1 : 0;
+    if (stick_) ContactStick::Start(at.motion[i], StickModes(modes, i));
   }
 }
 
@@ -117,15 +151,18 @@ void PointsPlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::
   const Vec3 n = kin.body_pose[body2_].R * normal_;
   double total_normal = 0, deepest = -1e300, slip = 0, loaded = -1, energy = 0;
   Vec3 friction = Vec3::Zero();
-  const Patch patch = stick_ ? MeasurePatch(ctx) : Patch{};
+  const Patch no_patch;
+  const Patch& patch = stick_ ? MeasurePatch(ctx) : no_patch;
   for (int i = 0; i < num_points(); ++i) {
     PointContactLoad c;
     double delta;
     if (stick_) {
-      const ContactPointMotion m = Motion(ctx, i, &delta);
+      const Measured& at = Measure(ctx);
+      const ContactPointMotion& m = at.motion[i];
+      delta = at.depth[i];
       sensors[5 + i] = ctx.modes[i] == 0.0 ? 0.0 : Stuck(ctx.modes, i) ? 1.0 : 2.0;
       if (ctx.modes[i] != 0.0) {
-        c.normal = NormalForce(m, delta);
+        c.normal = at.normal[i];
         c.slip = m.speed();
         c.friction = stick_->Friction(m, c.normal, StickModes(ctx.modes, i), HoldingForce(ctx, patch, i));
         // a stuck point's share is the sensors' and the cone's: the patch's
@@ -164,7 +201,7 @@ void PointsPlaneContact::ApplyHold(const ElementContext& ctx, const Patch& patch
     loads->AddTorque(kin, body2_, -f * patch.n);
     return;
   }
-  ContactStick::ApplyHoldForce(kin, CentreMotion(ctx, patch), hold, f, loads);
+  ContactStick::ApplyHoldForce(kin, patch.held_motion, hold, f, loads);
 }
 
 void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
@@ -176,11 +213,10 @@ void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<doub
   }
   values[points_.size()] = deepest - law_.max_penetration;
   if (!stick_) return;
-  const Patch patch = MeasurePatch(ctx);
+  const Patch& patch = MeasurePatch(ctx);
+  const Measured& at = Measure(ctx);
   for (int i = 0; i < num_points(); ++i) {
-    double delta;
-    const ContactPointMotion m = Motion(ctx, i, &delta);
-    stick_->ZeroCrossings(m, NormalForce(m, delta), ctx.modes[i] != 0.0, StickModes(ctx.modes, i),
+    stick_->ZeroCrossings(at.motion[i], at.normal[i], ctx.modes[i] != 0.0, StickModes(ctx.modes, i),
                           HoldingForce(ctx, patch, i),
                           values.subspan(num_points() + 1 + ContactStick::kCrossingsPerPoint * i,
                                          ContactStick::kCrossingsPerPoint));
@@ -188,15 +224,13 @@ void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<doub
 }
 
 std::vector<std::array<double, 2>> PointsPlaneContact::Shares(const ElementContext& ctx, bool* beyond) const {
-  const Patch patch = MeasurePatch(ctx);
+  const Patch& patch = MeasurePatch(ctx);
   std::vector<std::array<double, 2>> shares(points_.size(), {0.0, 0.0});
   *beyond = false;
   for (int i = 0; i < num_points(); ++i) {
     if (!Stuck(ctx.modes, i)) continue;
     shares[i] = HoldingForce(ctx, patch, i);
-    double delta;
-    const ContactPointMotion m = Motion(ctx, i, &delta);
-    *beyond = *beyond || stick_->Exceeds(NormalForce(m, delta), shares[i]);
+    *beyond = *beyond || stick_->Exceeds(Measure(ctx).normal[i], shares[i]);
   }
   return shares;
 }
@@ -205,8 +239,7 @@ void PointsPlaneContact::ReleaseAll(const ElementContext& ctx, const std::vector
                                     std::span<double> modes) const {
   for (int i = 0; i < num_points(); ++i) {
     if (!Stuck(modes, i)) continue;
-    double delta;
-    ContactStick::OnCrossing(0, Motion(ctx, i, &delta), shares[i], StickModes(modes, i));
+    ContactStick::OnCrossing(0, Measure(ctx).motion[i], shares[i], StickModes(modes, i));
   }
 }
 
@@ -219,9 +252,10 @@ bool PointsPlaneContact::UpdateModes(const ElementContext& ctx, std::span<double
     ReleaseAll(ctx, shares, modes);
     changed = true;
   }
+  const Measured& at = Measure(ctx);
   for (int i = 0; i < num_points(); ++i) {
-    double delta;
-    const ContactPointMotion m = Motion(ctx, i, &delta);
+    const ContactPointMotion& m = at.motion[i];
+    const double delta = at.depth[i];
     const double mode = delta > 0 || (delta == 0 && -m.slip.dot(m.normal) > 0) ? 1.0 : delta < 0 ? 0.0 : modes[i];
     const bool touches = mode != 0.0 && modes[i] == 0.0;
     changed |= mode != modes[i];
@@ -237,8 +271,7 @@ bool PointsPlaneContact::ModesAtRest(const ElementContext& ctx, std::span<double
   if (!stick_) return changed;
   for (int i = 0; i < num_points(); ++i) {
     if (modes[i] == 0.0 || Stuck(modes, i)) continue;
-    double delta;
-    ContactStick::Start(Motion(ctx, i, &delta), StickModes(modes, i));
+    ContactStick::Start(Measure(ctx).motion[i], StickModes(modes, i));
     changed = true;
   }
   return changed;
@@ -247,15 +280,14 @@ bool PointsPlaneContact::ModesAtRest(const ElementContext& ctx, std::span<double
 void PointsPlaneContact::OnCrossing(int index, int direction, const ElementContext& ctx, std::span<double>,
                                     std::span<double> modes) const {
   if (index == num_points()) return;  // the bound: a warning only
-  double delta;
   if (index < num_points()) {
     modes[index] = direction > 0 ? 1.0 : 0.0;
-    if (stick_ && direction > 0) ContactStick::Start(Motion(ctx, index, &delta), StickModes(modes, index));
+    if (stick_ && direction > 0) ContactStick::Start(Measure(ctx).motion[index], StickModes(modes, index));
     return;
   }
   const int i = (index - num_points() - 1) / ContactStick::kCrossingsPerPoint;
   if (const int which = (index - num_points() - 1) % ContactStick::kCrossingsPerPoint; which != 0) {
-    ContactStick::OnCrossing(which, Motion(ctx, i, &delta), {}, StickModes(modes, i));
+    ContactStick::OnCrossing(which, Measure(ctx).motion[i], {}, StickModes(modes, i));
     return;
   }
   // one point's share beyond its cone: the contact's stuck points let go together (the others
@@ -272,33 +304,42 @@ std::string PointsPlaneContact::CrossingName(int index, int direction) const {
   return stick_point + " " + ContactStick::CrossingName(local % ContactStick::kCrossingsPerPoint);
 }
 
-PointsPlaneContact::Patch PointsPlaneContact::MeasurePatch(const ElementContext& ctx) const {
-  Patch patch;
+const PointsPlaneContact::Patch& PointsPlaneContact::MeasurePatch(const ElementContext& ctx) const {
+  Measured& at = Measure(ctx);
+  bool same = at.patch_valid;
+  for (int i = 0; i < num_points(); ++i) {
+    const char stuck = Stuck(ctx.modes, i);
+    same = same && at.stuck[i] == stuck;
+    at.stuck[i] = stuck;
+  }
+  if (same) return at.patch;
+  at.patch_valid = true;
+  Patch& patch = at.patch;
+  patch = Patch{};
   patch.n = ctx.kin->body_pose[body2_].R * normal_;
   // weights: the normal forces, or equal ones while none presses
   Vec3 weighted = Vec3::Zero();
   for (int i = 0; i < num_points(); ++i) {
     if (!Stuck(ctx.modes, i)) continue;
-    double delta;
-    const ContactPointMotion m = Motion(ctx, i, &delta);
-    const double N = std::max(NormalForce(m, delta), 0.0);
+    const double N = std::max(at.normal[i], 0.0);
     ++patch.stuck;
     patch.normal += N;
-    weighted += N * m.point;
-    patch.held += m.point;
+    weighted += N * at.motion[i].point;
+    patch.held += at.motion[i].point;
   }
   if (patch.stuck == 0) return patch;
   patch.held /= patch.stuck;
+  patch.held_motion = MeasureContactPoint(*ctx.kin, body1_, body2_, patch.held,
+                                          MaterialVelocityAt(*ctx.kin, body1_, patch.held), patch.n, tangent1_,
+                                          tangent2_);
   patch.centre = patch.normal > 0.0 ? Vec3(weighted / patch.normal) : patch.held;
   double spread = 0.0;  // of the stuck points about their centroid
   for (int i = 0; i < num_points(); ++i) {
     if (!Stuck(ctx.modes, i)) continue;
-    double delta;
-    const ContactPointMotion m = Motion(ctx, i, &delta);
-    const double w = patch.normal > 0.0 ? std::max(NormalForce(m, delta), 0.0) : 1.0;
-    const Vec3 r = m.point - patch.centre;
+    const double w = patch.normal > 0.0 ? std::max(at.normal[i], 0.0) : 1.0;
+    const Vec3 r = at.motion[i].point - patch.centre;
     patch.spin_inertia += w * (r - r.dot(patch.n) * patch.n).squaredNorm();
-    spread = std::max(spread, (m.point - patch.held).squaredNorm());
+    spread = std::max(spread, (at.motion[i].point - patch.held).squaredNorm());
   }
   // round-off of a single pressed point (or of points on one spot): no spin to hold
   if (!(patch.spin_inertia > 1e-12 * std::max(patch.normal, 1.0) * spread)) patch.spin_inertia = 0.0;
@@ -307,10 +348,10 @@ PointsPlaneContact::Patch PointsPlaneContact::MeasurePatch(const ElementContext&
 
 std::array<double, 2> PointsPlaneContact::Share(const ElementContext& ctx, const Patch& patch, int i, double F1,
                                                 double F2, double M) const {
-  double delta;
-  const ContactPointMotion m = Motion(ctx, i, &delta);
+  const Measured& at = Measure(ctx);
+  const ContactPointMotion& m = at.motion[i];
   const bool pressed = patch.normal > 0.0;
-  const double w = pressed ? std::max(NormalForce(m, delta), 0.0) : 1.0;
+  const double w = pressed ? std::max(at.normal[i], 0.0) : 1.0;
   const double share = w / (pressed ? patch.normal : patch.stuck);
   std::array<double, 2> f = {share * F1, share * F2};
   if (patch.spin_inertia > 0.0) {
@@ -322,12 +363,6 @@ std::array<double, 2> PointsPlaneContact::Share(const ElementContext& ctx, const
     f[1] += turn.dot(m.t2);
   }
   return f;
-}
-
-ContactPointMotion PointsPlaneContact::CentreMotion(const ElementContext& ctx, const Patch& patch) const {
-  const Kinematics& kin = *ctx.kin;
-  return MeasureContactPoint(kin, body1_, body2_, patch.held, MaterialVelocityAt(kin, body1_, patch.held), patch.n,
-                             tangent1_, tangent2_);
 }
 
 bool PointsPlaneContact::StuckExactly(const ElementContext& ctx, int hold) const {
@@ -345,8 +380,8 @@ void PointsPlaneContact::ApplyStickForce(const ElementContext& ctx, int hold, do
 double PointsPlaneContact::StickAcceleration(const ElementContext& ctx, int hold, const DynamicsWorkspace& dyn,
                                              std::span<const double>) const {
   const Kinematics& kin = *ctx.kin;
-  const Patch patch = MeasurePatch(ctx);
-  if (hold < 2) return ContactStick::HoldAcceleration(*ctx.model, kin, dyn, CentreMotion(ctx, patch), hold);
+  const Patch& patch = MeasurePatch(ctx);
+  if (hold < 2) return ContactStick::HoldAcceleration(*ctx.model, kin, dyn, patch.held_motion, hold);
   // the spin about n, n turning with body 2
   const Vec3 spin = kin.body_omega[body1_] - kin.body_omega[body2_];
   const Vec3 spin_rate =
@@ -355,18 +390,16 @@ double PointsPlaneContact::StickAcceleration(const ElementContext& ctx, int hold
 }
 
 double PointsPlaneContact::HoldVelocity(const ElementContext& ctx, int hold) const {
-  const Patch patch = MeasurePatch(ctx);
+  const Patch& patch = MeasurePatch(ctx);
   if (hold == 2) return (ctx.kin->body_omega[body1_] - ctx.kin->body_omega[body2_]).dot(patch.n);
-  const ContactPointMotion m = CentreMotion(ctx, patch);
+  const ContactPointMotion& m = patch.held_motion;
   return hold == 0 ? m.s1 : m.s2;
 }
 
 void PointsPlaneContact::FollowSlip(const ElementContext& ctx, std::span<double> modes) const {
-  for (int i = 0; i < num_points(); ++i) {
-    if (modes[i] == 0.0) continue;
-    double delta;
-    ContactStick::Follow(Motion(ctx, i, &delta), StickModes(modes, i));
-  }
+  const Measured& at = Measure(ctx);
+  for (int i = 0; i < num_points(); ++i)
+    if (modes[i] != 0.0) ContactStick::Follow(at.motion[i], StickModes(modes, i));
 }
 
 std::string PointsPlaneContact::HoldName(int) const { return "contact '" + name() + "'"; }

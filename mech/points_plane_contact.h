@@ -88,6 +88,8 @@ class PointsPlaneContact final : public ForceElement {
   std::string StartWarning(const ElementContext& ctx) const override;
   std::string LinearisedAs(std::span<const double> modes) const override;
   std::string CrossingName(int index, int direction) const override;
+  // Its points measured once per kinematics (Measured).
+  std::unique_ptr<ElementScratch> MakeScratch() const override;
 
   // Exact stick (law.exact_stick): the stuck points' common slip and spin (above).
   bool StuckExactly(const ElementContext& ctx, int hold) const override;
@@ -103,6 +105,10 @@ class PointsPlaneContact final : public ForceElement {
   double Penetration(const ElementContext& ctx, int i, Vec3* p) const;
   // Point i as the stick model sees it; its penetration into *delta.
   ContactPointMotion Motion(const ElementContext& ctx, int i, double* delta) const;
+  // Every point's motion, penetration and normal force on ctx's kinematics,
+  // measured on the first call for those kinematics (the scratch).
+  struct Measured;
+  Measured& Measure(const ElementContext& ctx) const;
   double NormalForce(const ContactPointMotion& m, double delta) const {
     return ContactNormalForce(law_, std::max(delta, 0.0), -m.slip.dot(m.normal));
   }
@@ -122,8 +128,11 @@ class PointsPlaneContact final : public ForceElement {
     double normal = 0.0, spin_inertia = 0.0;
     Vec3 held = Vec3::Zero(), centre = Vec3::Zero();
     Vec3 n = Vec3::Zero();  // the plane's normal (global)
+    ContactPointMotion held_motion;  // the held point as a material point of body 1
   };
-  Patch MeasurePatch(const ElementContext& ctx) const;
+  // The patch of ctx.modes' stuck points, kept in the scratch until the
+  // kinematics or the stuck set change.
+  const Patch& MeasurePatch(const ElementContext& ctx) const;
   // Point i's share of holding force F (t1, t2 components) and moment M.
   std::array<double, 2> Share(const ElementContext& ctx, const Patch& patch, int i, double F1, double F2,
                               double M) const;
@@ -142,8 +151,6 @@ class PointsPlaneContact final : public ForceElement {
   // Every stuck point slides, along -(its share).
   void ReleaseAll(const ElementContext& ctx, const std::vector<std::array<double, 2>>& shares,
                   std::span<double> modes) const;
-  // The held point as a material point of body 1.
-  ContactPointMotion CentreMotion(const ElementContext& ctx, const Patch& patch) const;
   bool Stuck(std::span<const double> modes, int i) const {
     return modes[i] != 0.0 && StickModes(modes, i)[0] == ContactStick::kStuck;
   }

@@ -1,7 +1,9 @@
 #pragma once
 // Helpers for tests: load a diagram from inline XML and run it.
 
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,21 @@ struct XmlRun {
     return sim->results().Column(c);
   }
 };
+
+// The text of diagrams/examples/`example` ("" when it cannot be read).
+inline std::string ReadExample(const std::string& example) {
+  std::ifstream in(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + example);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// `xml` with every contact's regularised friction (its v_eps) replaced by exact stick.
+inline std::string WithExactStick(std::string xml) {
+  for (std::size_t at; (at = xml.find(" v_eps=\"")) != std::string::npos;)
+    xml.replace(at, xml.find('"', at + 8) + 1 - at, " stick=\"exact\"");
+  return xml;
+}
 
 // Loads `xml` (named test.xml in messages) and builds it; throws what the loader throws.
 inline diagrams::LoadedDiagram LoadXml(const std::string& xml, const diagrams::LoadOptions& options = {}) {

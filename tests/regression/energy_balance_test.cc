@@ -9,9 +9,7 @@
 //   - the Coulomb oscillator FR-2 dissipates F times its path, 5.5 J.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -20,13 +18,6 @@
 
 namespace mechflow {
 namespace {
-
-std::string ReadExample(const std::string& example) {
-  std::ifstream in(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + example);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // `xml` with the sensors (inside its mechanism) logged under their own names.
 std::string WithSensors(std::string xml, const std::vector<std::string>& sensors) {
@@ -55,11 +46,8 @@ class BalancedExample : public ::testing::TestWithParam<const char*> {};
 // replaced by exact stick (their v_eps by stick="exact").
 std::string ExampleText(const std::string& name) {
   const std::size_t plus = name.find('+');
-  std::string xml = ReadExample(name.substr(0, plus));
-  if (plus == std::string::npos) return xml;
-  for (std::size_t at; (at = xml.find(" v_eps=\"")) != std::string::npos;)
-    xml.replace(at, xml.find('"', at + 8) + 1 - at, " stick=\"exact\"");
-  return xml;
+  const std::string xml = testing::ReadExample(name.substr(0, plus));
+  return plus == std::string::npos ? xml : testing::WithExactStick(xml);
 }
 
 TEST_P(BalancedExample, EnergyGainedEqualsTheElementsWork) {
@@ -113,7 +101,7 @@ EnergyHistory ElastFrictionEnergy(const std::string& variant, const std::string&
   options.variants = {variant, type};
   // the spring as the linear law it is without its excitation (q = 0 in
   // these variants), whose energy is known
-  std::string xml = ReadExample("elast_friction.xml");
+  std::string xml = testing::ReadExample("elast_friction.xml");
   const std::string expression = "type=\"expression\" body1=\"Base\" point1=\"0 0 0\" body2=\"Box\"\n"
                                  "           expression=\"-cspring*(x-1)+q*sin(2*pi*freq*t)\"";
   EXPECT_NE(xml.find(expression), std::string::npos);
@@ -196,7 +184,7 @@ TEST(EnergyAccountingTest, ContactsStoreAndDissipate) {
   // Falling: a cube drops onto an incline and a floor (stiff contacts with
   // damping and friction); nothing else acts but gravity.
   const testing::XmlRun run = testing::RunXml(WithSensors(
-      ReadExample("falling.xml"),
+      testing::ReadExample("falling.xml"),
       {"T kind=\"kinetic_energy\"", "V kind=\"potential_energy\"",
        "U1 kind=\"element\" element=\"incline\" quantity=\"energy\"",
        "U2 kind=\"element\" element=\"floor\" quantity=\"energy\"",

@@ -3,8 +3,6 @@
 // energy, as its sensors report it, stays constant to the solver's accuracy.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -15,10 +13,7 @@ namespace mechflow {
 namespace {
 
 std::string WithEnergySensors(const std::string& example) {
-  std::ifstream in(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/" + example);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string xml = text.str();
+  std::string xml = testing::ReadExample(example);
   const auto name_at = xml.find("\"", xml.find("name=", xml.find("<mechanism"))) + 1;
   const std::string mechanism = xml.substr(name_at, xml.find('"', name_at) - name_at);
   const auto mechanism_end = xml.find("</mechanism>");

@@ -9,8 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,6 +18,7 @@
 #include "blocks/solver/simulator.h"
 #include "diagrams/loader.h"
 #include "diagrams/xml_reader.h"
+#include "tests/test_util.h"
 
 namespace mechflow::fidget_test {  // names of its own: the files of its folder are compiled together
 namespace {
@@ -39,12 +38,8 @@ FidgetRun RunFidget(double s1, double s2, double s3, bool exact = false) {
   diagrams::LoadOptions options;
   options.overrides = {{"s1", s1}, {"s2", s2}, {"s3", s3}};
   const std::string path = std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/fidget.xml";
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string xml = text.str();
-  for (std::size_t at; exact && (at = xml.find(" v_eps=\"")) != std::string::npos;)
-    xml.replace(at, xml.find('"', at + 8) + 1 - at, " stick=\"exact\"");
+  const std::string text = testing::ReadExample("fidget.xml");
+  const std::string xml = exact ? testing::WithExactStick(text) : text;
   const auto loaded = diagrams::LoadDiagramDescription(diagrams::ReadDiagramText(xml, path), options);
   blocks::Simulator sim(*loaded.diagram, loaded.solver, loaded.logged);
   const auto outcome = sim.Run();
