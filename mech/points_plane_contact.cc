@@ -367,10 +367,9 @@ std::array<double, 2> PointsPlaneContact::Share(const ElementContext& ctx, const
 
 bool PointsPlaneContact::StuckExactly(const ElementContext& ctx, int hold) const {
   if (!stick_) return false;
-  if (hold == 2) return MeasurePatch(ctx).spin_inertia > 0.0;
-  for (int i = 0; i < num_points(); ++i)
-    if (Stuck(ctx.modes, i)) return true;
-  return false;
+  bool any = false;  // from the modes alone: while every point slides or flies, nothing is measured
+  for (int i = 0; i < num_points() && !any; ++i) any = Stuck(ctx.modes, i);
+  return any && (hold < 2 || MeasurePatch(ctx).spin_inertia > 0.0);
 }
 
 void PointsPlaneContact::ApplyStickForce(const ElementContext& ctx, int hold, double f, Loads* loads) const {
