@@ -106,19 +106,31 @@ ContactPointMotion PointsPlaneContact::Motion(const ElementContext& ctx, int i, 
 struct PointsPlaneContact::Measured final : ElementScratch {
   const Kinematics* kin = nullptr;  // measured on these kinematics
   std::uint64_t stamp = 0;          // at this stamp of them
-  std::vector<ContactPointMotion> motion;
-  std::vector<double> depth, normal;  // penetration, normal force (0 when not pressed)
+  std::vector<double> depth;        // penetration, every point
+  std::vector<MeasuredPoint> point;  // when first asked for (Point): points off the plane seldom are
+  std::vector<char> has_point;
   // MeasurePatch's last patch, for these kinematics and stuck points
   Patch patch;
   std::vector<char> stuck;
   bool patch_valid = false;
 };
 
+const PointsPlaneContact::MeasuredPoint& PointsPlaneContact::Point(const ElementContext& ctx, int i) const {
+  Measured& at = Measure(ctx);
+  if (!at.has_point[i]) {
+    MeasuredPoint& point = at.point[i];
+    point.motion = Motion(ctx, i, &at.depth[i]);
+    point.normal = NormalForce(point.motion, at.depth[i]);
+    at.has_point[i] = true;
+  }
+  return at.point[i];
+}
+
 std::unique_ptr<ElementScratch> PointsPlaneContact::MakeScratch() const {
   auto measured = std::make_unique<Measured>();
-  measured->motion.resize(points_.size());
   measured->depth.resize(points_.size());
-  measured->normal.resize(points_.size());
+  measured->point.resize(points_.size());
+  measured->has_point.resize(points_.size());
   measured->stuck.resize(points_.size());
   return measured;
 }
@@ -127,9 +139,10 @@ PointsPlaneContact::Measured& PointsPlaneContact::Measure(const ElementContext& 
   auto* measured = static_cast<Measured*>(ctx.scratch);
   if (!measured) throw std::logic_error("contact '" + name() + "' evaluated without the scratch it makes");
   if (measured->kin == ctx.kin && measured->stamp == ctx.kin->stamp) return *measured;
+  Vec3 p;
   for (int i = 0; i < num_points(); ++i) {
-    measured->motion[i] = Motion(ctx, i, &measured->depth[i]);
-    measured->normal[i] = NormalForce(measured->motion[i], measured->depth[i]);
+    measured->depth[i] = Penetration(ctx, i, &p);
+    measured->has_point[i] = false;
   }
   measured->kin = ctx.kin;
   measured->stamp = ctx.kin->stamp;
@@ -141,7 +154,7 @@ void PointsPlaneContact::Initialize(const ElementContext& ctx, std::span<double>
   const Measured& at = Measure(ctx);
   for (int i = 0; i < num_points(); ++i) {
     modes[i] = at.depth[i] > 0 ? 1 : 0;
-    if (stick_) ContactStick::Start(at.motion[i], StickModes(modes, i));
+    if (stick_) ContactStick::Start(Point(ctx, i).motion, StickModes(modes, i));
   }
 }
 
@@ -157,12 +170,12 @@ void PointsPlaneContact::Evaluate(const ElementContext& ctx, Loads* loads, std::
     PointContactLoad c;
     double delta;
     if (stick_) {
-      const Measured& at = Measure(ctx);
-      const ContactPointMotion& m = at.motion[i];
-      delta = at.depth[i];
+      delta = Measure(ctx).depth[i];
       sensors[5 + i] = ctx.modes[i] == 0.0 ? 0.0 : Stuck(ctx.modes, i) ? 1.0 : 2.0;
       if (ctx.modes[i] != 0.0) {
-        c.normal = at.normal[i];
+        const MeasuredPoint& point = Point(ctx, i);
+        const ContactPointMotion& m = point.motion;
+        c.normal = point.normal;
         c.slip = m.speed();
         c.friction = stick_->Friction(m, c.normal, StickModes(ctx.modes, i), HoldingForce(ctx, patch, i));
         // a stuck point's share is the sensors' and the cone's: the patch's
@@ -205,18 +218,21 @@ void PointsPlaneContact::ApplyHold(const ElementContext& ctx, const Patch& patch
 }
 
 void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<double> values) const {
-  Vec3 p;
+  const Measured& at = Measure(ctx);
   double deepest = -1e300;
   for (std::size_t i = 0; i < points_.size(); ++i) {
-    values[i] = Penetration(ctx, static_cast<int>(i), &p);
+    values[i] = at.depth[i];
     deepest = std::max(deepest, values[i]);
   }
   values[points_.size()] = deepest - law_.max_penetration;
   if (!stick_) return;
   const Patch& patch = MeasurePatch(ctx);
-  const Measured& at = Measure(ctx);
+  static const MeasuredPoint kAway;  // a point off the plane: its crossings read no motion
   for (int i = 0; i < num_points(); ++i) {
-    stick_->ZeroCrossings(at.motion[i], at.normal[i], ctx.modes[i] != 0.0, StickModes(ctx.modes, i),
+    const bool touching = ctx.modes[i] != 0.0;
+    const MeasuredPoint& point = touching ? Point(ctx, i) : kAway;
+    stick_->ZeroCrossings(point.motion, point.normal, touching,
+                          StickModes(ctx.modes, i),
                           HoldingForce(ctx, patch, i),
                           values.subspan(num_points() + 1 + ContactStick::kCrossingsPerPoint * i,
                                          ContactStick::kCrossingsPerPoint));
@@ -230,7 +246,7 @@ std::vector<std::array<double, 2>> PointsPlaneContact::Shares(const ElementConte
   for (int i = 0; i < num_points(); ++i) {
     if (!Stuck(ctx.modes, i)) continue;
     shares[i] = HoldingForce(ctx, patch, i);
-    *beyond = *beyond || stick_->Exceeds(Measure(ctx).normal[i], shares[i]);
+    *beyond = *beyond || stick_->Exceeds(Point(ctx, i).normal, shares[i]);
   }
   return shares;
 }
@@ -239,7 +255,7 @@ void PointsPlaneContact::ReleaseAll(const ElementContext& ctx, const std::vector
                                     std::span<double> modes) const {
   for (int i = 0; i < num_points(); ++i) {
     if (!Stuck(modes, i)) continue;
-    ContactStick::OnCrossing(0, Measure(ctx).motion[i], shares[i], StickModes(modes, i));
+    ContactStick::OnCrossing(0, Point(ctx, i).motion, shares[i], StickModes(modes, i));
   }
 }
 
@@ -254,13 +270,14 @@ bool PointsPlaneContact::UpdateModes(const ElementContext& ctx, std::span<double
   }
   const Measured& at = Measure(ctx);
   for (int i = 0; i < num_points(); ++i) {
-    const ContactPointMotion& m = at.motion[i];
     const double delta = at.depth[i];
-    const double mode = delta > 0 || (delta == 0 && -m.slip.dot(m.normal) > 0) ? 1.0 : delta < 0 ? 0.0 : modes[i];
+    // exactly on the plane: in contact when moving into it
+    const bool entering = delta == 0 && -Point(ctx, i).motion.slip.dot(Point(ctx, i).motion.normal) > 0;
+    const double mode = delta > 0 || entering ? 1.0 : delta < 0 ? 0.0 : modes[i];
     const bool touches = mode != 0.0 && modes[i] == 0.0;
     changed |= mode != modes[i];
     modes[i] = mode;
-    if (stick_ && touches) ContactStick::Start(m, StickModes(modes, i));
+    if (stick_ && touches) ContactStick::Start(Point(ctx, i).motion, StickModes(modes, i));
   }
   return changed;
 }
@@ -271,7 +288,7 @@ bool PointsPlaneContact::ModesAtRest(const ElementContext& ctx, std::span<double
   if (!stick_) return changed;
   for (int i = 0; i < num_points(); ++i) {
     if (modes[i] == 0.0 || Stuck(modes, i)) continue;
-    ContactStick::Start(Measure(ctx).motion[i], StickModes(modes, i));
+    ContactStick::Start(Point(ctx, i).motion, StickModes(modes, i));
     changed = true;
   }
   return changed;
@@ -282,12 +299,12 @@ void PointsPlaneContact::OnCrossing(int index, int direction, const ElementConte
   if (index == num_points()) return;  // the bound: a warning only
   if (index < num_points()) {
     modes[index] = direction > 0 ? 1.0 : 0.0;
-    if (stick_ && direction > 0) ContactStick::Start(Measure(ctx).motion[index], StickModes(modes, index));
+    if (stick_ && direction > 0) ContactStick::Start(Point(ctx, index).motion, StickModes(modes, index));
     return;
   }
   const int i = (index - num_points() - 1) / ContactStick::kCrossingsPerPoint;
   if (const int which = (index - num_points() - 1) % ContactStick::kCrossingsPerPoint; which != 0) {
-    ContactStick::OnCrossing(which, Measure(ctx).motion[i], {}, StickModes(modes, i));
+    ContactStick::OnCrossing(which, Point(ctx, i).motion, {}, StickModes(modes, i));
     return;
   }
   // one point's share beyond its cone: the contact's stuck points let go together (the others
@@ -321,11 +338,12 @@ const PointsPlaneContact::Patch& PointsPlaneContact::MeasurePatch(const ElementC
   Vec3 weighted = Vec3::Zero();
   for (int i = 0; i < num_points(); ++i) {
     if (!Stuck(ctx.modes, i)) continue;
-    const double N = std::max(at.normal[i], 0.0);
+    const MeasuredPoint& point = Point(ctx, i);
+    const double N = std::max(point.normal, 0.0);
     ++patch.stuck;
     patch.normal += N;
-    weighted += N * at.motion[i].point;
-    patch.held += at.motion[i].point;
+    weighted += N * point.motion.point;
+    patch.held += point.motion.point;
   }
   if (patch.stuck == 0) return patch;
   patch.held /= patch.stuck;
@@ -336,10 +354,11 @@ const PointsPlaneContact::Patch& PointsPlaneContact::MeasurePatch(const ElementC
   double spread = 0.0;  // of the stuck points about their centroid
   for (int i = 0; i < num_points(); ++i) {
     if (!Stuck(ctx.modes, i)) continue;
-    const double w = patch.normal > 0.0 ? std::max(at.normal[i], 0.0) : 1.0;
-    const Vec3 r = at.motion[i].point - patch.centre;
+    const MeasuredPoint& point = Point(ctx, i);
+    const double w = patch.normal > 0.0 ? std::max(point.normal, 0.0) : 1.0;
+    const Vec3 r = point.motion.point - patch.centre;
     patch.spin_inertia += w * (r - r.dot(patch.n) * patch.n).squaredNorm();
-    spread = std::max(spread, (at.motion[i].point - patch.held).squaredNorm());
+    spread = std::max(spread, (point.motion.point - patch.held).squaredNorm());
   }
   // round-off of a single pressed point (or of points on one spot): no spin to hold
   if (!(patch.spin_inertia > 1e-12 * std::max(patch.normal, 1.0) * spread)) patch.spin_inertia = 0.0;
@@ -348,10 +367,10 @@ const PointsPlaneContact::Patch& PointsPlaneContact::MeasurePatch(const ElementC
 
 std::array<double, 2> PointsPlaneContact::Share(const ElementContext& ctx, const Patch& patch, int i, double F1,
                                                 double F2, double M) const {
-  const Measured& at = Measure(ctx);
-  const ContactPointMotion& m = at.motion[i];
+  const MeasuredPoint& point = Point(ctx, i);
+  const ContactPointMotion& m = point.motion;
   const bool pressed = patch.normal > 0.0;
-  const double w = pressed ? std::max(at.normal[i], 0.0) : 1.0;
+  const double w = pressed ? std::max(point.normal, 0.0) : 1.0;
   const double share = w / (pressed ? patch.normal : patch.stuck);
   std::array<double, 2> f = {share * F1, share * F2};
   if (patch.spin_inertia > 0.0) {
@@ -396,9 +415,8 @@ double PointsPlaneContact::HoldVelocity(const ElementContext& ctx, int hold) con
 }
 
 void PointsPlaneContact::FollowSlip(const ElementContext& ctx, std::span<double> modes) const {
-  const Measured& at = Measure(ctx);
   for (int i = 0; i < num_points(); ++i)
-    if (modes[i] != 0.0) ContactStick::Follow(at.motion[i], StickModes(modes, i));
+    if (modes[i] != 0.0) ContactStick::Follow(Point(ctx, i).motion, StickModes(modes, i));
 }
 
 std::string PointsPlaneContact::HoldName(int) const { return "contact '" + name() + "'"; }

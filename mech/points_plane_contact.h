@@ -105,10 +105,16 @@ class PointsPlaneContact final : public ForceElement {
   double Penetration(const ElementContext& ctx, int i, Vec3* p) const;
   // Point i as the stick model sees it; its penetration into *delta.
   ContactPointMotion Motion(const ElementContext& ctx, int i, double* delta) const;
-  // Every point's motion, penetration and normal force on ctx's kinematics,
-  // measured on the first call for those kinematics (the scratch).
+  // Every point's penetration on ctx's kinematics, measured on the first call
+  // for those kinematics (the scratch); a point's motion and normal force on
+  // the first call for it (most calls ask only for the points that touch).
   struct Measured;
   Measured& Measure(const ElementContext& ctx) const;
+  struct MeasuredPoint {
+    ContactPointMotion motion;
+    double normal = 0.0;  // normal force (0 when not pressed)
+  };
+  const MeasuredPoint& Point(const ElementContext& ctx, int i) const;
   double NormalForce(const ContactPointMotion& m, double delta) const {
     return ContactNormalForce(law_, std::max(delta, 0.0), -m.slip.dot(m.normal));
   }
