@@ -104,6 +104,13 @@ struct ScriptDesc {
   bool present() const { return !chunk_name.empty(); }
 };
 
+// <input name unit start comment> of a diagram: a value set from outside
+// (a co-simulation's input), a signal source named `name`.
+struct DiagramInputDesc {
+  std::string name, unit, start, comment;
+  SourceLoc loc;
+};
+
 // <parameter name default unit comment> of a subsystem or part: its interface.
 struct ParameterDesc {
   std::string name, default_value, unit, comment;
@@ -152,6 +159,7 @@ struct DiagramDescription {
   std::string comment;
   std::string file;     // the path it was read from
   std::vector<IdentifierDesc> identifiers;
+  std::vector<DiagramInputDesc> inputs;  // top-level <input>s
   std::vector<VariantDesc> variants;
   std::vector<ElementDesc> mechanisms;  // <mechanism>, with src= files read in
   std::vector<BlockDesc> blocks;
