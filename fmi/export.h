@@ -1,0 +1,46 @@
+#pragma once
+// export-fmu: a diagram packed as an FMI 2.0 co-simulation FMU.
+//
+//   NAME.fmu
+//     modelDescription.xml        fmi/model_description.h
+//     binaries/linux64/ID.so      the FMU's code (fmi/fmi2_functions.cc) and,
+//                                 beside it, the shared libraries it needs that
+//                                 Debian's base system lacks (found through
+//                                 RUNPATH $ORIGIN)
+//     resources/DIAGRAM.xml       the diagram, as it was
+//     resources/mechflow.txt      variants and --set values (fmi/packed_settings.h)
+//     resources/udunits/          the units database
+//
+// The FMU holds the diagram file alone: a diagram that reads other files
+// (tables, scripts, subsystems, parts, mechanisms from files) is refused, as
+// is anything that would loosen the Lua sandbox.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mechflow::fmi {
+
+struct ExportRequest {
+  std::string diagram;  // the diagram file
+  std::vector<std::string> variants;
+  std::vector<std::pair<std::string, double>> overrides;
+  std::vector<std::pair<std::string, std::string>> expression_overrides;
+  std::string fmu;      // the file to write, NAME.fmu
+  std::string runtime;  // the folder with linux64/ (the FMU's binaries) and udunits/
+};
+
+struct ExportSummary {
+  std::string model_identifier, guid;
+  int outputs = 0, inputs = 0, parameters = 0;
+  std::vector<std::string> binaries;  // the file names in binaries/linux64/
+};
+
+// Throws InputError (file:line) for a diagram it cannot export, std::runtime_error
+// when the FMU cannot be written.
+ExportSummary ExportFmu(const ExportRequest& request);
+
+// The runtime folder beside the running program (PROGRAM_DIR/fmu).
+std::string DefaultRuntimeFolder();
+
+}  // namespace mechflow::fmi

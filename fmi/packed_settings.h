@@ -1,0 +1,35 @@
+#pragma once
+// What an exported FMU needs to load its diagram as export-fmu loaded it:
+// resources/mechflow.txt names the packed diagram, the variants and --set
+// values given to export-fmu, and the FMU's GUID (a hash of the diagram's
+// text and these settings, so an importer's modelDescription.xml from another
+// export is refused).
+//
+//   diagram stick_slip.xml
+//   variant Elastic
+//   set mu=0.25
+//   set-expression c=2*k
+//   guid {0f3e...}
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mechflow::fmi {
+
+struct PackedSettings {
+  std::string diagram;  // a file name in resources/
+  std::vector<std::string> variants;
+  std::vector<std::pair<std::string, double>> overrides;
+  std::vector<std::pair<std::string, std::string>> expression_overrides;
+  std::string guid;
+
+  std::string Text() const;  // the file's content
+  // From the file's content; throws InputError naming `file`:line for a line it cannot read.
+  static PackedSettings Parse(const std::string& text, const std::string& file);
+};
+
+// "{xxxxxxxx-xxxx-xxxx-xxxx-xxxxxxxxxxxx}" from a hash of `text`.
+std::string GuidOf(const std::string& text);
+
+}  // namespace mechflow::fmi
