@@ -84,7 +84,14 @@ ExportSummary ExportFmu(const ExportRequest& request) {
                      "cannot be made yet (write tables as points=, scripts and blocks inline)");
   }
   const diagrams::LoadedDiagram& loaded = packed->Loaded();
-  const std::vector<Variable> variables = CollectVariables(loaded);
+  std::vector<Variable> variables;
+  try {
+    variables = CollectVariables(loaded);
+  } catch (const InputError& e) {
+    std::string message = e.what();  // the lines are the original's
+    ReplaceAll(&message, copy, request.diagram);
+    throw InputError(message);
+  }
 
   PackedSettings settings{name, request.variants, request.overrides, request.expression_overrides, ""};
   settings.guid = GuidOf(text + "\n" + settings.Text());

@@ -33,7 +33,10 @@ foreach(lib sundials_sunmatrixsparse klu amd colamd btf suitesparseconfig)
   find_library(MECHFLOW_FMI_${lib} ${lib} REQUIRED)
   list(APPEND MECHFLOW_FMI_INDIRECT ${MECHFLOW_FMI_${lib}})
 endforeach()
-target_link_options(mechflow_fmi PRIVATE -Wl,--exclude-libs,ALL -Wl,--no-undefined -Wl,--enable-new-dtags)
+target_link_options(mechflow_fmi PRIVATE -Wl,--exclude-libs,ALL -Wl,--enable-new-dtags)
+if(NOT (MECHFLOW_SANITIZE OR MECHFLOW_FUZZ))  # clang links the sanitizers' runtime into programs only
+  target_link_options(mechflow_fmi PRIVATE -Wl,--no-undefined)
+endif()
 target_link_libraries(mechflow_fmi PRIVATE -Wl,--push-state,--no-as-needed ${MECHFLOW_FMI_INDIRECT}
                       ${MECHFLOW_EXPAT_LIBRARY} -Wl,--pop-state)
 set_target_properties(mechflow_fmi PROPERTIES

@@ -77,6 +77,7 @@ void Instance::Load() {
   start_ = solver.t_start;
   last_successful_ = start_;
   ended_ = false;
+  tolerance_defined_ = stop_defined_ = false;  // fmi2SetupExperiment again after fmi2Reset
   state_ = State::kInstantiated;
 }
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -237,6 +238,21 @@ TEST(FmuExportTest, BinaryExportsEveryFmi2FunctionAndNeedsNothingOutsideTheFmu) 
     EXPECT_TRUE(base || path.rfind(inside, 0) == 0) << line;
   }
   EXPECT_GT(libraries, 5) << ldd;
+
+  // loaded by a process that has none of them (python's ctypes, empty environment; python has its own
+  // expat already): each comes from the FMU
+  if (!fs::exists("/usr/bin/python3")) GTEST_SKIP() << "no /usr/bin/python3 to load the FMU's binary alone";
+  const std::string maps = Shell("env -i /usr/bin/python3 -c \"import ctypes, sys; ctypes.CDLL(sys.argv[1]); "
+                                 "print(open('/proc/self/maps').read())\" " + fmu.binary().string());
+  for (const char* library : {"libsundials_cvode.so.6", "libklu.so.1", "liblua5.4.so.0", "libtinyxml2.so.9",
+                              "libudunits2.so.0"}) {
+    std::istringstream mapped(maps);
+    std::string where;
+    for (std::string line; std::getline(mapped, line);)
+      if (line.size() > std::strlen(library) && line.compare(line.size() - std::strlen(library), std::string::npos, library) == 0)
+        where = line.substr(line.find('/'));
+    EXPECT_EQ(where, inside + "/" + library);
+  }
 }
 
 TEST(FmuExportTest, InstancesAreIndependentAndResetStartsAgain) {
