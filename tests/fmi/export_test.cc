@@ -81,6 +81,9 @@ TEST(FmuExportTest, FrictionFeedbackReproducesMechflowRunAtCommunicationPoints) 
   const std::vector<std::string> names = {"m.x", "m.v", "m.theta", "normal force", "friction force"};
   const run::ResultsColumns reference = RunColumns(diagram, "cart", names);
   Fmu fmu(Export(diagram, "cart"), Folder("cart") / "unpacked");
+  // Ffr, which the mechanism's <input> takes from the friction block, is no parameter; mu is
+  EXPECT_THROW(fmu.Ref("Ffr"), std::out_of_range);
+  EXPECT_NO_THROW(fmu.Ref("mu"));
   fmi2Component c = fmu.Instantiate("cart");
   ASSERT_NE(c, nullptr);
   ASSERT_EQ(fmu.Initialize(c, 0.5), fmi2OK);
@@ -288,6 +291,11 @@ TEST(FmuExportTest, InstancesAreIndependentAndResetStartsAgain) {
 
 TEST(FmuExportTest, FailedIntegrationIsADiscardedStepNamingTheTimeReached) {
   Fmu fmu(Export(kData + "failing.xml", "failing"), Folder("failing") / "unpacked");
+  // another export's model description is refused, and said why
+  fmu_harness::LogLines().clear();
+  EXPECT_EQ(fmu.Instantiate("other", "{00000000-0000-0000-0000-000000000000}"), nullptr);
+  ASSERT_EQ(fmu_harness::LogLines().size(), 1u);
+  EXPECT_THAT(fmu_harness::LogLines()[0], HasSubstr("is not this FMU's"));
   fmi2Component c = fmu.Instantiate("failing");
   ASSERT_EQ(fmu.Initialize(c, 1.0), fmi2OK);
   fmu_harness::LogLines().clear();

@@ -95,10 +95,12 @@ class Fmu {
     return reinterpret_cast<F*>(f);
   }
 
-  fmi2Component Instantiate(const std::string& name) {
+  // (guid: the model description's unless given)
+  fmi2Component Instantiate(const std::string& name, const std::string& guid = "") {
     callbacks_ = {Logger, nullptr, nullptr, nullptr, nullptr};
     const std::string resources = "file://" + (folder_ / "resources").string();
-    return Function<decltype(fmi2Instantiate)>("fmi2Instantiate")(name.c_str(), fmi2CoSimulation, guid_.c_str(),
+    return Function<decltype(fmi2Instantiate)>("fmi2Instantiate")(name.c_str(), fmi2CoSimulation,
+                                                                  (guid.empty() ? guid_ : guid).c_str(),
                                                                   resources.c_str(), &callbacks_, fmi2False,
                                                                   fmi2False);
   }
