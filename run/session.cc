@@ -36,6 +36,13 @@ void Session::Apply() {
   for (std::size_t i = 0; i < inputs_.size(); ++i) discrete[input_offsets_[i]] = inputs_[i];
 }
 
+void Session::TakeInputs() {
+  if (!changed_ || !started_ || finished_) return;
+  Apply();
+  sim().RestartHere();  // the outputs evaluated with them, the integrator restarted
+  changed_ = false;
+}
+
 void Session::Start() {
   if (started_) throw std::logic_error("run::Session::Start: a session runs once");
   blocks::Simulator& sim = *sim_;
@@ -56,11 +63,7 @@ bool Session::AdvanceTo(double t) {
   if (!started_) throw std::logic_error("run::Session::AdvanceTo before Start");
   if (finished_) throw std::logic_error("run::Session::AdvanceTo after Finish");
   blocks::Simulator& sim = *sim_;
-  if (changed_) {
-    Apply();
-    sim.RestartHere();
-    changed_ = false;
-  }
+  TakeInputs();
   const bool reached = sim.AdvanceTo(t);
   if (reached) sim.EvaluateHere();
   return reached && sim.outcome().ok;
@@ -74,6 +77,7 @@ std::string Session::failure() const {
 }
 
 const std::vector<double>& Session::Row() {
+  TakeInputs();  // an output fed through from an input shows its new value at once
   const blocks::Simulator& sim = *sim_;
   const std::vector<double>& signals = sim.context().signals;
   row_[0] = sim.time();

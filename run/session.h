@@ -45,12 +45,14 @@ class Session {
   double time() const { return sim().time(); }
   bool ok() const { return sim().outcome().ok; }
   std::string failure() const;
-  // The logged columns at time(), time first, in the columns' units.
+  // The logged columns at time(), time first, in the columns' units (with
+  // the inputs as set: an output fed through from one shows it at once).
   const std::vector<double>& Row();
   RunResult Finish();
 
  private:
   void Apply();  // the inputs into the run's held values
+  void TakeInputs();  // inputs set since the last step: into the run, from now on
   blocks::Simulator& sim() const { return *sim_; }
 
   PreparedRun prepared_;

@@ -76,6 +76,9 @@ TEST(RunSession, AnInputHoldsFromTheTimeItIsSet) {
   EXPECT_NEAR(session.Row()[1], 0.002, 1e-15);
   session.SetInput(0, -3.0);  // mm
   EXPECT_EQ(session.Input(0), -3.0);
+  EXPECT_EQ(session.Row()[0], 1.0);
+  EXPECT_NEAR(session.Row()[2], -0.003, 1e-18);  // fed through at once
+  EXPECT_NEAR(session.Row()[1], 0.002, 1e-15);   // the state is where it was
   ASSERT_TRUE(session.AdvanceTo(1.5));
   EXPECT_NEAR(session.Row()[1], 0.002 - 0.0015, 1e-15);
   EXPECT_NEAR(session.Row()[2], -0.003, 1e-18);
