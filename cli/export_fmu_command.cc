@@ -16,8 +16,10 @@ std::string ExportFmuHelp() {
          "numbers the parameters (fixed: set before the run starts), its <solver> and\n"
          "<output interval> the default experiment. The FMU carries the diagram file,\n"
          "the shared libraries it needs and the units database; it runs the diagram\n"
-         "with the Lua sandbox on and writes no file. --variant and --set are applied\n"
-         "as in mechflow run and packed into the FMU (its parameters start there).\n"
+         "with the Lua sandbox on and writes no file (the diagram's <output> files,\n"
+         "<report>s, <spectrum>s and <xy> panels are left out, each noted). --variant\n"
+         "and --set are applied as in mechflow run and packed into the FMU (its\n"
+         "parameters start there).\n"
          "\n"
          "  --out NAME.fmu  the file to write (required; its folder must exist)\n"
          "\n"
@@ -62,6 +64,8 @@ int ExportFmuCommand(const Arguments& args, std::ostream& out, std::ostream& err
   out << "wrote " << request.fmu << ": FMI 2.0 co-simulation, model identifier " << s.model_identifier << ", "
       << s.outputs << " output(s), " << s.inputs << " input(s), " << s.parameters << " parameter(s); "
       << s.binaries.size() << " file(s) in binaries/linux64\n";
+  // no silent no-op: what the diagram asks for and the FMU does not do
+  for (const std::string& item : s.left_out) out << "note: " << item << " is left out: an FMU writes no file\n";
   return 0;
 }
 

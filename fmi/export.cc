@@ -129,6 +129,14 @@ ExportSummary ExportFmu(const ExportRequest& request) {
     }
   }
   WriteZip(request.fmu, entries);
+
+  const diagrams::DiagramDescription& d = original.Loaded().description;
+  for (const char* attribute : {"csv", "plot", "animation", "gltf"})
+    if (const diagrams::Attribute* a = diagrams::FindAttribute(d.output, attribute))
+      summary.left_out.push_back(a->loc.str() + ": <output " + attribute + ">");
+  for (const auto& [items, tag] : {std::pair{&d.reports, "<report>"}, std::pair{&d.spectra, "<spectrum>"},
+                                   std::pair{&d.xy_plots, "<xy>"}})
+    for (const diagrams::ReportDesc& r : *items) summary.left_out.push_back(r.loc.str() + ": " + tag);
   return summary;
 }
 

@@ -34,6 +34,9 @@ struct ExportSummary {
   std::string model_identifier, guid;
   int outputs = 0, inputs = 0, parameters = 0;
   std::vector<std::string> binaries;  // the file names in binaries/linux64/
+  // what the diagram asks for that an FMU does not do (it writes no file):
+  // "FILE:LINE: <output plot>", one each
+  std::vector<std::string> left_out;
 };
 
 // Throws InputError (file:line) for a diagram it cannot export, std::runtime_error

@@ -332,6 +332,12 @@ TEST(FmuExportTest, BadInputIsRefusedNamingFileAndLine) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("packs the diagram file alone"));
   EXPECT_THAT(r.err, HasSubstr("quarter_car.xml:"));
+  // what an FMU does not do is said, not silently dropped
+  r = RunMechflow("export-fmu " + kExamples + "cart_pendulum_friction.xml --out " + fmu);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("cart_pendulum_friction.xml:47: <output plot> is left out: an FMU writes no file"));
+  EXPECT_THAT(r.out, HasSubstr("cart_pendulum_friction.xml:47: <output animation> is left out"));
+  fs::remove(fmu);
   r = RunMechflow("export-fmu " + kExamples + "stick_slip_blocks.xml --unsafe-lua --out " + fmu);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("sandbox"));
