@@ -45,13 +45,8 @@ int ExportFmuCommand(const Arguments& args, std::ostream& out, std::ostream& err
   if (!args.allow_read.empty() || !args.library.empty())
     throw UsageError(std::string(args.allow_read.empty() ? "--library" : "--allow-read") +
                      ": the FMU holds the diagram file alone and reads no other");
-  fmi::ExportRequest request;
-  request.diagram = args.file;
-  request.variants = args.variants;
-  request.overrides = args.overrides;
-  request.expression_overrides = args.set_expressions;
-  request.fmu = args.out_dir;
-  request.runtime = fmi::DefaultRuntimeFolder();
+  const fmi::ExportRequest request{args.file,    args.variants, args.overrides, args.set_expressions,
+                                   args.out_dir, fmi::DefaultRuntimeFolder()};
   fmi::ExportSummary s;
   try {
     s = fmi::ExportFmu(request);
