@@ -2,51 +2,64 @@
 
 #include <filesystem>
 
+#include "cli/output_folder.h"
 #include "fmi/export.h"
 #include "mech/errors.h"
 
 namespace mechflow::cli {
 
 std::string ExportFmuHelp() {
-  return "usage: mechflow export-fmu FILE --out NAME.fmu [--variant NAME] [--set NAME=VALUE]...\n"
+  return "usage: mechflow export-fmu FILE --out DIR [--variant NAME] [--set NAME=VALUE]...\n"
          "\n"
          "Writes the diagram as an FMI 2.0 co-simulation FMU for Linux x86-64, to be run\n"
-         "by another tool: its <log>ged signals are the outputs, its top-level <input>s\n"
-         "the inputs (held over each communication step), its identifiers defined by\n"
-         "numbers the parameters (fixed: set before the run starts), its <solver> and\n"
-         "<output interval> the default experiment. The FMU carries the diagram file,\n"
-         "the shared libraries it needs and the units database; it runs the diagram\n"
-         "with the Lua sandbox on and writes no file (the diagram's <output> files,\n"
-         "<report>s, <spectrum>s and <xy> panels are left out, each noted). --variant\n"
-         "and --set are applied as in mechflow run and packed into the FMU (its\n"
-         "parameters start there).\n"
+         "by another tool: DIR/NAME.fmu, NAME being the diagram's name (<diagram name>,\n"
+         "else its file name without .xml), as mechflow run names its results. Its\n"
+         "<log>ged signals are the outputs, its top-level <input>s the inputs (held\n"
+         "over each communication step), its identifiers defined by numbers the\n"
+         "parameters (fixed: set before the run starts), its <solver> and <output\n"
+         "interval> the default experiment. The FMU carries the diagram, every file it\n"
+         "reads (tables, scripts, mechanisms, subsystems, parts, by their paths from\n"
+         "the diagram's folder), the shared libraries it needs and the units database;\n"
+         "it runs the diagram with the Lua sandbox on, reading files from the FMU\n"
+         "only, and writes no file (the diagram's <output> files, <report>s,\n"
+         "<spectrum>s and <xy> panels are left out, each noted). --variant and --set\n"
+         "are applied as in mechflow run and packed into the FMU (its parameters start\n"
+         "there).\n"
          "\n"
-         "  --out NAME.fmu  the file to write (required; its folder must exist)\n"
+         "  --out DIR  the folder to write NAME.fmu into (required; made if needed)\n"
          "\n"
-         "Refused: a diagram that reads another file (tables from CSV, scripts or\n"
-         "mechanisms from files, subsystems, parts), --unsafe-lua, --allow-read,\n"
-         "--library (the FMU holds the diagram file alone) and --t-end (the importer\n"
-         "gives the stop time).\n"
+         "Refused: a diagram that reads a file outside its own folder tree or names one\n"
+         "by an absolute path, --unsafe-lua, --allow-read and --library (copy such\n"
+         "files into the diagram's folder tree), and --t-end (the importer gives the\n"
+         "stop time).\n"
          "\n"
-         "Example: mechflow export-fmu diagrams/examples/cart_pendulum_friction.xml --out cart.fmu\n"
+         "Example: mechflow export-fmu diagrams/examples/cart_pendulum_friction.xml --out fmu\n"
+         "         (writes fmu/cart_pendulum_friction.fmu)\n"
          "\n"
          "Exit codes: 0 written, 1 the FMU could not be written, 2 bad input.\n";
 }
 
 int ExportFmuCommand(const Arguments& args, std::ostream& out, std::ostream& err) {
-  if (!args.out_given)
-    throw UsageError("needs --out NAME.fmu, the file to write");
-  if (std::filesystem::path(args.out_dir).extension() != ".fmu")
-    throw UsageError("--out '" + args.out_dir + "': the FMU's file name ends in .fmu");
+  namespace fs = std::filesystem;
+  const std::string what = "(NAME: the diagram's name)";
+  if (!args.out_given) throw UsageError("needs --out DIR, the folder to write NAME.fmu into " + what);
+  std::error_code ignored;
+  if (fs::exists(args.out_dir, ignored) && !fs::is_directory(args.out_dir, ignored))
+    throw UsageError("--out '" + args.out_dir + "' is a file; --out names the folder to write NAME.fmu into " + what);
+  if (fs::path(args.out_dir).extension() == ".fmu" && !fs::exists(args.out_dir, ignored))
+    throw UsageError("--out '" + args.out_dir + "': --out names the folder to write NAME.fmu into " + what +
+                     ", not the file; give the folder");
   if (args.t_end)
     throw UsageError("--t-end: the importer gives the stop time (fmi2SetupExperiment); the diagram's <solver "
                      "t_end> is only the FMU's default experiment");
   if (args.unsafe_lua) throw UsageError("--unsafe-lua: an FMU runs its diagram with the Lua sandbox on");
   if (!args.allow_read.empty() || !args.library.empty())
     throw UsageError(std::string(args.allow_read.empty() ? "--library" : "--allow-read") +
-                     ": the FMU holds the diagram file alone and reads no other");
+                     ": an FMU holds the files a diagram reads by their paths from the diagram's folder; copy "
+                     "them into the diagram's folder tree and name them from there");
+  const OutputFolder folder(args.out_dir);  // made as mechflow run makes it
   const fmi::ExportRequest request{args.file,    args.variants, args.overrides, args.set_expressions,
-                                   args.out_dir, fmi::DefaultRuntimeFolder()};
+                                   folder.path(), fmi::DefaultRuntimeFolder()};
   fmi::ExportSummary s;
   try {
     s = fmi::ExportFmu(request);
@@ -56,9 +69,10 @@ int ExportFmuCommand(const Arguments& args, std::ostream& out, std::ostream& err
     err << "mechflow export-fmu: " << e.what() << "\n";
     return 1;
   }
-  out << "wrote " << request.fmu << ": FMI 2.0 co-simulation, model identifier " << s.model_identifier << ", "
+  out << "wrote " << s.fmu << ": FMI 2.0 co-simulation, model identifier " << s.model_identifier << ", "
       << s.outputs << " output(s), " << s.inputs << " input(s), " << s.parameters << " parameter(s); "
-      << s.binaries.size() << " file(s) in binaries/linux64\n";
+      << s.files << " file(s) the diagram reads in resources/, " << s.binaries.size()
+      << " file(s) in binaries/linux64\n";
   // no silent no-op: what the diagram asks for and the FMU does not do
   for (const std::string& item : s.left_out) out << "note: " << item << " is left out: an FMU writes no file\n";
   return 0;

@@ -1,6 +1,6 @@
 #pragma once
-// `mechflow export-fmu FILE --out NAME.fmu`: the diagram as an FMI 2.0
-// co-simulation FMU (fmi/export.h); this file reads the options and prints
+// `mechflow export-fmu FILE --out DIR`: the diagram as an FMI 2.0 co-simulation
+// FMU, DIR/NAME.fmu (fmi/export.h); this file reads the options and prints
 // what was written.
 
 #include <ostream>

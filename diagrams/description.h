@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "blocks/support/input_file.h"
+
 namespace mechflow::diagrams {
 
 struct SourceLoc {
@@ -176,6 +178,10 @@ struct DiagramDescription {
   // every <subsystem> and <part> file the diagram uses, by the path read
   // (the reader fills it; the loader's flattening uses it)
   std::vector<ComponentDesc> components;
+  // the files the reader read besides this one (<mechanism src>, <script
+  // src>, subsystem and part files); the loader reads tables and Lua block
+  // files later (LoadedDiagram::reads)
+  std::vector<blocks::FileRead> files_read;
   // filled when the loader flattens: the instances (a tree by their paths)
   // and the names a subsystem's output port is reached by ("d[1].F" ->
   // "d[1].fr.F"): logs, reports and sim:get take either

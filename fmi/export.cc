@@ -4,6 +4,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <stdexcept>
 
@@ -47,6 +48,53 @@ void ReplaceAll(std::string* text, const std::string& from, const std::string& t
     text->replace(at, from.size(), to);
 }
 
+// A file the diagram reads, as the FMU holds it.
+struct PackedFile {
+  std::string name;  // under resources/: its path from the diagram's folder, '/'-separated
+  fs::path real;     // where it was read
+};
+
+// The folder of `file` as an absolute path without a trailing separator.
+fs::path FolderOf(const std::string& file) {
+  const fs::path parent = fs::path(file).parent_path();
+  fs::path folder = fs::absolute(parent.empty() ? fs::path(".") : parent).lexically_normal();
+  return folder.has_filename() ? folder : folder.parent_path();
+}
+
+// Every file the loaded diagram read besides itself (the reader's and the
+// loader's record of them), by its path from the diagram's folder; each once.
+std::vector<PackedFile> FilesRead(const diagrams::LoadedDiagram& loaded, const std::string& diagram) {
+  std::vector<blocks::FileRead> reads = loaded.description.files_read;
+  if (loaded.reads) reads.insert(reads.end(), loaded.reads->files_read().begin(), loaded.reads->files_read().end());
+  const fs::path folder = FolderOf(diagram);
+  const std::string own = fs::path(diagram).filename().string();
+  std::vector<PackedFile> files;
+  for (const blocks::FileRead& r : reads) {
+    const fs::path relative = fs::absolute(r.path).lexically_normal().lexically_relative(folder);
+    if (relative.empty() || *relative.begin() == "..")
+      throw InputError(r.where + ": the file '" + r.path + "' lies outside the diagram's folder " + folder.string() +
+                       "; an FMU holds the files a diagram reads by their paths from its folder: copy the file into "
+                       "that folder (or one below it) and name it from there");
+    const std::string name = relative.generic_string();
+    if (name == "mechflow.txt" || name.rfind("udunits/", 0) == 0 || name == own)
+      throw InputError(r.where + ": the file '" + r.path + "' would be resources/" + name +
+                       " in the FMU, which holds the FMU's own " + (name == own ? "diagram" : "settings") +
+                       " there: rename it (or move it into another folder)");
+    if (std::none_of(files.begin(), files.end(), [&](const PackedFile& f) { return f.name == name; }))
+      files.push_back({name, r.real});
+  }
+  return files;
+}
+
+// "" when `name` may be the FMU's file name, else why not.
+std::string FileNameProblem(const std::string& name) {
+  if (name.find('/') != std::string::npos) return "holds a '/'";
+  if (name.find_first_of("-+<|") == 0) return "begins with '" + name.substr(0, 1) + "'";
+  for (const char c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return "holds a control character";
+  return "";
+}
+
 }  // namespace
 
 std::string DefaultRuntimeFolder() {
@@ -63,25 +111,42 @@ ExportSummary ExportFmu(const ExportRequest& request) {
   // loaded where it is first: its own errors name its own lines
   run::Model original(request.diagram, options);
   const std::string text = blocks::ReadInputFile(request.diagram, "diagram file");
+  const std::vector<PackedFile> reads = FilesRead(original.Loaded(), request.diagram);
+  const std::string fmu_name = original.Loaded().description.name + ".fmu";
+  if (const std::string problem = FileNameProblem(fmu_name); !problem.empty())
+    throw InputError(request.diagram + ": the FMU is named after the diagram, and '" + fmu_name + "' " + problem +
+                     "; give the diagram a plain name (<diagram name=\"...\">)");
 
-  // then alone, as the FMU will hold it: a file it reads besides itself fails here
+  // then alone with the files it read, as the FMU will hold them: a file
+  // named so that it is not found there (an absolute path) fails here
   const TemporaryFolder alone;
   const std::string name = fs::path(request.diagram).filename().string();
   const std::string copy = (alone.path / name).string();
-  {
-    std::ofstream out(copy, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error("cannot write the temporary copy " + copy);
-  }
+  const auto write = [](const fs::path& path, const std::string& bytes) {
+    fs::create_directories(path.parent_path());
+    std::ofstream out(path, std::ios::binary);
+    out << bytes;
+    if (!out.flush()) throw std::runtime_error("cannot write the temporary copy " + path.string());
+  };
+  write(copy, text);
+  for (const PackedFile& f : reads)
+    write(alone.path / f.name, blocks::ReadInputFile(f.real.string(), "file"));
+  const std::string folder = FolderOf(request.diagram).string();
+  const auto in_original = [&](std::string message) {
+    ReplaceAll(&message, alone.path.string(), folder);
+    return message;
+  };
   std::unique_ptr<run::Model> packed;
   try {
     packed = std::make_unique<run::Model>(copy, options);
   } catch (const InputError& e) {
-    std::string message = e.what();
-    ReplaceAll(&message, copy, request.diagram);
-    throw InputError(message + "\n" + request.diagram +
-                     ": export-fmu packs the diagram file alone, and this diagram reads another file; an FMU of it "
-                     "cannot be made yet (write tables as points=, scripts and blocks inline)");
+    std::string there = e.what();  // the FMU's paths, as its user would see them
+    ReplaceAll(&there, alone.path.string(), "resources");
+    throw InputError(request.diagram +
+                     ": export-fmu loads the diagram as the FMU will (from its resources/ folder, which holds the "
+                     "diagram and the files it read by their paths from its folder), and there it fails; name each "
+                     "file by a path relative to the file that names it, inside the diagram's folder. There:\n" +
+                     there);
   }
   const diagrams::LoadedDiagram& loaded = packed->Loaded();
   std::vector<Variable> variables;
@@ -90,7 +155,7 @@ ExportSummary ExportFmu(const ExportRequest& request) {
   } catch (const InputError& e) {
     std::string message = e.what();  // the lines are the original's
     ReplaceAll(&message, copy, request.diagram);
-    throw InputError(message);
+    throw InputError(in_original(message));
   }
 
   PackedSettings settings{name, request.variants, request.overrides, request.expression_overrides, ""};
@@ -113,6 +178,7 @@ ExportSummary ExportFmu(const ExportRequest& request) {
   entries.push_back({"modelDescription.xml", ModelDescriptionXml(loaded, variables, {summary.model_identifier,
                                                                                       summary.guid}), ""});
   entries.push_back({"resources/" + name, text, ""});
+  for (const PackedFile& f : reads) entries.push_back({"resources/" + f.name, "", (alone.path / f.name).string()});
   entries.push_back({"resources/mechflow.txt", settings.Text(), ""});
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(runtime / "linux64")) files.push_back(e.path());
@@ -128,7 +194,9 @@ ExportSummary ExportFmu(const ExportRequest& request) {
       summary.binaries.push_back(file);
     }
   }
-  WriteZip(request.fmu, entries);
+  summary.fmu = (fs::path(request.folder) / fmu_name).string();
+  summary.files = static_cast<int>(reads.size());
+  WriteZip(summary.fmu, entries);
 
   const diagrams::DiagramDescription& d = original.Loaded().description;
   for (const char* attribute : {"csv", "plot", "animation", "gltf"})

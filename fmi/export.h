@@ -8,12 +8,18 @@
 //                                 Debian's base system lacks (found through
 //                                 RUNPATH $ORIGIN)
 //     resources/DIAGRAM.xml       the diagram, as it was
+//     resources/PATH              every file it reads (tables, scripts,
+//                                 subsystems, parts, mechanisms, and the files
+//                                 those read), by its path from the diagram's folder
 //     resources/mechflow.txt      variants and --set values (fmi/packed_settings.h)
 //     resources/udunits/          the units database
 //
-// The FMU holds the diagram file alone: a diagram that reads other files
-// (tables, scripts, subsystems, parts, mechanisms from files) is refused, as
-// is anything that would loosen the Lua sandbox.
+// The files are those the loader read (blocks::ReadPolicy keeps them), not
+// found by reading the XML again. The FMU loads the diagram with reading
+// allowed in its resources folder only; export-fmu loads the packed copy so
+// first and refuses a diagram that fails there (a file named by an absolute
+// path), as it refuses a file outside the diagram's folder and anything that
+// would loosen the Lua sandbox.
 
 #include <string>
 #include <utility>
@@ -26,12 +32,14 @@ struct ExportRequest {
   std::vector<std::string> variants;
   std::vector<std::pair<std::string, double>> overrides;
   std::vector<std::pair<std::string, std::string>> expression_overrides;
-  std::string fmu;      // the file to write, NAME.fmu
+  std::string folder;   // where to write NAME.fmu (NAME: the diagram's name); it exists
   std::string runtime;  // the folder with linux64/ (the FMU's binaries) and udunits/
 };
 
 struct ExportSummary {
+  std::string fmu;  // the file written, FOLDER/NAME.fmu
   std::string model_identifier, guid;
+  int files = 0;    // files packed besides the diagram
   int outputs = 0, inputs = 0, parameters = 0;
   std::vector<std::string> binaries;  // the file names in binaries/linux64/
   // what the diagram asks for that an FMU does not do (it writes no file):

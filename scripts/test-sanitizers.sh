@@ -24,6 +24,6 @@ release_only+='|RunsAsAccurateAsTheWholeSystem|AnalyticJacobianTest\.RunsAgreeAn
 # The FMU's binary built here carries the sanitizers' runtime among its
 # libraries: a process without it (the test's python loading the FMU alone)
 # refuses to load it ("ASan runtime does not come first"), so that one test
-# runs in the Release suite only; the other six FMU tests (13 to 16 s here) run.
+# runs in the Release suite only; the other eight FMU tests run.
 release_only+='|FmuExportTest\.BinaryExportsEveryFmi2FunctionAndNeedsNothingOutsideTheFmu'
 ctest --output-on-failure -j "$(nproc)" -E "$release_only"

@@ -36,15 +36,20 @@ const std::string kData = std::string(MECHFLOW_SOURCE_DIR) + "/tests/fmi/data/";
 
 fs::path Folder(const std::string& name) { return fs::path(::testing::TempDir()) / ("fmi_" + name); }
 
-// Exports `diagram` to FOLDER/NAME.fmu, once per diagram in this process.
+// The FMU export-fmu says it wrote ("wrote PATH: ...").
+std::string Written(const std::string& out) {
+  const std::size_t from = out.find("wrote ");
+  if (from == std::string::npos) throw std::runtime_error("export-fmu wrote nothing: " + out);
+  return out.substr(from + 6, out.find(": FMI", from) - from - 6);
+}
+
+// Exports `diagram` into the folder FOLDER (as DIAGRAM_NAME.fmu), once per diagram in this process.
 std::string Export(const std::string& diagram, const std::string& name, const std::string& options = "") {
   static std::map<std::string, std::string> exported;
   if (const auto it = exported.find(diagram + options); it != exported.end()) return it->second;
-  fs::create_directories(Folder(name));
-  const std::string fmu = (Folder(name) / (name + ".fmu")).string();
-  const auto r = RunMechflow("export-fmu " + diagram + " --out " + fmu + " " + options);
+  const auto r = RunMechflow("export-fmu " + diagram + " --out " + Folder(name).string() + " " + options);
   if (r.exit_code != 0) throw std::runtime_error("export-fmu failed: " + r.err);
-  return exported[diagram + options] = fmu;
+  return exported[diagram + options] = Written(r.out);
 }
 
 // The columns of `mechflow run DIAGRAM`'s results.
@@ -314,10 +319,94 @@ TEST(FmuExportTest, FailedIntegrationIsADiscardedStepNamingTheTimeReached) {
   fmu.Free(c);
 }
 
+TEST(FmuExportTest, FilesTheDiagramReadsTravelInTheFmu) {
+  // the diagram, its table and its subsystem file in a folder of their own, removed before the FMU is loaded
+  const fs::path source = Folder("packed") / "source";
+  fs::remove_all(source);
+  fs::create_directories(source.parent_path());
+  fs::copy(kData + "packed", source, fs::copy_options::recursive);
+  const std::string diagram = (source / "pushed_slider.xml").string();
+  const std::vector<std::string> names = {"x", "v", "friction", "push"};
+  const run::ResultsColumns reference = RunColumns(diagram, "packed", names);
+  const auto r = RunMechflow("export-fmu " + diagram + " --out " + (Folder("packed") / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("2 file(s) the diagram reads in resources/"));
+  const std::string file = Written(r.out);
+  EXPECT_EQ(file, (Folder("packed") / "out" / "pushed_slider.fmu").string());  // named after the diagram
+  fs::remove_all(source);
+  Fmu fmu(file, Folder("packed") / "unpacked");
+  const fs::path resources = Folder("packed") / "unpacked" / "resources";
+  EXPECT_EQ(ReadFile((resources / "tables" / "push.csv").string()), ReadFile(kData + "packed/tables/push.csv"));
+  EXPECT_EQ(ReadFile((resources / "parts" / "lining.xml").string()), ReadFile(kData + "packed/parts/lining.xml"));
+  fmi2Component c = fmu.Instantiate("packed");
+  ASSERT_NE(c, nullptr);
+  ASSERT_EQ(fmu.Initialize(c, 4.0), fmi2OK);
+  const double h = 0.01;
+  ASSERT_EQ(reference.time.size(), 401u);
+  double worst = 0.0;
+  for (std::size_t row = 0; row < reference.time.size(); ++row) {
+    if (row > 0) { ASSERT_EQ(fmu.DoStep(c, (row - 1) * h, h), fmi2OK) << row; }
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      const double error = std::abs(fmu.Get(c, names[k]) - reference.values[k][row]) / LargestMagnitude(reference.values[k]);
+      worst = std::max(worst, error);
+      EXPECT_LE(error, 1e-9) << names[k] << " at t = " << reference.time[row];
+    }
+  }
+  std::printf("largest difference from mechflow run of the original, relative to each column's largest value: %.3g\n",
+              worst);
+  EXPECT_EQ(fmu.Get(c, "push"), -2.0);  // from the packed table
+  fmu.Free(c);
+}
+
+TEST(FmuExportTest, OutIsAFolderAndFilesTheFmuCannotHoldAreRefused) {
+  const fs::path folder = Folder("out");
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const std::string diagram = kData + "failing.xml";
+  // a file where the folder should be, and the old form --out NAME.fmu
+  std::ofstream(folder / "a_file") << "x";
+  auto r = RunMechflow("export-fmu " + diagram + " --out " + (folder / "a_file").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("is a file; --out names the folder to write NAME.fmu into"));
+  r = RunMechflow("export-fmu " + diagram + " --out " + (folder / "x.fmu").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("not the file; give the folder"));
+  EXPECT_FALSE(fs::exists(folder / "x.fmu"));
+  // the folder is made, as mechflow run makes its --out folder
+  r = RunMechflow("export-fmu " + diagram + " --out " + (folder / "new" / "deeper").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(folder / "new" / "deeper" / "failing.fmu"));
+  // a table named by its absolute path is not found where the FMU holds it
+  fs::copy(kData + "packed", folder / "absolute", fs::copy_options::recursive);
+  std::string text = ReadFile((folder / "absolute" / "pushed_slider.xml").string());
+  const std::string table = (folder / "absolute" / "tables" / "push.csv").string();
+  text.replace(text.find("\"tables/push.csv\""), 17, "\"" + table + "\"");
+  std::ofstream(folder / "absolute" / "pushed_slider.xml") << text;
+  r = RunMechflow("export-fmu " + (folder / "absolute" / "pushed_slider.xml").string() + " --out " + folder.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("pushed_slider.xml:27: block 'F' parameter 'file'"));
+  EXPECT_THAT(r.err, HasSubstr("name each file by a path relative to the file that names it"));
+  // a file whose place in the FMU is taken by the FMU's own settings
+  fs::copy(kData + "packed", folder / "taken", fs::copy_options::recursive);
+  fs::rename(folder / "taken" / "tables" / "push.csv", folder / "taken" / "mechflow.txt");
+  text = ReadFile((folder / "taken" / "pushed_slider.xml").string());
+  text.replace(text.find("\"tables/push.csv\""), 17, "\"mechflow.txt\"");
+  std::ofstream(folder / "taken" / "pushed_slider.xml") << text;
+  r = RunMechflow("export-fmu " + (folder / "taken" / "pushed_slider.xml").string() + " --out " + folder.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("pushed_slider.xml:27: block 'F' parameter 'file': the file"));
+  EXPECT_THAT(r.err, HasSubstr("would be resources/mechflow.txt in the FMU"));
+  EXPECT_FALSE(fs::exists(folder / "pushed_slider.fmu"));
+  // --library: the files would not resolve as they do here
+  r = RunMechflow("export-fmu " + diagram + " --library " + folder.string() + " --out " + folder.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("copy them into the diagram's folder tree"));
+}
+
 TEST(FmuExportTest, BadInputIsRefusedNamingFileAndLine) {
   const fs::path folder = Folder("bad");
   fs::create_directories(folder);
-  const std::string fmu = (folder / "bad.fmu").string();
+  const std::string fmu = folder.string();  // the folder to write into
   std::ofstream(folder / "broken.xml") << "<diagram>\n  <blocks>\n    <block type=\"gain\" name=\"g\"\n</diagram>\n";
   auto r = RunMechflow("export-fmu " + (folder / "broken.xml").string() + " --out " + fmu);
   EXPECT_EQ(r.exit_code, 2);
@@ -327,21 +416,17 @@ TEST(FmuExportTest, BadInputIsRefusedNamingFileAndLine) {
   EXPECT_THAT(r.err, HasSubstr("--variant Elastik"));
   r = RunMechflow("export-fmu " + kExamples + "stick_slip_blocks.xml");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("needs --out NAME.fmu"));
-  r = RunMechflow("export-fmu " + kExamples + "quarter_car.xml --out " + fmu);  // reads its road from a CSV file
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("packs the diagram file alone"));
-  EXPECT_THAT(r.err, HasSubstr("quarter_car.xml:"));
+  EXPECT_THAT(r.err, HasSubstr("needs --out DIR"));
   // what an FMU does not do is said, not silently dropped
   r = RunMechflow("export-fmu " + kExamples + "cart_pendulum_friction.xml --out " + fmu);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("cart_pendulum_friction.xml:47: <output plot> is left out: an FMU writes no file"));
   EXPECT_THAT(r.out, HasSubstr("cart_pendulum_friction.xml:47: <output animation> is left out"));
-  fs::remove(fmu);
+  EXPECT_TRUE(fs::exists(folder / "cart_pendulum_friction.fmu"));
   r = RunMechflow("export-fmu " + kExamples + "stick_slip_blocks.xml --unsafe-lua --out " + fmu);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("sandbox"));
-  EXPECT_FALSE(fs::exists(fmu));
+  EXPECT_FALSE(fs::exists(folder / "stick_slip_blocks.fmu"));
 }
 
 }  // namespace
