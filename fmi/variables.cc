@@ -54,16 +54,36 @@ std::set<std::string> PortFedIdentifiers(const diagrams::DiagramDescription& d) 
   return names;
 }
 
+// The <log> a logged column comes from ("" when none names it: a recorder's).
+const diagrams::LogDesc* LogOf(const diagrams::DiagramDescription& d, const std::string& column) {
+  for (const diagrams::LogDesc& log : d.logs) {
+    const std::string& name = log.label.empty() ? log.signal : log.label;
+    if (column == name || (column.rfind(name + "[", 0) == 0 && column.back() == ']')) return &log;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 std::vector<Variable> CollectVariables(const diagrams::LoadedDiagram& loaded) {
   std::vector<Variable> out;
-  std::map<std::string, std::string> taken;  // name -> what has it
-  const auto add = [&](Variable v, const std::string& what) {
-    const auto [it, fresh] = taken.emplace(v.name, what);
-    if (!fresh)
-      throw InputError("export-fmu: the FMU variable '" + v.name + "' would be both " + it->second + " and " + what +
-                       "; FMU variables need unique names: rename one (a <log>'s label= names its output)");
+  // what has a name: how it is said, where it is written ("" unknown), and what renaming it takes
+  struct Owner {
+    std::string what, loc, rename;
+  };
+  std::map<std::string, Owner> taken;
+  const auto add = [&](Variable v, Owner owner) {
+    const auto [it, fresh] = taken.emplace(v.name, owner);
+    if (!fresh) {
+      // a <log>'s label names the output alone: renaming it changes nothing else, so it is the one to rename
+      const Owner& first = it->second;
+      const bool output_first = first.what.rfind("an output", 0) == 0;
+      const Owner& rename = output_first || owner.what.rfind("an output", 0) != 0 ? first : owner;
+      const std::string loc = !rename.loc.empty() ? rename.loc : !owner.loc.empty() ? owner.loc : first.loc;
+      throw InputError((loc.empty() ? std::string("export-fmu") : loc) + ": the FMU variable '" + v.name +
+                       "' would be both " + first.what + " and " + owner.what +
+                       "; FMU variables need unique names: " + rename.rename);
+    }
     v.value_reference = static_cast<unsigned>(out.size() + 1);
     out.push_back(std::move(v));
   };
@@ -80,7 +100,15 @@ std::vector<Variable> CollectVariables(const diagrams::LoadedDiagram& loaded) {
       v.index = column;
       for (std::size_t i = 0; i < reach.size(); ++i)
         if (reach[i].count(s.offset + k)) v.inputs.push_back(static_cast<int>(i));
-      add(std::move(v), "an output (a logged column)");
+      const diagrams::LogDesc* log = LogOf(loaded.description, columns[column]);
+      const std::string where = log ? log->loc.str() : "";
+      const std::string name = columns[column];
+      add(std::move(v), {"an output (the column of the <log>" + (log ? " at " + where : std::string()) + ")", where,
+                         log && !log->label.empty()
+                             ? "rename the label of the <log> at " + where + " (label=\"" + log->label +
+                                   "_out\", say): it names the output alone, and the diagram runs as before"
+                             : "give the <log>" + (log ? " at " + where : std::string()) + " a label of its own (label=\"" +
+                                   name + "_out\", say)"});
     }
   for (std::size_t i = 0; i < loaded.inputs.size(); ++i) {
     const diagrams::DiagramInput& in = loaded.inputs[i];
@@ -91,7 +119,7 @@ std::vector<Variable> CollectVariables(const diagrams::LoadedDiagram& loaded) {
     v.description = in.comment;
     v.start = in.start / in.to_si;
     v.index = static_cast<int>(i);
-    add(std::move(v), "an input (" + in.origin + ")");
+    add(std::move(v), {"an input (" + in.origin + ")", in.origin, "rename the <input> at " + in.origin});
   }
   const scripting::IdentifierTable& ids = *loaded.identifiers;
   const std::set<std::string> port_fed = PortFedIdentifiers(loaded.description);
@@ -104,7 +132,8 @@ std::vector<Variable> CollectVariables(const diagrams::LoadedDiagram& loaded) {
     v.description = ids.comment(i);
     v.start = ids.value(i) / ids.to_si(i);
     v.index = i;
-    add(std::move(v), "a parameter (identifier at " + ids.origin(i) + ")");
+    add(std::move(v), {"a parameter (the identifier at " + ids.origin(i) + ")", ids.origin(i),
+                       "rename the identifier at " + ids.origin(i) + " and every use of it"});
   }
   return out;
 }

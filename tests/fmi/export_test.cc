@@ -417,6 +417,13 @@ TEST(FmuExportTest, BadInputIsRefusedNamingFileAndLine) {
   r = RunMechflow("export-fmu " + kExamples + "stick_slip_blocks.xml");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("needs --out DIR"));
+  // a <log> label equal to an identifier's name: the message says which to rename, and where
+  r = RunMechflow("export-fmu " + kExamples + "stick_slip_blocks.xml --out " + fmu);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("stick_slip_blocks.xml:49: the FMU variable 'v_belt' would be both an output"));
+  EXPECT_THAT(r.err, HasSubstr("stick_slip_blocks.xml:17)"));
+  EXPECT_THAT(r.err, HasSubstr("rename the label of the <log> at " + kExamples +
+                               "stick_slip_blocks.xml:49 (label=\"v_belt_out\", say)"));
   // what an FMU does not do is said, not silently dropped
   r = RunMechflow("export-fmu " + kExamples + "cart_pendulum_friction.xml --out " + fmu);
   EXPECT_EQ(r.exit_code, 0) << r.err;
