@@ -9,7 +9,8 @@
 namespace mechflow::cli {
 
 std::string ExportFmuHelp() {
-  return "usage: mechflow export-fmu FILE --out DIR [--variant NAME] [--set NAME=VALUE]...\n"
+  return "usage: mechflow export-fmu FILE --out DIR [--variant NAME] [--set NAME=VALUE]... [--allow-read DIR]\n"
+         "       [--library DIR]\n"
          "\n"
          "Writes the diagram as an FMI 2.0 co-simulation FMU for Linux x86-64, to be run\n"
          "by another tool: DIR/NAME.fmu, NAME being the diagram's name (<diagram name>,\n"
@@ -19,19 +20,19 @@ std::string ExportFmuHelp() {
          "parameters (fixed: set before the run starts), its <solver> and <output\n"
          "interval> the default experiment. The FMU carries the diagram, every file it\n"
          "reads (tables, scripts, mechanisms, subsystems, parts, by their paths from\n"
-         "the diagram's folder), the shared libraries it needs and the units database;\n"
-         "it runs the diagram with the Lua sandbox on, reading files from the FMU\n"
-         "only, and writes no file (the diagram's <output> files, <report>s,\n"
-         "<spectrum>s and <xy> panels are left out, each noted). --variant and --set\n"
-         "are applied as in mechflow run and packed into the FMU (its parameters start\n"
-         "there).\n"
+         "the diagram's folder, or from the folder holding them all when --allow-read\n"
+         "or --library reach outside it), the shared libraries it needs and the units\n"
+         "database; it runs the diagram with the Lua sandbox on, reading files from\n"
+         "the FMU only, and writes no file (the diagram's <output> files, <report>s,\n"
+         "<spectrum>s and <xy> panels are left out, each noted). --variant, --set,\n"
+         "--allow-read and --library are applied as in mechflow run and packed into\n"
+         "the FMU (its parameters start there).\n"
          "\n"
          "  --out DIR  the folder to write NAME.fmu into (required; made if needed)\n"
          "\n"
-         "Refused: a diagram that reads a file outside its own folder tree or names one\n"
-         "by an absolute path, --unsafe-lua, --allow-read and --library (copy such\n"
-         "files into the diagram's folder tree), and --t-end (the importer gives the\n"
-         "stop time).\n"
+         "Refused: a diagram that names a file by an absolute path (name it relative\n"
+         "to the file that names it), --unsafe-lua, and --t-end (the importer gives\n"
+         "the stop time).\n"
          "\n"
          "Example: mechflow export-fmu diagrams/examples/cart_pendulum_friction.xml --out fmu\n"
          "         (writes fmu/cart_pendulum_friction.fmu)\n"
@@ -53,13 +54,9 @@ int ExportFmuCommand(const Arguments& args, std::ostream& out, std::ostream& err
     throw UsageError("--t-end: the importer gives the stop time (fmi2SetupExperiment); the diagram's <solver "
                      "t_end> is only the FMU's default experiment");
   if (args.unsafe_lua) throw UsageError("--unsafe-lua: an FMU runs its diagram with the Lua sandbox on");
-  if (!args.allow_read.empty() || !args.library.empty())
-    throw UsageError(std::string(args.allow_read.empty() ? "--library" : "--allow-read") +
-                     ": an FMU holds the files a diagram reads by their paths from the diagram's folder; copy "
-                     "them into the diagram's folder tree and name them from there");
   const OutputFolder folder(args.out_dir);  // made as mechflow run makes it
-  const fmi::ExportRequest request{args.file,    args.variants, args.overrides, args.set_expressions,
-                                   folder.path(), fmi::DefaultRuntimeFolder()};
+  const fmi::ExportRequest request{args.file,    args.variants,  args.overrides, args.set_expressions,
+                                   folder.path(), fmi::DefaultRuntimeFolder(), args.allow_read, args.library};
   fmi::ExportSummary s;
   try {
     s = fmi::ExportFmu(request);

@@ -50,7 +50,7 @@ void ReplaceAll(std::string* text, const std::string& from, const std::string& t
 
 // A file the diagram reads, as the FMU holds it.
 struct PackedFile {
-  std::string name;  // under resources/: its path from the diagram's folder, '/'-separated
+  std::string name;  // under resources/, '/'-separated (Layout)
   fs::path real;     // where it was read
 };
 
@@ -61,29 +61,61 @@ fs::path FolderOf(const std::string& file) {
   return folder.has_filename() ? folder : folder.parent_path();
 }
 
-// Every file the loaded diagram read besides itself (the reader's and the
-// loader's record of them), by its path from the diagram's folder; each once.
-std::vector<PackedFile> FilesRead(const diagrams::LoadedDiagram& loaded, const std::string& diagram) {
+// The deepest folder holding both (absolute, normal paths), component by component.
+fs::path CommonFolder(const fs::path& a, const fs::path& b) {
+  fs::path common;
+  for (auto i = a.begin(), j = b.begin(); i != a.end() && j != b.end() && *i == *j; ++i, ++j) common /= *i;
+  return common;
+}
+
+bool Inside(const fs::path& path, const fs::path& folder) {
+  const fs::path relative = path.lexically_relative(folder);
+  return !relative.empty() && *relative.begin() != "..";
+}
+
+// Where the diagram and the files it read go under resources/: by their
+// paths from the deepest folder holding them all, the diagram's own unless a
+// file lies outside it (--allow-read, --library), so that every name the
+// diagram and its files use resolves in the FMU as it did here.
+struct Layout {
+  fs::path root;                     // absolute
+  std::string diagram;               // the diagram's path from root, '/'-separated
+  std::vector<PackedFile> files;     // each once
+  std::vector<std::string> library;  // the --library folders files came from, from root
+};
+
+// From the files the loaded diagram read besides itself (the reader's and the loader's record of them).
+Layout LayoutOf(const diagrams::LoadedDiagram& loaded, const std::string& diagram,
+                const std::vector<std::string>& library) {
   std::vector<blocks::FileRead> reads = loaded.description.files_read;
   if (loaded.reads) reads.insert(reads.end(), loaded.reads->files_read().begin(), loaded.reads->files_read().end());
-  const fs::path folder = FolderOf(diagram);
-  const std::string own = fs::path(diagram).filename().string();
-  std::vector<PackedFile> files;
-  for (const blocks::FileRead& r : reads) {
-    const fs::path relative = fs::absolute(r.path).lexically_normal().lexically_relative(folder);
-    if (relative.empty() || *relative.begin() == "..")
-      throw InputError(r.where + ": the file '" + r.path + "' lies outside the diagram's folder " + folder.string() +
-                       "; an FMU holds the files a diagram reads by their paths from its folder: copy the file into "
-                       "that folder (or one below it) and name it from there");
-    const std::string name = relative.generic_string();
-    if (name == "mechflow.txt" || name.rfind("udunits/", 0) == 0 || name == own)
-      throw InputError(r.where + ": the file '" + r.path + "' would be resources/" + name +
-                       " in the FMU, which holds the FMU's own " + (name == own ? "diagram" : "settings") +
-                       " there: rename it (or move it into another folder)");
-    if (std::none_of(files.begin(), files.end(), [&](const PackedFile& f) { return f.name == name; }))
-      files.push_back({name, r.real});
+  std::vector<fs::path> paths;
+  for (const blocks::FileRead& r : reads) paths.push_back(fs::absolute(r.path).lexically_normal());
+  Layout layout;
+  layout.root = FolderOf(diagram);
+  std::vector<fs::path> used;  // library folders something was read from
+  for (const std::string& l : library) {
+    const fs::path folder = FolderOf((fs::path(l) / "x").string());
+    if (std::any_of(paths.begin(), paths.end(), [&](const fs::path& p) { return Inside(p, folder); }))
+      used.push_back(folder);
   }
-  return files;
+  for (const fs::path& p : paths) layout.root = CommonFolder(layout.root, p.parent_path());
+  for (const fs::path& l : used) layout.root = CommonFolder(layout.root, l);
+  layout.diagram = fs::absolute(diagram).lexically_normal().lexically_relative(layout.root).generic_string();
+  for (const fs::path& l : used) {
+    const std::string name = l.lexically_relative(layout.root).generic_string();
+    layout.library.push_back(name.empty() ? "." : name);
+  }
+  for (std::size_t k = 0; k < reads.size(); ++k) {
+    const std::string name = paths[k].lexically_relative(layout.root).generic_string();
+    if (name == "mechflow.txt" || name.rfind("udunits/", 0) == 0 || name == layout.diagram)
+      throw InputError(reads[k].where + ": the file '" + reads[k].path + "' would be resources/" + name +
+                       " in the FMU, which holds the FMU's own " + (name == layout.diagram ? "diagram" : "settings") +
+                       " there: rename it (or move it into another folder)");
+    if (std::none_of(layout.files.begin(), layout.files.end(), [&](const PackedFile& f) { return f.name == name; }))
+      layout.files.push_back({name, reads[k].real});
+  }
+  return layout;
 }
 
 // "" when `name` may be the FMU's file name, else why not.
@@ -108,19 +140,22 @@ ExportSummary ExportFmu(const ExportRequest& request) {
   options.variants = request.variants;
   options.overrides = request.overrides;
   options.expression_overrides = request.expression_overrides;
+  options.allow_read = request.allow_read;
+  options.library = request.library;
   // loaded where it is first: its own errors name its own lines
   run::Model original(request.diagram, options);
   const std::string text = blocks::ReadInputFile(request.diagram, "diagram file");
-  const std::vector<PackedFile> reads = FilesRead(original.Loaded(), request.diagram);
+  const Layout layout = LayoutOf(original.Loaded(), request.diagram, request.library);
   const std::string fmu_name = original.Loaded().description.name + ".fmu";
   if (const std::string problem = FileNameProblem(fmu_name); !problem.empty())
     throw InputError(request.diagram + ": the FMU is named after the diagram, and '" + fmu_name + "' " + problem +
                      "; give the diagram a plain name (<diagram name=\"...\">)");
 
-  // then alone with the files it read, as the FMU will hold them: a file
-  // named so that it is not found there (an absolute path) fails here
+  // then alone with the files it read, as the FMU will hold them and load
+  // them (reading allowed in its folder only): a file named so that it is
+  // not found there (an absolute path) fails here
   const TemporaryFolder alone;
-  const std::string name = fs::path(request.diagram).filename().string();
+  const std::string name = layout.diagram;
   const std::string copy = (alone.path / name).string();
   const auto write = [](const fs::path& path, const std::string& bytes) {
     fs::create_directories(path.parent_path());
@@ -129,23 +164,23 @@ ExportSummary ExportFmu(const ExportRequest& request) {
     if (!out.flush()) throw std::runtime_error("cannot write the temporary copy " + path.string());
   };
   write(copy, text);
-  for (const PackedFile& f : reads)
+  for (const PackedFile& f : layout.files)
     write(alone.path / f.name, blocks::ReadInputFile(f.real.string(), "file"));
-  const std::string folder = FolderOf(request.diagram).string();
   const auto in_original = [&](std::string message) {
-    ReplaceAll(&message, alone.path.string(), folder);
+    ReplaceAll(&message, alone.path.string(), layout.root.string());
     return message;
   };
+  PackedSettings settings{name, request.variants, request.overrides, request.expression_overrides, "", layout.library};
   std::unique_ptr<run::Model> packed;
   try {
-    packed = std::make_unique<run::Model>(copy, options);
+    packed = std::make_unique<run::Model>(copy, settings.Options(alone.path.string()));
   } catch (const InputError& e) {
     std::string there = e.what();  // the FMU's paths, as its user would see them
     ReplaceAll(&there, alone.path.string(), "resources");
     throw InputError(request.diagram +
                      ": export-fmu loads the diagram as the FMU will (from its resources/ folder, which holds the "
-                     "diagram and the files it read by their paths from its folder), and there it fails; name each "
-                     "file by a path relative to the file that names it, inside the diagram's folder. There:\n" +
+                     "diagram and the files it read by their paths from the folder holding them all), and there it "
+                     "fails; name each file by a path relative to the file that names it. There:\n" +
                      there);
   }
   const diagrams::LoadedDiagram& loaded = packed->Loaded();
@@ -158,7 +193,6 @@ ExportSummary ExportFmu(const ExportRequest& request) {
     throw InputError(in_original(message));
   }
 
-  PackedSettings settings{name, request.variants, request.overrides, request.expression_overrides, ""};
   settings.guid = GuidOf(text + "\n" + settings.Text());
   ExportSummary summary;
   summary.model_identifier = ModelIdentifier(loaded.description.name);
@@ -178,7 +212,7 @@ ExportSummary ExportFmu(const ExportRequest& request) {
   entries.push_back({"modelDescription.xml", ModelDescriptionXml(loaded, variables, {summary.model_identifier,
                                                                                       summary.guid}), ""});
   entries.push_back({"resources/" + name, text, ""});
-  for (const PackedFile& f : reads) entries.push_back({"resources/" + f.name, "", (alone.path / f.name).string()});
+  for (const PackedFile& f : layout.files) entries.push_back({"resources/" + f.name, "", (alone.path / f.name).string()});
   entries.push_back({"resources/mechflow.txt", settings.Text(), ""});
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(runtime / "linux64")) files.push_back(e.path());
@@ -195,7 +229,7 @@ ExportSummary ExportFmu(const ExportRequest& request) {
     }
   }
   summary.fmu = (fs::path(request.folder) / fmu_name).string();
-  summary.files = static_cast<int>(reads.size());
+  summary.files = static_cast<int>(layout.files.size());
   WriteZip(summary.fmu, entries);
 
   const diagrams::DiagramDescription& d = original.Loaded().description;

@@ -10,7 +10,10 @@
 //     resources/DIAGRAM.xml       the diagram, as it was
 //     resources/PATH              every file it reads (tables, scripts,
 //                                 subsystems, parts, mechanisms, and the files
-//                                 those read), by its path from the diagram's folder
+//                                 those read), by its path from the diagram's
+//                                 folder, or from the folder holding them all
+//                                 when --allow-read or --library reach outside
+//                                 it (the diagram is then resources/SUB/DIAGRAM.xml)
 //     resources/mechflow.txt      variants and --set values (fmi/packed_settings.h)
 //     resources/udunits/          the units database
 //
@@ -18,8 +21,7 @@
 // found by reading the XML again. The FMU loads the diagram with reading
 // allowed in its resources folder only; export-fmu loads the packed copy so
 // first and refuses a diagram that fails there (a file named by an absolute
-// path), as it refuses a file outside the diagram's folder and anything that
-// would loosen the Lua sandbox.
+// path), as it refuses anything that would loosen the Lua sandbox.
 
 #include <string>
 #include <utility>
@@ -34,6 +36,7 @@ struct ExportRequest {
   std::vector<std::pair<std::string, std::string>> expression_overrides;
   std::string folder;   // where to write NAME.fmu (NAME: the diagram's name); it exists
   std::string runtime;  // the folder with linux64/ (the FMU's binaries) and udunits/
+  std::vector<std::string> allow_read, library;  // --allow-read and --library, as for mechflow run
 };
 
 struct ExportSummary {

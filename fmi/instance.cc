@@ -65,11 +65,9 @@ Instance::Instance(const std::string& name, const std::string& guid, const std::
 
 void Instance::Load() {
   session_.reset();
-  run::LoadOptions options;  // the sandbox on, nothing read beyond the diagram's own folder
-  options.variants = settings_.variants;
-  options.overrides = settings_.overrides;
-  options.expression_overrides = settings_.expression_overrides;
-  model_ = std::make_unique<run::Model>((std::filesystem::path(resources_) / settings_.diagram).string(), options);
+  // the sandbox on, nothing read beyond the resources folder
+  model_ = std::make_unique<run::Model>((std::filesystem::path(resources_) / settings_.diagram).string(),
+                                        settings_.Options(resources_));
   variables_ = CollectVariables(model_->Loaded());
   values_.clear();
   for (const Variable& v : variables_) values_.push_back(v.start);

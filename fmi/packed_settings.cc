@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "mech/errors.h"
@@ -19,6 +20,7 @@ std::string PackedSettings::Text() const {
     out << "set " << name << "=" << number << "\n";
   }
   for (const auto& [name, text] : expression_overrides) out << "set-expression " << name << "=" << text << "\n";
+  for (const std::string& l : library) out << "library " << l << "\n";
   if (!guid.empty()) out << "guid " << guid << "\n";
   return out.str();
 }
@@ -36,6 +38,7 @@ PackedSettings PackedSettings::Parse(const std::string& text, const std::string&
     if (key == "diagram") s.diagram = rest;
     else if (key == "variant") s.variants.push_back(rest);
     else if (key == "guid") s.guid = rest;
+    else if (key == "library") s.library.push_back(rest);
     else if ((key == "set" || key == "set-expression") && eq != std::string::npos) {
       if (key == "set-expression") {
         s.expression_overrides.emplace_back(rest.substr(0, eq), rest.substr(eq + 1));
@@ -46,11 +49,21 @@ PackedSettings PackedSettings::Parse(const std::string& text, const std::string&
         throw InputError(where + "'" + rest + "': expected set NAME=NUMBER");
       s.overrides.emplace_back(rest.substr(0, eq), value);
     } else {
-      throw InputError(where + "'" + line + "': expected diagram, variant, set, set-expression or guid");
+      throw InputError(where + "'" + line + "': expected diagram, variant, set, set-expression, library or guid");
     }
   }
   if (s.diagram.empty()) throw InputError(file + ":1: names no diagram (a line 'diagram FILE')");
   return s;
+}
+
+run::LoadOptions PackedSettings::Options(const std::string& resources) const {
+  run::LoadOptions options;  // the sandbox on
+  options.variants = variants;
+  options.overrides = overrides;
+  options.expression_overrides = expression_overrides;
+  options.allow_read = {resources};
+  for (const std::string& l : library) options.library.push_back((std::filesystem::path(resources) / l).string());
+  return options;
 }
 
 std::string GuidOf(const std::string& text) {

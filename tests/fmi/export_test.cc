@@ -1,6 +1,7 @@
 // mechflow export-fmu and the FMU it writes, driven as an importer would
 // (tests/fmi/fmu_harness.h): the FMU reproduces `mechflow run` at the
-// communication points, an input driven through it matches the same input
+// communication points, also with the files the diagram reads packed in it
+// and the originals gone, an input driven through it matches the same input
 // from a table, its modelDescription.xml keeps the standard's rules, its
 // binary exports every fmi2 function and needs nothing outside the FMU and
 // the base system, instances are independent, a failed integration is a
@@ -319,30 +320,14 @@ TEST(FmuExportTest, FailedIntegrationIsADiscardedStepNamingTheTimeReached) {
   fmu.Free(c);
 }
 
-TEST(FmuExportTest, FilesTheDiagramReadsTravelInTheFmu) {
-  // the diagram, its table and its subsystem file in a folder of their own, removed before the FMU is loaded
-  const fs::path source = Folder("packed") / "source";
-  fs::remove_all(source);
-  fs::create_directories(source.parent_path());
-  fs::copy(kData + "packed", source, fs::copy_options::recursive);
-  const std::string diagram = (source / "pushed_slider.xml").string();
-  const std::vector<std::string> names = {"x", "v", "friction", "push"};
-  const run::ResultsColumns reference = RunColumns(diagram, "packed", names);
-  const auto r = RunMechflow("export-fmu " + diagram + " --out " + (Folder("packed") / "out").string());
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("2 file(s) the diagram reads in resources/"));
-  const std::string file = Written(r.out);
-  EXPECT_EQ(file, (Folder("packed") / "out" / "pushed_slider.fmu").string());  // named after the diagram
-  fs::remove_all(source);
-  Fmu fmu(file, Folder("packed") / "unpacked");
-  const fs::path resources = Folder("packed") / "unpacked" / "resources";
-  EXPECT_EQ(ReadFile((resources / "tables" / "push.csv").string()), ReadFile(kData + "packed/tables/push.csv"));
-  EXPECT_EQ(ReadFile((resources / "parts" / "lining.xml").string()), ReadFile(kData + "packed/parts/lining.xml"));
+// Steps the FMU `file` (unpacked into `folder`) at the output interval h and
+// checks it against mechflow run's `reference` to 1e-9 of each column's largest value.
+void ExpectRunReproduced(const std::string& file, const fs::path& folder, const run::ResultsColumns& reference,
+                         const std::vector<std::string>& names, double h, double t_end) {
+  Fmu fmu(file, folder);
   fmi2Component c = fmu.Instantiate("packed");
   ASSERT_NE(c, nullptr);
-  ASSERT_EQ(fmu.Initialize(c, 4.0), fmi2OK);
-  const double h = 0.01;
-  ASSERT_EQ(reference.time.size(), 401u);
+  ASSERT_EQ(fmu.Initialize(c, t_end), fmi2OK);
   double worst = 0.0;
   for (std::size_t row = 0; row < reference.time.size(); ++row) {
     if (row > 0) { ASSERT_EQ(fmu.DoStep(c, (row - 1) * h, h), fmi2OK) << row; }
@@ -356,6 +341,56 @@ TEST(FmuExportTest, FilesTheDiagramReadsTravelInTheFmu) {
               worst);
   EXPECT_EQ(fmu.Get(c, "push"), -2.0);  // from the packed table
   fmu.Free(c);
+}
+
+TEST(FmuExportTest, FilesTheDiagramReadsTravelInTheFmu) {
+  // the diagram, its table and its subsystem file in a folder of their own, removed before the FMU is loaded
+  const fs::path source = Folder("packed") / "source";
+  fs::remove_all(source);
+  fs::create_directories(source.parent_path());
+  fs::copy(kData + "packed", source, fs::copy_options::recursive);
+  const std::string diagram = (source / "pushed_slider.xml").string();
+  const std::vector<std::string> names = {"x", "v", "friction", "push"};
+  const run::ResultsColumns reference = RunColumns(diagram, "packed", names);
+  ASSERT_EQ(reference.time.size(), 401u);
+  const auto r = RunMechflow("export-fmu " + diagram + " --out " + (Folder("packed") / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("2 file(s) the diagram reads in resources/"));
+  const std::string file = Written(r.out);
+  EXPECT_EQ(file, (Folder("packed") / "out" / "pushed_slider.fmu").string());  // named after the diagram
+  fs::remove_all(source);
+  ExpectRunReproduced(file, Folder("packed") / "unpacked", reference, names, 0.01, 4.0);
+  const fs::path resources = Folder("packed") / "unpacked" / "resources";
+  EXPECT_EQ(ReadFile((resources / "tables" / "push.csv").string()), ReadFile(kData + "packed/tables/push.csv"));
+  EXPECT_EQ(ReadFile((resources / "parts" / "lining.xml").string()), ReadFile(kData + "packed/parts/lining.xml"));
+}
+
+TEST(FmuExportTest, FilesReachedThroughAllowReadAndLibraryTravelToo) {
+  // SOURCE/diagram/pushed_slider.xml reads ../tables/push.csv (--allow-read SOURCE) and the
+  // subsystem lining.xml from --library SOURCE/shared: the FMU keeps the layout from SOURCE
+  const fs::path source = Folder("reach") / "source";
+  fs::remove_all(source);
+  fs::create_directories(source / "diagram");
+  fs::create_directories(source / "shared");
+  fs::copy(kData + "packed/tables", source / "tables", fs::copy_options::recursive);
+  fs::copy(kData + "packed/parts/lining.xml", source / "shared" / "lining.xml");
+  std::string text = ReadFile(kData + "packed/pushed_slider.xml");
+  text.replace(text.find("\"tables/push.csv\""), 17, "\"../tables/push.csv\"");
+  text.replace(text.find("\"parts/lining.xml\""), 18, "\"lining.xml\"");
+  std::ofstream(source / "diagram" / "pushed_slider.xml") << text;
+  const std::string diagram = (source / "diagram" / "pushed_slider.xml").string();
+  const std::string reach = " --allow-read " + source.string() + " --library " + (source / "shared").string();
+  const std::vector<std::string> names = {"x", "v", "friction", "push"};
+  const run::ResultsColumns reference = RunColumns(diagram, "reach", names, reach);
+  const auto r = RunMechflow("export-fmu " + diagram + reach + " --out " + (Folder("reach") / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  fs::remove_all(source);
+  ExpectRunReproduced(Written(r.out), Folder("reach") / "unpacked", reference, names, 0.01, 4.0);
+  const fs::path resources = Folder("reach") / "unpacked" / "resources";
+  EXPECT_TRUE(fs::is_regular_file(resources / "diagram" / "pushed_slider.xml"));
+  EXPECT_TRUE(fs::is_regular_file(resources / "tables" / "push.csv"));
+  EXPECT_TRUE(fs::is_regular_file(resources / "shared" / "lining.xml"));
+  EXPECT_THAT(ReadFile((resources / "mechflow.txt").string()), HasSubstr("diagram diagram/pushed_slider.xml\nlibrary shared\n"));
 }
 
 TEST(FmuExportTest, OutIsAFolderAndFilesTheFmuCannotHoldAreRefused) {
@@ -397,10 +432,6 @@ TEST(FmuExportTest, OutIsAFolderAndFilesTheFmuCannotHoldAreRefused) {
   EXPECT_THAT(r.err, HasSubstr("pushed_slider.xml:27: block 'F' parameter 'file': the file"));
   EXPECT_THAT(r.err, HasSubstr("would be resources/mechflow.txt in the FMU"));
   EXPECT_FALSE(fs::exists(folder / "pushed_slider.fmu"));
-  // --library: the files would not resolve as they do here
-  r = RunMechflow("export-fmu " + diagram + " --library " + folder.string() + " --out " + folder.string());
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("copy them into the diagram's folder tree"));
 }
 
 TEST(FmuExportTest, BadInputIsRefusedNamingFileAndLine) {
