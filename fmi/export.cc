@@ -193,7 +193,11 @@ ExportSummary ExportFmu(const ExportRequest& request) {
     throw InputError(in_original(message));
   }
 
-  settings.guid = GuidOf(text + "\n" + settings.Text());
+  // the GUID covers every packed file: another table is another FMU
+  std::string hashed = text + "\n" + settings.Text();
+  for (const PackedFile& f : layout.files)
+    hashed += "\n" + f.name + "\n" + blocks::ReadInputFile((alone.path / f.name).string(), "file");
+  settings.guid = GuidOf(hashed);
   ExportSummary summary;
   summary.model_identifier = ModelIdentifier(loaded.description.name);
   summary.guid = settings.guid;

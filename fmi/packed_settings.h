@@ -2,8 +2,8 @@
 // What an exported FMU needs to load its diagram as export-fmu loaded it:
 // resources/mechflow.txt names the packed diagram, the variants and --set
 // values given to export-fmu, and the FMU's GUID (a hash of the diagram's
-// text and these settings, so an importer's modelDescription.xml from another
-// export is refused).
+// text, the files it reads and these settings, so an importer's
+// modelDescription.xml from another export is refused).
 //
 //   diagram stick_slip.xml
 //   variant Elastic
