@@ -9,8 +9,8 @@
 namespace mechflow::cli {
 
 std::string ExportFmuHelp() {
-  return "usage: mechflow export-fmu FILE --out DIR [--variant NAME] [--set NAME=VALUE]... [--allow-read DIR]\n"
-         "       [--library DIR]\n"
+  return "usage: mechflow export-fmu FILE --out DIR [--variant NAME] [--set NAME=VALUE]...\n"
+         "       [--allow-read DIR] [--library DIR]\n"
          "\n"
          "Writes the diagram as an FMI 2.0 co-simulation FMU for Linux x86-64, to be run\n"
          "by another tool: DIR/NAME.fmu, NAME being the diagram's name (<diagram name>,\n"
