@@ -15,14 +15,15 @@
 #include "cli/force_analysis_command.h"
 #include "cli/help_topics.h"
 #include "cli/output_budget.h"
+#include "cli/export_fmu_command.h"
 #include "cli/psd_command.h"
 #include "mech/errors.h"
 
 namespace mechflow::cli {
 namespace {
 
-const std::vector<std::string> kCommands = {"run",   "check",          "graph", "modes",
-                                            "sweep", "force-analysis", "psd",   "fit",  "help"};
+const std::vector<std::string> kCommands = {"run", "check",          "graph", "modes", "sweep",
+                                            "force-analysis", "psd", "fit", "export-fmu", "help"};
 
 // The options only `command` takes; their values are its to read.
 const std::vector<std::string>& CommandOptions(const std::string& command) {
@@ -219,6 +220,7 @@ std::string HelpText(const std::string& command) {
   if (!command.empty() && IsTypeTopic(command)) return TypeHelp(command);
   if (command == "psd") return PsdHelp();
   if (command == "fit") return FitHelp();
+  if (command == "export-fmu") return ExportFmuHelp();
   if (command == "sweep")
     return "usage: mechflow sweep FILE --vary NAME=V1,V2,... [--vary ...] [--variant NAME]...\n"
            "                      [--set NAME=VALUE]... [--t-end T] [--jobs N] [--out DIR] [--quiet | --verbose]\n"
@@ -273,6 +275,7 @@ std::string HelpText(const std::string& command) {
          "  force-analysis  dynamic stiffness, phase and loops of one force element\n"
          "  psd     power spectral density of logged signals in a results file\n"
          "  fit     fit friction and contact parameters to measured data\n"
+         "  export-fmu  the diagram as an FMI 2.0 co-simulation FMU for another tool\n"
          "  help    help on a command, block type or diagram element: mechflow help run,\n"
          "          mechflow help integrator, mechflow help force\n"
          "\n"

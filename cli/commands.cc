@@ -22,6 +22,7 @@
 #include "cli/output_budget.h"
 #include "cli/output_folder.h"
 #include "cli/plot_envelope.h"
+#include "cli/export_fmu_command.h"
 #include "cli/psd_command.h"
 #include "cli/report.h"
 #include "cli/results_file.h"
@@ -283,6 +284,7 @@ int Main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& 
     if (args.command == "force-analysis") return ForceAnalysisCommand(args, out, err);
     if (args.command == "psd") return PsdCommand(args, out, err);
     if (args.command == "fit") return FitCommand(args, out, err);
+    if (args.command == "export-fmu") return ExportFmuCommand(args, out, err);
   } catch (const InputError& e) {
     err << e.what() << "\n";
     return 2;

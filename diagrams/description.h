@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "blocks/support/input_file.h"
+
 namespace mechflow::diagrams {
 
 struct SourceLoc {
@@ -104,6 +106,13 @@ struct ScriptDesc {
   bool present() const { return !chunk_name.empty(); }
 };
 
+// <input name unit start comment> of a diagram: a value set from outside
+// (a co-simulation's input), a signal source named `name`.
+struct DiagramInputDesc {
+  std::string name, unit, start, comment;
+  SourceLoc loc;
+};
+
 // <parameter name default unit comment> of a subsystem or part: its interface.
 struct ParameterDesc {
   std::string name, default_value, unit, comment;
@@ -152,6 +161,7 @@ struct DiagramDescription {
   std::string comment;
   std::string file;     // the path it was read from
   std::vector<IdentifierDesc> identifiers;
+  std::vector<DiagramInputDesc> inputs;  // top-level <input>s
   std::vector<VariantDesc> variants;
   std::vector<ElementDesc> mechanisms;  // <mechanism>, with src= files read in
   std::vector<BlockDesc> blocks;
@@ -168,6 +178,10 @@ struct DiagramDescription {
   // every <subsystem> and <part> file the diagram uses, by the path read
   // (the reader fills it; the loader's flattening uses it)
   std::vector<ComponentDesc> components;
+  // the files the reader read besides this one (<mechanism src>, <script
+  // src>, subsystem and part files); the loader reads tables and Lua block
+  // files later (LoadedDiagram::reads)
+  std::vector<blocks::FileRead> files_read;
   // filled when the loader flattens: the instances (a tree by their paths)
   // and the names a subsystem's output port is reached by ("d[1].F" ->
   // "d[1].fr.F"): logs, reports and sim:get take either

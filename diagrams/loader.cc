@@ -1,11 +1,14 @@
 #include "diagrams/loader.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <tuple>
 
 #include "blocks/framework/block_factory.h"
 #include "blocks/framework/diagram_builder.h"
+#include "blocks/library/held_input.h"
 #include "blocks/solver/analytic_jacobian.h"
 #include "blocks/support/suggest.h"
 #include "diagrams/attribute_units.h"
@@ -316,6 +319,27 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
     }
     builder.AddBlock(std::move(block), b.loc.str());
   }
+  for (const auto& in : d.inputs) {
+    const std::string what = in.loc.str() + ": input '" + in.name + "'";
+    // a plain name: it is a block's and an FMU variable's
+    const bool plain = !in.name.empty() && !std::isdigit(static_cast<unsigned char>(in.name[0])) &&
+                       in.name.find("__") == std::string::npos &&
+                       std::all_of(in.name.begin(), in.name.end(), [](char c) {
+                         return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                       });
+    if (!plain)
+      throw InputError(what + ": the name must be letters, digits and '_' (not first a digit, no '__')");
+    DiagramInput input{in.name, -1, Trim(in.unit), 1.0, 0.0, in.comment, in.loc.str()};
+    if (!input.unit.empty()) {
+      std::string error;
+      const std::optional<Unit> unit = ParseUnit(input.unit, &error);
+      if (!unit) throw InputError(what + ": " + error);
+      input.to_si = unit->to_si;
+    }
+    input.start = eval.Number(in.start, what + " start") * input.to_si;
+    builder.AddBlock(std::make_unique<blocks::HeldInputBlock>(in.name, input.start), in.loc.str());
+    out.inputs.push_back(std::move(input));
+  }
   for (const auto& c : d.connections) builder.Connect(c.from, c.to, c.loc.str());
   // a subsystem's output is reached by its path too (logs, reports, sim:get)
   for (const auto& [alias, target] : d.signal_aliases) builder.AddSignalAlias(alias, target, "output '" + alias + "'");
@@ -328,6 +352,7 @@ LoadedDiagram Load(DiagramDescription d, const LoadOptions& options) {
       return std::make_unique<Claim>(lua->ClaimForRun());
     });
   out.diagram = builder.Build();
+  for (DiagramInput& input : out.inputs) input.block = out.diagram->FindBlock(input.name);
   for (const auto& w : d.input_widths)
     if (const int width = out.diagram->ResolveSignal(w.signal).width; width != w.width)
       throw InputError(w.loc.str() + ": this input carries " + std::to_string(w.width) + " value(s), but '" +

@@ -71,6 +71,18 @@ struct XYPlotRequest {
   std::vector<std::pair<int, int>> curves;  // (x column, y column) of the results
 };
 
+// A top-level <input>: a held value (blocks/library/held_input.h) that a
+// co-simulation sets; its block is `block` of the diagram.
+struct DiagramInput {
+  std::string name;     // as written, the block's name
+  int block = -1;
+  std::string unit;     // as written ("" SI)
+  double to_si = 1.0;   // a value in `unit` times this is SI
+  double start = 0.0;   // SI
+  std::string comment;
+  std::string origin;   // file:line
+};
+
 struct LoadedDiagram {
   DiagramDescription description;
   // declared before the diagram: blocks may hold compiled Lua, so Lua goes last
@@ -81,6 +93,7 @@ struct LoadedDiagram {
   // after them, so it goes first); give it to the simulator with SetControl
   std::unique_ptr<scripting::ControlScript> control;
   blocks::SolverOptions solver;
+  std::vector<DiagramInput> inputs;       // the <input>s, in file order
   std::vector<blocks::SignalRef> logged;  // in column order; name = column label
   // per results column, time ("s") first; "" unknown. A column's values are
   // in its unit: the <log>'s (converted from SI), else the signal's own.

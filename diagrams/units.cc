@@ -93,6 +93,16 @@ ut_status VisitGalilean(const ut_unit*, double scale, const ut_unit* underlying,
   return ut_accept_visitor(underlying, &kVisitor, arg);
 }
 
+// UseUnitsDatabase's file ("" the default place), read by the first use.
+std::string& DatabasePath() {
+  static std::string path;
+  return path;
+}
+std::mutex& DatabaseMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 // The unit system of UDUNITS' standard database, read once. UDUNITS' parser
 // is not reentrant, so every use holds the lock; results are kept by text.
 class UnitSystem {
@@ -124,7 +134,10 @@ class UnitSystem {
     // UDUNITS prints notes on stderr (overridden definitions while reading
     // its own database, every failed parse); mechflow says what failed itself
     ut_set_error_message_handler(ut_ignore);
-    system_ = ut_read_xml(nullptr);
+    {
+      const std::lock_guard<std::mutex> lock(DatabaseMutex());
+      system_ = ut_read_xml(DatabasePath().empty() ? nullptr : DatabasePath().c_str());
+    }
     if (!system_) return;
     // common symbols the database lacks: deg (it has "degree" and the degree
     // sign) and rev (it has "revolution", 2 pi rad)
@@ -226,6 +239,11 @@ std::string Dimension::SiUnit() const {
   for (const Named& n : kNamed)
     if (*this == Dimension{n.exponents}) return n.unit;
   return Text();
+}
+
+void UseUnitsDatabase(const std::string& xml) {
+  const std::lock_guard<std::mutex> lock(DatabaseMutex());
+  DatabasePath() = xml;
 }
 
 std::optional<Unit> ParseUnit(const std::string& text, std::string* error) {

@@ -44,6 +44,11 @@ struct Unit {
   Dimension dimension;
 };
 
+// Reads the units database from `xml` (UDUNITS-2's udunits2.xml and the
+// files beside it) instead of its default place: an exported FMU carries
+// its own copy. Takes effect only before the first ParseUnit of the process.
+void UseUnitsDatabase(const std::string& xml);
+
 // Parses `text` with the units database (loaded once, shared by every thread).
 // nullopt and *error (what is wrong and what to write instead) when the text
 // is no unit or one that no factor converts.

@@ -190,6 +190,12 @@ class Reader {
 
     for (const XMLElement* group = root->FirstChildElement(); group; group = group->NextSiblingElement()) {
       if (std::string(group->Name()) == "mechanism") continue;
+      if (std::string(group->Name()) == "input") {
+        CheckShape(group, "diagram input");
+        d.inputs.push_back({Text(group, "name"), Text(group, "unit"), group->Attribute("start") ? Text(group, "start") : "0", Text(group, "comment"),
+                            Loc(group)});
+        continue;
+      }
       CheckShape(group);
       for (const XMLElement* e = group->FirstChildElement(); e; e = e->NextSiblingElement()) CheckShape(e);
     }

@@ -99,6 +99,7 @@ DiagramDescription ReadDiagramText(const std::string& text, const std::string& f
   xml::ParseText(&doc, text, file);
   DiagramDescription d = xml::Reader(file, session).Read(doc);
   d.components = std::move(components);
+  d.files_read = reads.files_read();
   return d;
 }
 

@@ -28,6 +28,7 @@ packages=(
   libudunits2-dev libudunits2-data
   gnuplot-nox libfftw3-dev
   libceres-dev libnlopt-dev libnlopt-cxx-dev   # `mechflow fit`: its optimisers
+  libzip-dev                    # `mechflow export-fmu`: the .fmu archive
   curl ca-certificates          # three.js's archive from the npm registry
 )
 if [ "$mode" = all ]; then

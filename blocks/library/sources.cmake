@@ -9,6 +9,7 @@ set(MECHFLOW_LIBRARY_SOURCES
   blocks/library/first_order_lag.cc
   blocks/library/friction_from_normal_force.cc
   blocks/library/gain.cc
+  blocks/library/held_input.cc
   blocks/library/integrator.cc
   blocks/library/interpolation.cc
   blocks/library/lookup.cc

@@ -53,44 +53,116 @@ Simulator::~Simulator() = default;
 
 RunOutcome Simulator::Run(const std::function<void(double)>& progress) {
   const FlushDenormals flush_denormals;  // for the whole run (see the header)
+  Start(progress);
+  AdvanceTo(options_.t_end);
+  return Finish();
+}
+
+void Simulator::Start(const std::function<void(double)>& progress) {
+  const FlushDenormals flush_denormals;
   BeginRun(progress);
-  RunOutcome outcome;
   try {
     StartAt(options_.t_start);
-    while (at_.t < options_.t_end && !control_.stop_requested() && !Interrupted()) {
-      const double stop = NextStop();
-      const double t_out = NextRowTime(stop);
-      if (t_out <= at_.t) {
-        RowAtLastInstant();
-        continue;
+  } catch (const std::exception& e) {
+    outcome_.ok = false;
+    outcome_.t_reached = ctx_.time;
+    outcome_.failure = e.what();
+  }
+}
+
+bool Simulator::AdvanceTo(double limit) {
+  const FlushDenormals flush_denormals;
+  if (!outcome_.ok) return false;
+  try {
+    while (at_.t < limit && !control_.stop_requested() && !Interrupted()) {
+      if (!step_.open) {
+        const double stop = NextStop();
+        const double t_out = NextRowTime(stop);
+        if (t_out <= at_.t) {
+          RowAtLastInstant();
+          continue;
+        }
+        double t_ret = at_.t;
+        const int flag = TakeStep(stop, t_out, &t_ret);
+        if (flag < 0) {
+          if (Restart(flag)) continue;
+          Fail(flag, &outcome_);
+          return false;
+        }
+        cvode_->polynomial.Forget();  // a new step: its polynomial is not known yet
+        step_.open = true;
+        step_.t_ret = t_ret;
+        step_.stop = stop;
+        step_.at_stop = flag == CV_TSTOP_RETURN || t_ret >= stop;
+        step_.frozen_checked = false;
       }
-      double t_ret = at_.t;
-      const int flag = TakeStep(stop, t_out, &t_ret);
-      if (flag < 0) {
-        if (Restart(flag)) continue;
-        Fail(flag, &outcome);
-        break;
-      }
-      const bool at_stop = flag == CV_TSTOP_RETURN || t_ret >= stop;
-      if (ScanStep(t_ret, stop, at_stop) || !at_stop) continue;
-      ArriveAtStop(t_ret);
+      const Scan scan = ScanStep(step_.t_ret, step_.stop, step_.at_stop, limit);
+      if (scan == Scan::kPaused) return true;
+      step_.open = false;
+      if (scan == Scan::kCut || !step_.at_stop) continue;
+      ArriveAtStop(step_.t_ret);
       if (at_.t >= options_.t_end) break;
     }
-    EndRun(&outcome);
   } catch (const std::exception& e) {
-    outcome.ok = false;
-    outcome.t_reached = ctx_.time;
-    outcome.failure = e.what();
+    step_.open = false;
+    outcome_.ok = false;
+    outcome_.t_reached = ctx_.time;
+    outcome_.failure = e.what();
+    return false;
+  }
+  return at_.t >= limit;
+}
+
+RunOutcome Simulator::Finish() {
+  const FlushDenormals flush_denormals;
+  step_.open = false;
+  try {
+    EndRun(&outcome_);
+  } catch (const std::exception& e) {
+    outcome_.ok = false;
+    outcome_.t_reached = ctx_.time;
+    outcome_.failure = e.what();
   }
   cvode_->AccumulateStats();
   results_.SetFigures(figures());
   progress_ = nullptr;
-  return outcome;
+  return outcome_;
+}
+
+void Simulator::RestartHere() {
+  const FlushDenormals flush_denormals;
+  if (!outcome_.ok) return;
+  double* y = cvode_->y();
+  if (step_.open) std::copy(step_.x_pause.begin(), step_.x_pause.end(), y);
+  step_.open = false;
+  ctx_.x = y;
+  at_.steps = 0;
+  try {
+    Reinitialize(at_.t);
+    EvaluateAt(diagram_, &ctx_, at_.t, y);  // the outputs with the new held values
+  } catch (const std::exception& e) {
+    outcome_.ok = false;
+    outcome_.t_reached = at_.t;
+    outcome_.failure = e.what();
+  }
+}
+
+void Simulator::EvaluateHere() {
+  if (!outcome_.ok || step_.open) return;  // a pause left the context evaluated there
+  if (results_.num_rows() > 0 && results_.last_time() == at_.t) return;  // so did the row there
+  const FlushDenormals flush_denormals;
+  try {
+    EvaluateAt(diagram_, &ctx_, at_.t, cvode_->y());
+  } catch (const std::exception& e) {
+    outcome_.ok = false;
+    outcome_.t_reached = at_.t;
+    outcome_.failure = e.what();
+  }
 }
 
 void Simulator::BeginRun(const std::function<void(double)>& progress) {
   const double t0 = options_.t_start;
-  progress_ = &progress;
+  progress_ = progress;
   results_.Clear();  // a run again starts afresh (streaming, if set, stays)
   stats_ = SolverStats();
   cvode_ = std::make_unique<CvodeRun>(diagram_, &ctx_, options_, solver_choice_, &stats_, &failures_);
@@ -101,6 +173,8 @@ void Simulator::BeginRun(const std::function<void(double)>& progress) {
   frozen_.Forget();
   sample_hits_.Reset(t0);
   at_ = Cursor{t0, 0, 0};
+  step_.open = false;
+  outcome_ = RunOutcome();
   const long expected_rows = grid_.Count() + 1;  // and a stopped or failed run's last row
   results_.Reserve(static_cast<int>(std::min(expected_rows, 10'000'000L)));
   ctx_.time = t0;
@@ -198,18 +272,17 @@ void Simulator::Fail(int flag, RunOutcome* outcome) {
   outcome->failure = DescribeFailure(diagram_, &ctx_, flag, failures_, cvode_->solver_message(), at_resolution);
 }
 
-bool Simulator::ScanStep(double t_ret, double stop, bool at_stop) {
-  cvode_->polynomial.Forget();  // a new step: its polynomial is not known yet
-  bool frozen_checked = false;
+Simulator::Scan Simulator::ScanStep(double t_ret, double stop, bool at_stop, double limit) {
   for (;;) {
     double t_check = NextRowTime(stop);
+    if (limit < t_ret && t_check > limit) return PauseAt(limit, t_ret);
     // a row at the stop time comes after its sample hits (ArriveAtStop)
     const bool row = t_check <= t_ret && !(at_stop && t_check >= t_ret);
     if (!row) {
       t_check = t_ret;  // the step's end
       if (t_check <= crossings_.lower_time() || crossings_.empty()) {
         WatchTo(t_ret);
-        return false;
+        return Scan::kDone;
       }
     }
     double* x = cvode_->check.data();
@@ -217,15 +290,34 @@ bool Simulator::ScanStep(double t_ret, double stop, bool at_stop) {
     double t_root = 0.0;
     if (!crossings_.empty() && crossings_.Check(*cvode_, t_check, x, row, &t_root, at_root_.data())) {
       EventAt(t_root, at_root_.data());
-      return true;
+      return Scan::kCut;
     }
     WatchTo(t_check);
-    if (!row) return false;
+    if (!row) return Scan::kDone;
     if (crossings_.empty() || !reports_.empty()) EvaluateAt(diagram_, &ctx_, t_check, x);  // else the check did
-    if (!frozen_checked) frozen_.Check(*cvode_);
-    frozen_checked = true;
-    if (RowInStep(t_check, x)) return true;
+    if (!step_.frozen_checked) frozen_.Check(*cvode_);
+    step_.frozen_checked = true;
+    if (RowInStep(t_check, x)) return Scan::kCut;
   }
+}
+
+Simulator::Scan Simulator::PauseAt(double limit, double t_ret) {
+  step_.x_pause.resize(cvode_->n());
+  double* x = cvode_->check.data();
+  StateInStep(limit, t_ret, x);
+  std::copy(x, x + cvode_->n(), step_.x_pause.begin());
+  if (at_.t < limit) {  // no row here: the crossings up to the pause, then every output there
+    double t_root = 0.0;
+    if (!crossings_.empty() && limit > crossings_.lower_time() &&
+        crossings_.Check(*cvode_, limit, x, false, &t_root, at_root_.data())) {
+      EventAt(t_root, at_root_.data());
+      return Scan::kCut;
+    }
+    WatchTo(limit);
+    EvaluateAt(diagram_, &ctx_, limit, step_.x_pause.data());
+    at_.t = limit;
+  }
+  return Scan::kPaused;
 }
 
 void Simulator::StateInStep(double t_check, double t_ret, double* x) {
@@ -303,7 +395,7 @@ void Simulator::EndRun(RunOutcome* outcome) {
     outcome->stop_reason = control_.stop_reason();
     outcome->t_reached = ctx_.time;
   } else if (outcome->ok) {
-    outcome->t_reached = options_.t_end;
+    outcome->t_reached = at_.t >= options_.t_end ? options_.t_end : at_.t;  // a co-simulation may end early
   }
   if (outcome->ok && control_.active()) control_.Call(ctx_.time, ctx_.x, &RunControl::Finish);
 }

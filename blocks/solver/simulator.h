@@ -35,6 +35,10 @@
 //     on reaching the stop: periodic blocks update, the control's timers
 //       run; settle; re-initialise; the row if one is due   (ArriveAtStop)
 //   the control's finish                                   (EndRun)
+// Run is Start, AdvanceTo(t_end) and Finish; a co-simulation (fmi/) calls
+// them one by one, pausing inside a step at each communication time and
+// going on from there as if it had not paused, unless the held inputs
+// changed meanwhile (then the integrator restarts there: RestartHere).
 // The crossings are checked where CVODE's own root finding, driven to each
 // output time in CV_NORMAL mode, would check them, so events and rows are
 // those of that scheme; driving it so cost a CVode call, two interpolations
@@ -102,6 +106,27 @@ class Simulator {
   // Runs from t_start to t_end. `progress(t)` is called after every output row.
   RunOutcome Run(const std::function<void(double)>& progress = {});
 
+  // The run in pieces (as Run, which is these three). Start: from t_start
+  // (the rows there). AdvanceTo(t), t_start <= t <= t_end: integrates until
+  // the solution is known at t, the context evaluated there (its signals are
+  // t's); returns false when the run ended short of t (failed, stopped by its
+  // control, interrupted: outcome() says which). Finish: the control's
+  // finish and the outcome; no AdvanceTo after it.
+  void Start(const std::function<void(double)>& progress = {});
+  bool AdvanceTo(double t);
+  RunOutcome Finish();
+  // After AdvanceTo, when discrete states (held inputs) were changed through
+  // mutable_context(): the run goes on from the current time with them, the
+  // integrator restarted (what the paused step computed beyond is void).
+  void RestartHere();
+  // Evaluates every output at the current time when neither a pause nor a
+  // row there did (AdvanceTo ending at a sample hit or timer between rows).
+  void EvaluateHere();
+  Context& mutable_context() { return ctx_; }
+  // Where the run stands (the last row, event, stop or pause) and how it went so far.
+  double time() const { return at_.t; }
+  const RunOutcome& outcome() const { return outcome_; }
+
   const Results& results() const { return results_; }
   // Rows go to `sink` (not owned) as they are recorded, and only the
   // columns in `keep` stay in memory (blocks/outputs/results.h). Call before Run.
@@ -131,6 +156,16 @@ class Simulator {
     long next_output = 1;  // index of the next output time
     long steps = 0;        // since t (options_.max_steps)
   };
+  // The step CVODE took last, while its rows and crossings are being taken:
+  // AdvanceTo may pause inside it and the next one goes on with it.
+  struct OpenStep {
+    bool open = false;
+    double t_ret = 0.0, stop = 0.0;
+    bool at_stop = false;
+    bool frozen_checked = false;  // FrozenMotionGuard saw this step
+    std::vector<double> x_pause;  // the state at the pause
+  };
+  enum class Scan { kDone, kCut, kPaused };
 
   // `options` with its defaults filled in; throws InputError when they, or a
   // periodic block's sample period, are not usable.
@@ -157,9 +192,13 @@ class Simulator {
   // recorded when it can be, and `outcome` says why.
   void Fail(int flag, RunOutcome* outcome);
   // The output times inside the step that ended at t_ret, then its end: rows
-  // and crossings in order. Returns true when an event, a control's change
-  // or a stop cut the step short (the rest of it is void).
-  bool ScanStep(double t_ret, double stop, bool at_stop);
+  // and crossings in order. kCut when an event, a control's change or a stop
+  // cut the step short (the rest of it is void); kPaused when it reached
+  // `limit` inside the step (crossings checked and the context evaluated
+  // there), the rest to be scanned by the next AdvanceTo.
+  Scan ScanStep(double t_ret, double stop, bool at_stop, double limit);
+  // The pause at `limit` inside the step: no crossing before it.
+  Scan PauseAt(double limit, double t_ret);
   // The state at t_check inside the step that ended at t_ret, into x.
   void StateInStep(double t_check, double t_ret, double* x);
   // Continues from the crossing located at t_root (state x_root).
@@ -177,7 +216,7 @@ class Simulator {
   // Lets the reports see the solution up to t, within the last step.
   void WatchTo(double t);
   void Progress(double t) const {
-    if (*progress_) (*progress_)(t);
+    if (progress_) progress_(t);
   }
   bool Interrupted() const { return interrupt_ && *interrupt_ != 0; }
 
@@ -199,7 +238,9 @@ class Simulator {
   std::unique_ptr<CvodeRun> cvode_;
   std::vector<double> at_root_;  // the state at a located crossing
   Cursor at_;
-  const std::function<void(double)>* progress_ = nullptr;  // Run's, while it runs
+  OpenStep step_;
+  RunOutcome outcome_;
+  std::function<void(double)> progress_;  // Start's, until Finish (a copy: a run in steps outlives the caller's)
   const volatile std::sig_atomic_t* interrupt_ = nullptr;
 };
 

@@ -144,7 +144,9 @@ NamedFile ReadNamedFile(const std::string& name, const std::string& folder, cons
   if (fd.get() < 0) throw InputError(where + ": cannot open file " + quoted + ": " + std::strerror(errno));
   const std::filesystem::path real = OpenedPath(fd.get(), path);
   if (!policy.Allows(real)) throw outside(real);
-  return {path.string(), ReadOpened(fd.get(), where + ": file " + quoted)};
+  NamedFile file{path.string(), ReadOpened(fd.get(), where + ": file " + quoted)};
+  policy.Record({file.path, real, where});
+  return file;
 }
 
 }  // namespace mechflow::blocks

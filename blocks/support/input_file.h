@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mechflow::blocks {
@@ -28,9 +29,16 @@ inline constexpr std::size_t kMaxInputFileBytes = std::size_t(64) << 20;
 // limit.
 std::string ReadInputFile(const std::string& path, const std::string& what);
 
+// A file read through a policy: what export-fmu packs (fmi/export.h).
+struct FileRead {
+  std::string path;            // as named: the naming file's folder joined with the name, normalised
+  std::filesystem::path real;  // symbolic links resolved
+  std::string where;           // the naming line ("d.xml:12: block 'b' parameter 'file'")
+};
+
 // The folder trees a diagram may read files from: its own folder's and those
 // given by --allow-read. Each is taken by its real path (symbolic links
-// resolved) when the policy is made.
+// resolved) when the policy is made. It keeps the files read through it.
 class ReadPolicy {
  public:
   // Throws InputError when a folder does not exist.
@@ -40,8 +48,13 @@ class ReadPolicy {
   bool Allows(const std::filesystem::path& path) const;
   std::string DiagramFolder() const { return roots_.front().string(); }
 
+  // Every file read through the policy (ReadNamedFile), in order, repeats included.
+  const std::vector<FileRead>& files_read() const { return files_read_; }
+  void Record(FileRead file) const { files_read_.push_back(std::move(file)); }
+
  private:
   std::vector<std::filesystem::path> roots_;  // real paths; the diagram's folder first
+  mutable std::vector<FileRead> files_read_;  // a record, not the policy: reading adds to it
 };
 
 struct NamedFile {

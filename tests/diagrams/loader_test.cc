@@ -70,7 +70,7 @@ TEST(XmlReaderTest, RefusesWhatTheXmlParserWouldLetThrough) {
 TEST(XmlReaderTest, UnknownElementsAndAttributesSuggestTheNearestName) {
   EXPECT_THAT(ErrorOf("<diagram>\n<blokcs/>\n</diagram>"),
               AllOf(StartsWith("test.xml:2: unknown element <blokcs> inside <diagram> (did you mean 'blocks'?)"),
-                    HasSubstr("expected one of: identifiers, variants, mechanism, blocks")));
+                    HasSubstr("expected one of: identifiers, input, variants, mechanism, blocks")));
   EXPECT_THAT(ErrorOf("<diagram>\n<solver t_edn='1'/>\n</diagram>"),
               StartsWith("test.xml:2: <solver> has no attribute 't_edn' (did you mean 't_end'?)"));
   EXPECT_THAT(ErrorOf("<diagram><identifiers>\n<identifier name='a' valeu='1'/></identifiers></diagram>"),
