@@ -231,9 +231,7 @@ void PointsPlaneContact::ZeroCrossings(const ElementContext& ctx, std::span<doub
   for (int i = 0; i < num_points(); ++i) {
     const bool touching = ctx.modes[i] != 0.0;
     const MeasuredPoint& point = touching ? Point(ctx, i) : kAway;
-    stick_->ZeroCrossings(point.motion, point.normal, touching,
-                          StickModes(ctx.modes, i),
-                          HoldingForce(ctx, patch, i),
+    stick_->ZeroCrossings(point.motion, point.normal, touching, StickModes(ctx.modes, i), HoldingForce(ctx, patch, i),
                           values.subspan(num_points() + 1 + ContactStick::kCrossingsPerPoint * i,
                                          ContactStick::kCrossingsPerPoint));
   }
