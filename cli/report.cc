@@ -16,6 +16,7 @@
 #include "blocks/library/mechanism_block.h"
 #include "blocks/outputs/csv.h"
 #include "blocks/solver/analytic_jacobian.h"
+#include "blocks/solver/crossing_events.h"
 #include "blocks/support/excerpt.h"
 #include "blocks/support/input_file.h"
 #include "blocks/support/message_number.h"
@@ -147,17 +148,8 @@ void PrintFigures(const std::vector<blocks::ReportFigure>& figures, bool finishe
 
 void PrintEventLog(const blocks::Diagram& diagram, const std::vector<blocks::EventRecord>& events,
                    std::ostream& out) {
-  for (const blocks::EventRecord& e : events) {
-    out << "event: t = " << Formatted("%.9g", e.time) << " s: ";
-    const blocks::Block& block = diagram.block(e.block);
-    const std::string name = block.CrossingName(e.crossing, e.direction);
-    if (!name.empty())
-      out << block.name() << (block.type() == "mechanism" ? "." : ": ") << name;
-    else
-      out << "block '" << block.name() << "' zero crossing " << e.crossing
-          << (e.direction > 0 ? " rising" : e.direction < 0 ? " falling" : "");
-    out << "\n";
-  }
+  for (const blocks::EventRecord& e : events)
+    out << "event: t = " << Formatted("%.9g", e.time) << " s: " << blocks::EventName(diagram, e) << "\n";
 }
 
 void PrintEventWarnings(const blocks::Diagram& diagram, const std::vector<blocks::EventRecord>& events,

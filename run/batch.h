@@ -6,12 +6,14 @@
 //   const std::vector<run::BatchOutcome> done = batch.Run(jobs);  // by index
 //
 // Each worker thread keeps its own run::Model of every model it has run,
-// made from the description read once (never re-parsed) and rebuilt for each
-// run with that run's values (run/model.h), so a run gives the same numbers
-// on any thread, alone or in a batch. Workers take the jobs in index order
-// from a shared counter; outcomes are kept by index, so the order in which
-// runs finish changes nothing. The workers' models last from one Run to the
-// next (an optimiser's many rounds of runs).
+// made from the description read once (never re-parsed). A job runs with
+// its model's options and its own --set values over them, nothing of an
+// earlier job's; the model is rebuilt only when those differ from what its
+// last run was built with (run/model.h), so a run gives the same numbers on
+// any thread, alone or in a batch, whichever jobs came before. Workers take
+// the jobs in index order from a shared counter; outcomes are kept by index,
+// so the order in which runs finish changes nothing. The workers' models last
+// from one Run to the next (an optimiser's many rounds of runs).
 
 #include <atomic>
 #include <memory>
@@ -30,14 +32,26 @@ struct BatchModel {
 };
 
 struct BatchJob {
-  int model = 0;                                   // index into the batch's models
-  std::vector<std::pair<std::string, double>> set;  // Model::Set, in order, after the model's options
-  RunOptions options;
+  int model = 0;                                                // index into the batch's models
+  std::vector<std::pair<std::string, double>> set;              // Model::Set, in order, after the model's options
+  std::vector<std::pair<std::string, std::string>> set_expressions;  // Model::SetExpression, after `set`
+  RunOptions options;  // an interrupt flag set before the job starts: not run (kInterrupted)
+};
+
+// Why a job has no run: it did run (kNone), or what stopped it first.
+enum class Refusal {
+  kNone,
+  kInput,        // InputError: a --set name or value its model refuses, a bad log name
+  kSimulation,   // SimulationError thrown by the run (a script error, a start that fails)
+  kInterrupted,  // the interrupt flag was set before it started
+  kOther,        // any other exception
 };
 
 struct BatchOutcome {
-  RunResult result;                          // status kFailed with the reason for a run that threw
+  RunResult result;  // a job with no run: status kFailed (kInterrupted) and the reason
+  Refusal refused = Refusal::kNone;
   std::vector<std::vector<double>> columns;  // the rows (MemorySink), time first
+  std::vector<std::string> event_names;      // result.events named as the event log names them
 };
 
 class Batch {
@@ -53,6 +67,8 @@ class Batch {
   // outcome with status kFailed and the message, not an exception.
   std::vector<BatchOutcome> Run(const std::vector<BatchJob>& jobs);
 
+  // Runs at a time from the next Run on (>= 1); the workers' models stay.
+  void SetThreads(int threads);
   int threads() const { return threads_; }
   long long runs() const { return runs_; }  // runs made so far
 

@@ -50,12 +50,12 @@ void Model::Build(const LoadOptions& options) {
   // the old build stays when the new one is refused (a Set value its model refuses)
   loaded_ = std::make_unique<diagrams::LoadedDiagram>(diagrams::LoadDiagramDescription(description_, options));
   built_with_ = options;
+  built_from_ = options_;
   used_ = false;
-  dirty_ = false;
 }
 
 const diagrams::LoadedDiagram& Model::Loaded() {
-  if (dirty_) Build(options_);
+  if (options_ != built_from_) Build(options_);
   return *loaded_;
 }
 
@@ -99,13 +99,11 @@ int Model::FindIdentifier(const std::string& name) {
 void Model::Set(const std::string& name, double value) {
   const int i = FindIdentifier(name);
   Override(*loaded_->identifiers, i, name, value, &options_.overrides, &options_.expression_overrides);
-  dirty_ = true;
 }
 
 void Model::SetExpression(const std::string& name, const std::string& expression) {
   const int i = FindIdentifier(name);
   Override(*loaded_->identifiers, i, name, expression, &options_.expression_overrides, &options_.overrides);
-  dirty_ = true;
 }
 
 LoadOptions Model::Effective(const RunOptions& options) const {
@@ -121,7 +119,7 @@ PreparedRun Model::Prepare(const RunOptions& options) {
   if (!options.times.empty() && options.interval)
     throw InputError("run: output at given times and an output interval exclude each other; give one");
   const LoadOptions effective = Effective(options);
-  if ((used_ && !Rerunnable(*loaded_)) || dirty_ || effective != built_with_) Build(effective);
+  if ((used_ && !Rerunnable(*loaded_)) || effective != built_with_) Build(effective);
   used_ = true;
   return PreparedRun(*loaded_, options);
 }

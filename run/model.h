@@ -13,8 +13,8 @@
 // state runs during a run (no control script, no Lua block, no expression
 // calling more than pure functions of numbers): a run keeps its states,
 // signals and caches in its own context, so nothing of one run reaches the
-// next. Otherwise, and after Set or with other solver overrides,
-// the run builds the diagram again from the kept description
+// next. Otherwise, and when Set has changed a value or the run overrides
+// other solver settings, the run builds the diagram again from the kept description
 // (diagrams::LoadDiagramDescription), as a fresh load with the same --set
 // would, so it gives the same numbers bit for bit: Lua code may keep state
 // between calls (a local of a script's chunk, a Lua block's upvalue), which a
@@ -133,6 +133,11 @@ class Model {
   // refused as --set refuses it. Takes effect at the next run.
   void Set(const std::string& name, double value);
   void SetExpression(const std::string& name, const std::string& expression);
+  // Every setting at once (variants, --set values, overrides, sandbox), as
+  // if the model had been made with them; Set goes on from these. Nothing
+  // is rebuilt when they are what the current build was made with.
+  void SetOptions(LoadOptions options) { options_ = std::move(options); }
+  const LoadOptions& options() const { return options_; }
 
   // The next run, ready (see PreparedRun); builds the diagram anew unless the
   // current build is fresh (never run, same settings).
@@ -146,10 +151,10 @@ class Model {
 
   diagrams::DiagramDescription description_;
   LoadOptions options_;                 // with every Set
-  LoadOptions built_with_;              // what loaded_ was built with
+  LoadOptions built_with_;              // what loaded_ was built with (a run's overrides included)
+  LoadOptions built_from_;              // options_ when loaded_ was built
   std::unique_ptr<diagrams::LoadedDiagram> loaded_;
   bool used_ = false;                   // loaded_ has been handed to a run
-  bool dirty_ = false;                  // Set since loaded_ was built
 };
 
 }  // namespace mechflow::run

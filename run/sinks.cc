@@ -79,7 +79,10 @@ std::string CsvFileSink::Close() {
 }
 
 void MemorySink::WriteRow(const double* values, int count) {
-  if (columns_.empty()) columns_.resize(static_cast<std::size_t>(count));
+  if (columns_.empty()) {
+    columns_.resize(static_cast<std::size_t>(count));
+    for (std::vector<double>& column : columns_) column.reserve(static_cast<std::size_t>(expected_rows_));
+  }
   for (int c = 0; c < count; ++c) columns_[c].push_back(values[c]);
 }
 

@@ -60,6 +60,9 @@ class CsvFileSink : public blocks::RowSink {
 class MemorySink final : public blocks::RowSink {
  public:
   void WriteRow(const double* values, int count) override;
+  // Each column is allocated once at the first row, this long (more rows
+  // still fit: the columns then grow as vectors do).
+  void ExpectRows(long rows) override { expected_rows_ = rows; }
   const std::vector<std::vector<double>>& columns() const { return columns_; }
   // The columns, moved out (the sink is empty after): a long run's rows are not copied.
   std::vector<std::vector<double>> TakeColumns() { return std::move(columns_); }
@@ -67,6 +70,7 @@ class MemorySink final : public blocks::RowSink {
 
  private:
   std::vector<std::vector<double>> columns_;
+  long expected_rows_ = 0;
 };
 
 }  // namespace mechflow::run

@@ -58,6 +58,8 @@ void Results::Clear() {
 
 void Results::Reserve(int rows) {
   if (keep_all_) values_.reserve(static_cast<std::size_t>(rows) * columns_.size());
+  for (std::vector<double>& column : kept_values_) column.reserve(static_cast<std::size_t>(rows));
+  if (sink_) sink_->ExpectRows(rows);
 }
 
 void Results::AddRow(const double* values) {

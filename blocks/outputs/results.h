@@ -21,6 +21,10 @@ class RowSink {
  public:
   virtual ~RowSink() = default;
   virtual void WriteRow(const double* values, int count) = 0;
+  // Before the first row: about how many rows the run will make (its output
+  // grid, and a last row should it stop early), for a sink that keeps them
+  // to allocate once instead of growing row by row.
+  virtual void ExpectRows(long rows) { (void)rows; }
 };
 
 // The smallest and largest value of a column and the first times they occur.

@@ -12,6 +12,14 @@
 
 namespace mechflow::blocks {
 
+std::string EventName(const Diagram& diagram, const EventRecord& event) {
+  const Block& block = diagram.block(event.block);
+  const std::string name = block.CrossingName(event.crossing, event.direction);
+  if (!name.empty()) return block.name() + (block.type() == "mechanism" ? "." : ": ") + name;
+  return "block '" + block.name() + "' zero crossing " + std::to_string(event.crossing) +
+         (event.direction > 0 ? " rising" : event.direction < 0 ? " falling" : "");
+}
+
 CrossingEvents::CrossingEvents(const Diagram& diagram, Context* ctx, SolverStats* stats)
     : diagram_(diagram), ctx_(*ctx), stats_(*stats) {
   std::vector<int> directions;

@@ -6,6 +6,7 @@
 // is kept as an EventRecord.
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "blocks/framework/block_context.h"
@@ -26,6 +27,11 @@ struct EventRecord {
   int crossing = 0;    // the block's own zero-crossing index
   int direction = 0;   // +1 rising, -1 falling
 };
+
+// The event as the event log names it: "block: what happened" (a mechanism's
+// "block.element ..."), or the block's crossing number and direction when
+// the block gives that crossing no name.
+std::string EventName(const Diagram& diagram, const EventRecord& event);
 
 class CrossingEvents {
  public:

@@ -1,42 +1,18 @@
 // mechflow.load's object: a diagram read once, run as often as wanted, alone
-// or many at a time on C++ threads (run/model.h).
+// or many at a time on C++ threads (run/model.h, run/batch.h).
 
-#include <atomic>
-#include <exception>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <thread>
 
-#include "analysis/interrupted.h"
 #include "analysis/modes.h"
 #include "blocks/outputs/report.h"
-#include "diagrams/xml_reader.h"
-#include "mech/errors.h"
 #include "python/bindings/bindings.h"
+#include "run/batch.h"
 #include "run/model.h"
-#include "run/sinks.h"
 
 namespace mechflow::python {
 namespace {
-
-// One run's request, read from its Python keywords while the GIL is held.
-struct RunRequest {
-  Settings settings;
-  std::optional<double> t_end, rtol, atol, interval;
-  std::optional<std::vector<std::string>> log;
-  std::vector<double> times;
-};
-
-// One run's outcome, made without the GIL; turned into Python after.
-struct RunRecord {
-  bool ran = false;              // false: refused before it ran (error_kind says why)
-  run::RunResult result;
-  std::vector<std::vector<double>> data;  // the rows, a vector per column (time first)
-  std::vector<std::string> event_names;   // per event: "block: crossing" as the event log names it
-  std::string error_kind;        // "" none; "DiagramError", "SimulationError", "Error", "Interrupted"
-  std::string error;             // its message
-};
 
 template <typename T>
 std::optional<T> Optional(const py::dict& d, const char* key) {
@@ -44,7 +20,8 @@ std::optional<T> Optional(const py::dict& d, const char* key) {
   return d[key].cast<T>();
 }
 
-RunRequest ToRequest(const py::dict& kwargs) {
+// One run's job, read from its Python keywords while the GIL is held.
+run::BatchJob ToJob(const py::dict& kwargs) {
   static const char* kKeys[] = {"set", "t_end", "rtol", "atol", "interval", "log", "times"};
   for (const auto& [key, value] : kwargs) {
     const std::string k = py::str(key);
@@ -53,93 +30,23 @@ RunRequest ToRequest(const py::dict& kwargs) {
     if (!known)
       throw py::type_error("run: unknown keyword '" + k + "' (set, t_end, rtol, atol, interval, log, times)");
   }
-  RunRequest r;
-  if (kwargs.contains("set")) r.settings = ToSettings(kwargs["set"]);
-  r.t_end = Optional<double>(kwargs, "t_end");
-  r.rtol = Optional<double>(kwargs, "rtol");
-  r.atol = Optional<double>(kwargs, "atol");
-  r.interval = Optional<double>(kwargs, "interval");
+  run::BatchJob job;
+  if (kwargs.contains("set")) {
+    Settings settings = ToSettings(kwargs["set"]);
+    job.set = std::move(settings.numbers);
+    job.set_expressions = std::move(settings.expressions);
+  }
+  job.options.t_end = Optional<double>(kwargs, "t_end");
+  job.options.rtol = Optional<double>(kwargs, "rtol");
+  job.options.atol = Optional<double>(kwargs, "atol");
+  job.options.interval = Optional<double>(kwargs, "interval");
   if (kwargs.contains("log") && !kwargs["log"].is_none()) {
-    if (py::isinstance<py::str>(kwargs["log"])) r.log = std::vector<std::string>{kwargs["log"].cast<std::string>()};
-    else r.log = kwargs["log"].cast<std::vector<std::string>>();
+    if (py::isinstance<py::str>(kwargs["log"])) job.options.log = std::vector<std::string>{kwargs["log"].cast<std::string>()};
+    else job.options.log = kwargs["log"].cast<std::vector<std::string>>();
   }
-  if (kwargs.contains("times") && !kwargs["times"].is_none()) r.times = kwargs["times"].cast<std::vector<double>>();
-  return r;
-}
-
-std::string CrossingName(const blocks::Diagram& diagram, const blocks::EventRecord& e) {
-  const blocks::Block& block = diagram.block(e.block);
-  const std::string name = block.CrossingName(e.crossing, e.direction);
-  if (!name.empty()) return block.name() + (block.type() == "mechanism" ? "." : ": ") + name;
-  return "block '" + block.name() + "' zero crossing " + std::to_string(e.crossing) +
-         (e.direction > 0 ? " rising" : e.direction < 0 ? " falling" : "");
-}
-
-// The run::Model a thread's runs with the same settings share: it runs its
-// built diagram again when it can (run/model.h), which saves the build (a
-// quarter of a short run).
-struct ModelCache {
-  std::unique_ptr<run::Model> model;
-  diagrams::LoadOptions options;
-
-  run::Model& For(const diagrams::DiagramDescription& description, const diagrams::LoadOptions& wanted) {
-    if (!model || wanted != options) {
-      model.reset();  // a model that fails to build is not kept
-      model = std::make_unique<run::Model>(description, wanted);
-      options = wanted;
-    }
-    return *model;
-  }
-};
-
-// A run on the cache's model, built from the description with the base
-// options and the run's settings as `mechflow run --set ...` builds it, so
-// the rows are the command line's bit for bit. Never throws: what goes wrong
-// is recorded.
-RunRecord RunOne(const diagrams::DiagramDescription& description, const diagrams::LoadOptions& base,
-                 const RunRequest& request, const volatile std::sig_atomic_t* interrupt, ModelCache* cache) {
-  RunRecord record;
-  try {
-    if (interrupt && *interrupt) throw analysis::Interrupted(*interrupt);
-    diagrams::LoadOptions options = WithSettings(base, request.settings);
-    options.t_end = request.t_end ? request.t_end : base.t_end;
-    options.rtol = request.rtol ? request.rtol : base.rtol;
-    options.atol = request.atol ? request.atol : base.atol;
-    options.interval = request.interval ? request.interval : base.interval;
-    run::Model& model = cache->For(description, options);
-    run::RunOptions run_options;
-    run_options.log = request.log;
-    run_options.times = request.times;
-    // the overrides again, as the run's own: the model is built with them
-    // already (no second build), and Prepare refuses times with an interval
-    run_options.t_end = request.t_end;
-    run_options.rtol = request.rtol;
-    run_options.atol = request.atol;
-    run_options.interval = request.interval;
-    run_options.interrupt = interrupt;
-    run::MemorySink sink;
-    run::PreparedRun prepared = model.Prepare(run_options);
-    record.result = prepared.Run(&sink);
-    record.ran = true;
-    record.data = sink.TakeColumns();
-    record.data.resize(record.result.columns.size());  // no rows: empty columns
-    for (const blocks::EventRecord& e : record.result.events)
-      record.event_names.push_back(CrossingName(*prepared.loaded().diagram, e));
-  } catch (const InputError& e) {
-    record.error_kind = "DiagramError";
-    record.error = e.what();
-  } catch (const SimulationError& e) {
-    record.error_kind = "SimulationError";
-    record.error = e.what();
-  } catch (const analysis::Interrupted& e) {
-    record.error_kind = "Interrupted";
-    record.error = std::string("not run: ") + e.what();
-  } catch (const std::exception& e) {
-    record.error_kind = "Error";
-    record.error = e.what();
-  }
-  if (!record.ran) cache->model.reset();  // whatever failed, the next run starts from a fresh model
-  return record;
+  if (kwargs.contains("times") && !kwargs["times"].is_none())
+    job.options.times = kwargs["times"].cast<std::vector<double>>();
+  return job;
 }
 
 const char* StatusName(run::Status s) {
@@ -193,22 +100,34 @@ py::dict StatsToPython(const blocks::SolverStats& s) {
   return d;
 }
 
-// The record as the package's Result takes it (python/mechflow/_result.py).
-py::dict ToPython(RunRecord&& record) {
+const char* RefusalName(run::Refusal r) {
+  switch (r) {
+    case run::Refusal::kNone: return nullptr;
+    case run::Refusal::kInput: return "DiagramError";
+    case run::Refusal::kSimulation: return "SimulationError";
+    case run::Refusal::kInterrupted: return "Interrupted";
+    case run::Refusal::kOther: return "Error";
+  }
+  return "Error";
+}
+
+// The outcome as the package's Result takes it (python/mechflow/_result.py).
+py::dict ToPython(run::BatchOutcome&& outcome) {
   py::dict d;
-  d["ran"] = record.ran;
-  d["error_kind"] = record.error_kind.empty() ? py::object(py::none()) : py::str(record.error_kind);
-  d["error"] = record.error;
-  const run::RunResult& r = record.result;
-  d["status"] = record.ran ? StatusName(r.status) : record.error_kind == "Interrupted" ? "interrupted" : "failed";
-  d["t_reached"] = record.ran ? py::object(py::float_(r.t_reached)) : py::object(py::none());
-  d["reason"] = record.ran ? r.reason : record.error;
+  const run::RunResult& r = outcome.result;
+  const bool ran = outcome.refused == run::Refusal::kNone;
+  d["ran"] = ran;
+  d["error_kind"] = ran ? py::object(py::none()) : py::str(RefusalName(outcome.refused));
+  d["error"] = ran ? std::string() : r.reason;
+  d["status"] = StatusName(r.status);
+  d["t_reached"] = ran ? py::object(py::float_(r.t_reached)) : py::object(py::none());
+  d["reason"] = r.reason;
   d["signal"] = r.signal;
   py::list names, units, data;
   for (std::size_t c = 0; c < r.columns.size(); ++c) {
     names.append(r.columns[c].name);
     units.append(r.columns[c].unit);
-    data.append(ToArray(std::move(record.data[c])));
+    data.append(ToArray(std::move(outcome.columns[c])));
   }
   d["columns"] = names;
   d["units"] = units;
@@ -223,7 +142,7 @@ py::dict ToPython(RunRecord&& record) {
     e["block"] = r.events[i].block;
     e["crossing"] = r.events[i].crossing;
     e["direction"] = r.events[i].direction;
-    e["name"] = record.event_names[i];
+    e["name"] = outcome.event_names[i];
     events.append(e);
   }
   d["events"] = events;
@@ -259,6 +178,7 @@ class PyModel {
     base_.unsafe_lua = unsafe_lua;
     path_ = path;
     model_ = std::make_unique<run::Model>(path, base_);
+    batch_ = std::make_unique<run::Batch>(BatchModels(), 1);
   }
 
   const std::string& path() const { return path_; }
@@ -279,47 +199,23 @@ class PyModel {
   py::dict Check() { return CheckToPython(model_->Loaded()); }
 
   py::dict Run(const py::dict& kwargs, bool handle_sigint) {
-    const RunRequest request = ToRequest(kwargs);
-    RunRecord record;
-    {
-      const py::gil_scoped_release unlocked;
-      const SigintGuard guard(handle_sigint);
-      // a run on another Python thread uses the shared cache: this one builds its own
-      std::unique_lock<std::mutex> mine(cache_mutex_, std::try_to_lock);
-      ModelCache spare;
-      record = RunOne(model_->description(), base_, request, guard.flag(), mine.owns_lock() ? &cache_ : &spare);
-    }
-    return ToPython(std::move(record));
+    std::vector<run::BatchOutcome> outcomes = RunJobs({ToJob(kwargs)}, 1, handle_sigint);
+    return ToPython(std::move(outcomes.front()));
   }
 
-  // Runs in input order of their results; `threads` workers take the next
-  // run as they finish one. Ctrl-C: the runs under way end at their last
-  // row, the others are not run.
+  // Results in input order; `threads` workers take the next run as they
+  // finish one. Ctrl-C: the runs under way end at their last row, the others
+  // are not run.
   py::list RunMany(const py::list& requests, int threads, bool handle_sigint) {
-    std::vector<RunRequest> todo;
+    std::vector<run::BatchJob> jobs;
     for (const py::handle& r : requests) {
       if (!py::isinstance<py::dict>(r)) throw py::type_error("run_many takes a list of dicts of run() keywords");
-      todo.push_back(ToRequest(py::reinterpret_borrow<py::dict>(r)));
+      jobs.push_back(ToJob(py::reinterpret_borrow<py::dict>(r)));
     }
     if (threads < 1) throw py::value_error("run_many: threads must be at least 1");
-    std::vector<RunRecord> records(todo.size());
-    {
-      const py::gil_scoped_release unlocked;
-      const SigintGuard guard(handle_sigint);
-      std::atomic<std::size_t> next{0};
-      const auto work = [&] {
-        ModelCache cache;  // this thread's
-        for (std::size_t i = next++; i < todo.size(); i = next++)
-          records[i] = RunOne(model_->description(), base_, todo[i], guard.flag(), &cache);
-      };
-      const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(threads), todo.size());
-      std::vector<std::thread> workers;
-      for (std::size_t t = 1; t < n; ++t) workers.emplace_back(work);
-      work();
-      for (std::thread& w : workers) w.join();
-    }
+    std::vector<run::BatchOutcome> outcomes = RunJobs(std::move(jobs), threads, handle_sigint);
     py::list out;
-    for (RunRecord& r : records) out.append(ToPython(std::move(r)));
+    for (run::BatchOutcome& o : outcomes) out.append(ToPython(std::move(o)));
     return out;
   }
 
@@ -379,11 +275,29 @@ class PyModel {
   const diagrams::LoadOptions& base() const { return base_; }
 
  private:
+  // The jobs on the model's batch, without the GIL. Its workers keep their
+  // built models from call to call (a run again on the same settings is not
+  // rebuilt); a call from another Python thread while one is under way runs
+  // on a batch of its own, built afresh.
+  std::vector<run::BatchOutcome> RunJobs(std::vector<run::BatchJob> jobs, int threads, bool handle_sigint) {
+    const py::gil_scoped_release unlocked;
+    const SigintGuard guard(handle_sigint);
+    for (run::BatchJob& job : jobs) job.options.interrupt = guard.flag();
+    std::unique_lock<std::mutex> mine(batch_mutex_, std::try_to_lock);
+    std::unique_ptr<run::Batch> spare;
+    if (!mine.owns_lock()) spare = std::make_unique<run::Batch>(BatchModels(), threads);
+    run::Batch& batch = mine.owns_lock() ? *batch_ : *spare;
+    batch.SetThreads(threads);
+    return batch.Run(jobs);
+  }
+
+  std::vector<run::BatchModel> BatchModels() const { return {{model_->description(), base_}}; }
+
   std::string path_;
   diagrams::LoadOptions base_;
   std::unique_ptr<run::Model> model_;
-  ModelCache cache_;  // run()'s, used by one Python thread at a time
-  std::mutex cache_mutex_;
+  std::unique_ptr<run::Batch> batch_;  // run()'s and run_many's, one Python thread at a time
+  std::mutex batch_mutex_;
 };
 
 }  // namespace

@@ -104,6 +104,25 @@ TEST(RunModel, SetThenRunIsALoadWithSet) {
   EXPECT_EQ(Rows(model, Short(1)), before);
 }
 
+// SetOptions replaces every setting at once, Set's included; a build made
+// with the same settings serves on (no rebuild), another is rebuilt.
+TEST(RunModel, SetOptionsIsAModelMadeWithThem) {
+  run::Model model(Example("damping_ratio.xml"));
+  const auto before = Rows(model, Short(1));
+  diagrams::LoadOptions with_set;
+  with_set.overrides = {{"beta", 0.3}};
+  model.SetOptions(with_set);
+  run::Model loaded_so(Example("damping_ratio.xml"), with_set);
+  EXPECT_EQ(Rows(model, Short(1)), Rows(loaded_so, Short(1)));
+  const diagrams::LoadedDiagram* built = &model.Loaded();
+  model.Set("beta", 0.3);  // what it is already
+  model.SetOptions(model.options());
+  EXPECT_EQ(&model.Loaded(), built);
+  model.SetOptions({});  // Set's value goes too
+  EXPECT_NE(&model.Loaded(), built);
+  EXPECT_EQ(Rows(model, Short(1)), before);
+}
+
 TEST(RunModel, MemoryColumnsAreTheCsvFile) {
   const std::string path = ::testing::TempDir() + "run_model_test_" + std::to_string(getpid()) + ".csv";
   run::Model model(Example("damping_ratio.xml"));
