@@ -2,7 +2,7 @@
 """What a run through the Python module costs, as ratios measured in one go.
 
 P1 (the seed ElastFriction, variant Free: a box sliding to rest on a
-frictional element, 2 s, its 1 ms output grid):
+frictional element, 3 s, its 1 ms output grid: 3001 rows):
 
 1. a run through the module with its rows in memory against the simulator's
    own time for the same run (RunResult's wall time around the simulation
@@ -11,8 +11,9 @@ frictional element, 2 s, its 1 ms output grid):
 2. run_many of RUNS runs on 2 threads against 1 thread, the best of ROUNDS
    alternating rounds (and each round's own ratio), beside the same runs in
    two processes of one thread against one: what this machine gives two
-   cores while the bench runs (a virtual machine's two cores slow each
-   other by 0 to 30 % from one moment to the next, whatever runs on them);
+   cores while the bench runs (the two cores of a virtual machine slow each
+   other by 0 to 40 % from one moment to the next, whatever runs on them,
+   a plain C loop over 16 KB of memory too);
 3. a loop of RUNS runs in Python against RUNS `mechflow run` processes
    (--no-plot, results to a file, as a script calling the command would).
 
@@ -108,14 +109,17 @@ def main():
             times["1 process"].append(workers.run([runs]))
             times["2 processes"].append(workers.run([runs // 2, runs - runs // 2]))
     best = {key: min(value) for key, value in times.items()}
+    threads = best["1 thread"] / best["2 threads"]
+    processes = best["1 process"] / best["2 processes"]
     paired = [a / b for a, b in zip(times["1 thread"], times["2 threads"])]
     machine = [a / b for a, b in zip(times["1 process"], times["2 processes"])]
     print(f"  run_many of {runs}, best of {ROUNDS} alternating rounds: 1 thread {best['1 thread']:.3f} s, "
-          f"2 threads {best['2 threads']:.3f} s: speed-up {best['1 thread'] / best['2 threads']:.2f} "
+          f"2 threads {best['2 threads']:.3f} s: speed-up {threads:.2f} "
           f"(round by round: median {statistics.median(paired):.2f}, {min(paired):.2f} to {max(paired):.2f})")
-    print(f"  the same runs in 1 and 2 processes of 1 thread: speed-up {best['1 process'] / best['2 processes']:.2f} "
+    print(f"  the same runs in 1 and 2 processes of 1 thread: speed-up {processes:.2f} "
           f"(round by round: median {statistics.median(machine):.2f}, {min(machine):.2f} to {max(machine):.2f}; "
           f"{os.cpu_count()} cores)")
+    print(f"  2 threads reach {threads / processes:.2f} of what 2 processes reach")
 
     # 3. a Python loop against processes
     start = time.perf_counter()

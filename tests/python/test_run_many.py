@@ -23,6 +23,16 @@ class RunManyTest(unittest.TestCase):
             for name in r.columns:
                 np.testing.assert_array_equal(r[name], single[name], err_msg=name)
 
+    def test_a_run_keeps_nothing_of_the_run_before(self):
+        # one thread runs them all in turn: the set= of one must not reach the next
+        d = mechflow.load(support.example("damping_ratio.xml"))
+        plain = d.run(t_end=1)
+        many = d.run_many([{"set": {"beta": 0.3}, "t_end": 1}, {"t_end": 1}, {"set": {"beta": "0.15 * 2"}, "t_end": 1}],
+                          threads=1)
+        np.testing.assert_array_equal(many[1]["m.z"], plain["m.z"])
+        np.testing.assert_array_equal(many[2]["m.z"], many[0]["m.z"])
+        self.assertFalse(np.array_equal(many[0]["m.z"], plain["m.z"]))
+
     def test_a_failing_run_does_not_stop_the_others(self):
         d = mechflow.load(support.example("damping_ratio.xml"))
         many = d.run_many([{"t_end": 1}, {"set": {"no_such": 1}}, {"log": ["m.nothing"]}, {"t_end": 0.5}], threads=2)
