@@ -14,11 +14,12 @@
 // calling more than pure functions of numbers): a run keeps its states,
 // signals and caches in its own context, so nothing of one run reaches the
 // next. Otherwise, and when Set has changed a value or the run overrides
-// other solver settings, the run builds the diagram again from the kept description
-// (diagrams::LoadDiagramDescription), as a fresh load with the same --set
-// would, so it gives the same numbers bit for bit: Lua code may keep state
-// between calls (a local of a script's chunk, a Lua block's upvalue), which a
-// second run would start from, and identifier values cannot change in place
+// other solver settings, the run builds the diagram again from the kept
+// description (diagrams::LoadDiagramDescription), as a fresh load with the
+// same --set would, so it gives the same numbers bit for bit: Lua code may
+// keep state between calls (a local of a script's chunk, a Lua block's
+// upvalue), which a second run would start from, and identifier values
+// cannot change in place
 // (block parameters are evaluated into numbers when the diagram is built;
 // only Lua-bound reads follow sim:set).
 // Cost, measured (Release): a load (read, parse, build) 0.7 to 5 ms, a
