@@ -32,15 +32,6 @@ const volatile std::sig_atomic_t* InterruptFlag() { return &g_interrupt; }
 
 int InterruptCount() { return g_count; }
 
-std::string SignalName(int signal) {
-  switch (signal) {
-    case SIGINT: return "SIGINT";
-    case SIGTERM: return "SIGTERM";
-    case SIGHUP: return "SIGHUP";
-    default: return "signal " + std::to_string(signal);
-  }
-}
-
 InterruptHandlers::InterruptHandlers() : outermost_(g_depth++ == 0) {
   if (!outermost_) return;
   g_interrupt = 0;

@@ -14,6 +14,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "analysis/interrupted.h"
+
 namespace mechflow::cli {
 
 // The flag; 0 while no signal came.
@@ -24,8 +26,7 @@ const volatile std::sig_atomic_t* InterruptFlag();
 // that ended the run.
 int InterruptCount();
 
-// "SIGINT", "SIGTERM", "SIGHUP".
-std::string SignalName(int signal);
+using analysis::SignalName;  // "SIGINT", "SIGTERM", "SIGHUP"
 
 // A command cut short by a signal after its run: `signal` gives the exit
 // code (128 + signal, as shells report it).

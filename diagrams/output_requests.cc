@@ -260,6 +260,13 @@ void CollectXYPlots(const DiagramDescription& d, LoadedDiagram* out) {
 
 }  // namespace
 
+std::string RawSignalUnit(const LoadedDiagram& loaded, const blocks::SignalRef& s) {
+  const std::string unit = SignalUnit(loaded, s);
+  std::string error;
+  const std::optional<Unit> parsed = Trim(unit).empty() ? std::nullopt : ParseUnit(unit, &error);
+  return parsed && parsed->to_si == 1.0 ? unit : "";
+}
+
 void CollectOutputRequests(const DiagramDescription& d, const Evaluator& eval, LoadedDiagram* out) {
   CollectLoggedSignals(d, out);
   CollectReports(d, eval, out);

@@ -13,4 +13,9 @@ namespace mechflow::diagrams {
 // out->diagram and out->identifiers must be built.
 void CollectOutputRequests(const DiagramDescription& d, const Evaluator& eval, LoadedDiagram* out);
 
+// The unit of a signal's values as a run gives them when no <log> chose one
+// (a run's own list of signals to log): the block's own (SI), or "" when the
+// signal is an identifier's given in another unit than SI (its values are SI).
+std::string RawSignalUnit(const LoadedDiagram& loaded, const blocks::SignalRef& s);
+
 }  // namespace mechflow::diagrams

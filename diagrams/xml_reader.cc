@@ -16,12 +16,45 @@ namespace xml {
 using blocks::ReadInputFile;
 using blocks::ReadNamedFile;
 
+namespace {
+
+// What the parser found, in words, and what it names ("XMLElement
+// name=sensor"), without its own error codes.
+std::string ParseProblem(const tinyxml2::XMLDocument& doc) {
+  std::string words;
+  switch (doc.ErrorID()) {
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
+      words = "an element that does not parse ('<' then a name, '>' at the end)";
+      break;
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
+      words = "an attribute that does not parse (name=\"value\", quoted, each name once)";
+      break;
+    case tinyxml2::XML_ERROR_PARSING_TEXT:
+      words = "text that does not parse (write '<' as &lt; and '&' as &amp;)";
+      break;
+    case tinyxml2::XML_ERROR_PARSING_CDATA: words = "a <![CDATA[ section without its ]]>"; break;
+    case tinyxml2::XML_ERROR_PARSING_COMMENT: words = "a comment without its -->"; break;
+    case tinyxml2::XML_ERROR_PARSING_DECLARATION: words = "an <?xml ...?> declaration that does not parse"; break;
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: words = "no element at all"; break;
+    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
+      words = "an element not closed where it should be (an end tag for another element, or none)";
+      break;
+    default: words = doc.ErrorName(); break;
+  }
+  const std::string full = doc.ErrorStr() ? doc.ErrorStr() : "";
+  const std::size_t at = full.find("Line number=");
+  const std::size_t detail = at == std::string::npos ? std::string::npos : full.find(": ", at);
+  if (detail != std::string::npos && detail + 2 < full.size()) words += " [" + full.substr(detail + 2) + "]";
+  return words;
+}
+
+}  // namespace
+
 void ParseText(tinyxml2::XMLDocument* doc, const std::string& text, const std::string& file) {
   CheckXmlText(text, file);
-  if (doc->Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
+  if (doc->Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
     throw InputError(file + ":" + std::to_string(doc->ErrorLineNum()) + ": malformed XML: " +
-                     blocks::Excerpt(doc->ErrorStr() ? doc->ErrorStr() : doc->ErrorName(), 160));
-  }
+                     blocks::Excerpt(ParseProblem(*doc), 200));
   if (const XMLElement* root = doc->RootElement(); root && root->NextSiblingElement())
     throw InputError(file + ":" + std::to_string(root->NextSiblingElement()->GetLineNum()) +
                      ": a second top-level element <" + blocks::Excerpt(root->NextSiblingElement()->Name()) +

@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "blocks/support/suggest.h"
+#include "diagrams/output_requests.h"
 #include "diagrams/xml_reader.h"
 #include "mech/errors.h"
 #include "scripting/instance_path.h"
@@ -139,7 +140,7 @@ PreparedRun::PreparedRun(const diagrams::LoadedDiagram& loaded, const RunOptions
       } catch (const InputError& e) {
         throw InputError("log " + name + ": " + e.what());
       }
-      units.resize(units.size() + logged.back().width);  // the unit of a signal not in a <log>: unknown
+      units.resize(units.size() + logged.back().width, diagrams::RawSignalUnit(loaded, logged.back()));
     }
   }
   blocks::SolverOptions solver = loaded.solver;

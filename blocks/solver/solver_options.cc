@@ -23,7 +23,7 @@ std::string SolverOptions::Problem() const {
 
 std::string SolverOptions::OutputTimesProblem() const {
   const auto at = [](std::size_t i, double t) {
-    return "output time " + std::to_string(i + 1) + " (" + CsvNumber(t) + " s)";
+    return "the output time " + CsvNumber(t) + " s (number " + std::to_string(i + 1) + " in the list)";
   };
   for (std::size_t i = 0; i < output_times.size(); ++i) {
     const double t = output_times[i];

@@ -40,10 +40,8 @@ run::BatchJob ToJob(const py::dict& kwargs) {
   job.options.rtol = Optional<double>(kwargs, "rtol");
   job.options.atol = Optional<double>(kwargs, "atol");
   job.options.interval = Optional<double>(kwargs, "interval");
-  if (kwargs.contains("log") && !kwargs["log"].is_none()) {
-    if (py::isinstance<py::str>(kwargs["log"])) job.options.log = std::vector<std::string>{kwargs["log"].cast<std::string>()};
-    else job.options.log = kwargs["log"].cast<std::vector<std::string>>();
-  }
+  if (kwargs.contains("log") && !kwargs["log"].is_none())  // a list (the package makes one of a name)
+    job.options.log = kwargs["log"].cast<std::vector<std::string>>();
   if (kwargs.contains("times") && !kwargs["times"].is_none())
     job.options.times = kwargs["times"].cast<std::vector<double>>();
   return job;

@@ -14,6 +14,8 @@ during a run ends it at its last row and raises KeyboardInterrupt.
 """
 
 import collections
+import collections.abc
+import numbers
 import os
 import threading
 
@@ -117,7 +119,8 @@ class Diagram:
 
         t_end, interval, rtol, atol: as --t-end, --interval, --rtol, --atol.
         set: {identifier: value} for this run only (after load's set=).
-        log: the signals to log ("block.port", "block.port[i]"); by default
+        log: the signals to log ("block.port", "block.port[i]"), each a
+            column under that name in the signal's own unit (SI); by default
             the diagram's <log>s with their labels and units.
         times: rows at exactly these instants [s] instead of every interval
             (increasing, within the run; not together with interval): no
@@ -152,11 +155,17 @@ class Diagram:
         with every Result in .results.
         """
         requests = []
-        for keywords in runs:
+        for index, keywords in enumerate(runs):
+            if not isinstance(keywords, collections.abc.Mapping):
+                raise TypeError(f"run_many: run {index} is a {type(keywords).__name__}, not a dict of run() keywords")
             unknown = set_difference(keywords, _RUN_KEYWORDS)
             if unknown:
-                raise TypeError(f"run_many: unknown keyword {unknown[0]!r} (run() takes {', '.join(_RUN_KEYWORDS)})")
-            requests.append(_run_keywords(**keywords))
+                raise TypeError(f"run_many: run {index}: unknown keyword {unknown[0]!r} "
+                                f"(run() takes {', '.join(_RUN_KEYWORDS)})")
+            try:
+                requests.append(_run_keywords(**keywords))
+            except (TypeError, ValueError) as e:
+                raise type(e)(f"run_many: run {index}: {e}") from None
         threads = (os.cpu_count() or 1) if threads is None else int(threads)
         results = [_many_result(raw) for raw in self._model.run_many(requests, threads, _on_main_thread())]
         if any(r.status == "interrupted" for r in results):
@@ -198,9 +207,28 @@ def set_difference(keywords, allowed):
     return [k for k in keywords if k not in allowed]
 
 
+def _number(name, value):
+    if value is None or (isinstance(value, numbers.Real) and not isinstance(value, bool)):
+        return value
+    raise TypeError(f"{name} must be a number, not {type(value).__name__} {value!r}")
+
+
 def _run_keywords(t_end=None, set=None, log=None, interval=None, rtol=None, atol=None, times=None):
-    return {"t_end": t_end, "set": set or {}, "log": log, "interval": interval, "rtol": rtol, "atol": atol,
-            "times": None if times is None else [float(t) for t in np.asarray(times, dtype=float).ravel()]}
+    if set is not None and not isinstance(set, collections.abc.Mapping):
+        raise TypeError(f"set must be a dict {{identifier: value}}, not {type(set).__name__}")
+    if isinstance(log, str):
+        log = [log]
+    if log is not None and not all(isinstance(name, str) for name in log):
+        raise TypeError(f"log must be a list of signal names (\"block.port\"), not {log!r}")
+    if times is not None:
+        try:
+            times = [float(t) for t in np.asarray(times, dtype=float).ravel()]
+        except (TypeError, ValueError):
+            raise TypeError(f"times must be numbers [s], not {times!r}") from None
+        if not times:
+            raise ValueError("times is empty: give the instants wanted, or leave times out for a row every interval")
+    return {"t_end": _number("t_end", t_end), "set": set or {}, "log": log, "interval": _number("interval", interval),
+            "rtol": _number("rtol", rtol), "atol": _number("atol", atol), "times": times}
 
 
 def _many_result(raw):

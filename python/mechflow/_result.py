@@ -79,6 +79,8 @@ class Result:
         except KeyError:
             near = difflib.get_close_matches(name, self._names, n=3, cutoff=0.5)
             hint = f"; did you mean {', '.join(near)}?" if near else ""
+            if "." in name:  # a signal whose <log> gave its column a label of its own
+                hint += f" (a <log> label names its column; run(log=[{name!r}]) gives a signal under its own name)"
             raise KeyError(f"no column {name!r}{hint} (columns: {', '.join(self._names)})") from None
 
     def to_numpy(self):

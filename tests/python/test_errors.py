@@ -68,11 +68,24 @@ class ErrorsTest(unittest.TestCase):
         self.assertIn(f"simulation failed at t = {error.time:g} s", done.stderr)
         self.assertTrue(str(error).startswith(f"simulation failed at t = {error.time:g} s: "), str(error))
 
+    def test_keywords_of_the_wrong_kind_are_named(self):
+        d = mechflow.load(support.example("damping_ratio.xml"))
+        with self.assertRaisesRegex(TypeError, "t_end must be a number, not str '3'"):
+            d.run(t_end="3")
+        with self.assertRaisesRegex(ValueError, "times is empty"):
+            d.run(times=[])
+        with self.assertRaisesRegex(TypeError, "set must be a dict"):
+            d.run(set=[("beta", 0.1)])
+        with self.assertRaisesRegex(TypeError, "run_many: run 1: rtol must be a number"):
+            d.run_many([{}, {"rtol": "1e-6"}])
+        with self.assertRaisesRegex(TypeError, "run_many: run 0 is a int, not a dict"):
+            d.run_many([1, {}])
+
     def test_times_it_cannot_keep_are_refused(self):
         d = mechflow.load(support.example("damping_ratio.xml"))
         with self.assertRaises(mechflow.DiagramError) as e:
             d.run(times=[0.2, 0.1])
-        self.assertIn("output time 2 (0.1 s) is not after the one before (0.2 s)", str(e.exception))
+        self.assertIn("the output time 0.1 s (number 2 in the list) is not after the one before (0.2 s)", str(e.exception))
         with self.assertRaises(mechflow.DiagramError) as e:
             d.run(times=[0.5], interval=0.01)
         self.assertIn("output at given times and an output interval exclude each other", str(e.exception))

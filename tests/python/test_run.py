@@ -77,6 +77,8 @@ class RunTest(unittest.TestCase):
         self.assertIn("m.z", d.signals)
         r = d.run(t_end=0.5, log=["m.z"])
         self.assertEqual(r.columns, ["time", "m.z"])
+        self.assertEqual(r.units["m.z"], d.run(t_end=0.5).units["m.z"])  # the signal's own unit, as its <log>'s
+        self.assertEqual(r.units["m.z"], "m")
         np.testing.assert_array_equal(r["m.z"], d.run(t_end=0.5)["m.z"])
 
     def test_to_numpy_and_to_pandas(self):

@@ -256,11 +256,11 @@ TEST(RunModel, RefusesOutputTimesItCannotKeep) {
     }
     return std::string("(accepted)");
   };
-  EXPECT_THAT(refusal({0.2, 0.1}), HasSubstr("output time 2 (0.1 s) is not after the one before (0.2 s)"));
+  EXPECT_THAT(refusal({0.2, 0.1}), HasSubstr("the output time 0.1 s (number 2 in the list) is not after the one before (0.2 s)"));
   EXPECT_THAT(refusal({0.2, 0.2}), HasSubstr("the times must increase"));
-  EXPECT_THAT(refusal({0.5, 1.5}), HasSubstr("output time 2 (1.5 s) is after t_end = 1 s: run to t_end = 1.5 s"));
+  EXPECT_THAT(refusal({0.5, 1.5}), HasSubstr("the output time 1.5 s (number 2 in the list) is after t_end = 1 s: run to t_end = 1.5 s"));
   EXPECT_THAT(refusal({-0.1}), HasSubstr("is before t_start = 0 s"));
-  EXPECT_THAT(refusal({0.1, std::nan("")}), HasSubstr("output time 2 (nan s) is not a finite number"));
+  EXPECT_THAT(refusal({0.1, std::nan("")}), HasSubstr("the output time nan s (number 2 in the list) is not a finite number"));
   EXPECT_THAT(refusal({0.1}, 0.01), HasSubstr("output at given times and an output interval exclude each other"));
 }
 
