@@ -123,6 +123,7 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
       solver->max_steps = static_cast<long>(v);
     }
   }
+  const blocks::SolverOptions from_file = *solver;  // before the run's own values
   if (options.t_end) solver->t_end = *options.t_end;
   if (options.rtol) solver->rtol = *options.rtol;
   if (options.atol) solver->atol = *options.atol;
@@ -139,12 +140,11 @@ void BuildSolverOptions(const DiagramDescription& d, const Evaluator& eval, cons
       throw InputError(a->loc.str() + ": output setting 'interval' is " + a->value +
                        "; expected a time > 0 s (leave it out for 1000 rows)");
   }
-  const std::string problem = solver->Problem();
-  if (!problem.empty())
-    throw InputError(d.solver_loc.str() + ": " + problem +
-                     (options.t_end                  ? " (t_end given by --t-end)"
-                      : options.rtol || options.atol ? " (tolerances given by --rtol, --atol)"
-                                                     : ""));
+  if (const std::string problem = solver->Problem(); !problem.empty()) {
+    // the file's own settings first, at its line; else the run's values are to blame
+    if (const std::string own = from_file.Problem(); !own.empty()) throw InputError(d.solver_loc.str() + ": " + own);
+    throw InputError("the run's own solver settings (--t-end, --rtol, --atol; run()'s t_end, rtol, atol): " + problem);
+  }
   if (solver->output_interval > 0.0) {
     const std::string rows = blocks::SamplePeriodProblem(solver->output_interval, solver->t_start, solver->t_end);
     if (!rows.empty()) throw InputError(d.output_loc.str() + ": output interval: " + rows);

@@ -65,7 +65,7 @@ TEST(CommandLineTest, RunSettingsQuietAndUsage) {
   // settings the solver refuses name where they came from
   run = testing::RunMechflow("run " + example + " --rtol=-1 --out " + out.string());
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_THAT(run.err, HasSubstr("(tolerances given by --rtol, --atol)"));
+  EXPECT_THAT(run.err, HasSubstr("the run's own solver settings (--t-end, --rtol, --atol; run()'s t_end, rtol, atol): rtol = -1"));
 }
 
 TEST(CommandLineTest, SetTakesExpressionsAndFiles) {

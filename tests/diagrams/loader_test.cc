@@ -170,16 +170,20 @@ TEST(LoaderTest, SchedulerErrorsNameBothEnds) {
 }
 
 TEST(LoaderTest, SolverSettingsAreChecked) {
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='0'/>")), HasSubstr("t_end must be a finite number greater than t_start"));
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='-1'/>")), HasSubstr("t_end must be a finite number greater than t_start"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='0'/>")),
+              HasSubstr("t_end = 0 s: it must be a finite number greater than t_start = 0 s"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='-1'/>")), HasSubstr("t_end = -1 s: it must be a finite number greater"));
   EXPECT_THAT(ErrorOf(Valid("<solver t_end='math.huge'/>")), HasSubstr("'math.huge' gives inf"));
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='2'/>")), HasSubstr("rtol must be at least 1e-15 (double precision cannot follow a tighter one) and < 1"));
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='1e-300'/>")), HasSubstr("rtol must be at least 1e-15"));
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='-1e-6'/>")), HasSubstr("rtol must be at least 1e-15"));
-  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' atol='-1'/>")), HasSubstr("atol must be a finite number > 0"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='2'/>")), HasSubstr("rtol = 2: it must be at least 1e-15 (double precision cannot follow a tighter one) and < 1"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='1e-300'/>")), HasSubstr("it must be at least 1e-15"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' rtol='-1e-6'/>")), HasSubstr("it must be at least 1e-15"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' atol='-1'/>")), HasSubstr("atol = -1: it must be a finite number > 0"));
   LoadOptions options;
-  options.t_end = -3;
-  EXPECT_THAT(ErrorOf(Valid(), options), HasSubstr("(t_end given by --t-end)"));
+  options.t_end = -3;  // the run's value is to blame, not a line of the file
+  EXPECT_THAT(ErrorOf(Valid(), options),
+              StartsWith("the run's own solver settings (--t-end, --rtol, --atol; run()'s t_end, rtol, atol): t_end = -3 s"));
+  EXPECT_THAT(ErrorOf(Valid("<solver t_end='1' atol='-1'/>"), options),  // the file's own first, at its line
+              AllOf(StartsWith("test.xml:"), HasSubstr("atol = -1: it must be")));
 }
 
 // Values that once passed and failed late (or were undefined behaviour):
