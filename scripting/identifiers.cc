@@ -11,6 +11,7 @@
 #include <lua.hpp>
 
 #include "blocks/support/excerpt.h"
+#include "blocks/support/message_number.h"
 #include "blocks/support/suggest.h"
 #include "mech/errors.h"
 #include "scripting/instance_path.h"
@@ -280,8 +281,30 @@ double IdentifierTable::Eval(LuaState& lua, const std::string& text, int visible
                      lua_typename(L, type) + ")" +
                      (type == LUA_TBOOLEAN ? "; write 'cond and 1 or 0' for a number" : ""));
   if (!std::isfinite(value))
-    throw InputError(what + ": '" + blocks::Excerpt(text) + "' gives " + std::to_string(value));
+    throw InputError(what + ": '" + blocks::Excerpt(text) + "' gives " + std::to_string(value) +
+                     ValuesNamedIn(text, visible));
   return value;
+}
+
+std::string IdentifierTable::ValuesNamedIn(const std::string& text, int visible) const {
+  const auto name_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  std::string out;
+  std::unordered_set<int> named;
+  for (std::size_t k = 0; k < text.size();) {
+    if (!name_char(text[k])) {
+      ++k;
+      continue;
+    }
+    std::size_t end = k;
+    while (end < text.size() && name_char(text[end])) ++end;
+    const std::string token = text.substr(k, end - k);
+    k = end;
+    if (std::isdigit(static_cast<unsigned char>(token[0]))) continue;  // a number (1e3 too)
+    const int i = Find(token);
+    if (i >= 0 && i < visible && named.insert(i).second)
+      out += (out.empty() ? " (with " : ", ") + Shown(items_[i]) + " = " + blocks::MessageNumber(items_[i].value);
+  }
+  return out.empty() ? "" : out + " in SI)";
 }
 
 void IdentifierTable::Evaluate(LuaState& lua) {

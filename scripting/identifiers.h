@@ -133,6 +133,9 @@ class IdentifierTable {
   // Evaluates `text` seeing identifiers [0, visible); `self` is the index of
   // the identifier being defined, or -1. Errors start with `what`.
   double Eval(LuaState& lua, const std::string& text, int visible, int self, const std::string& what) const;
+  // " (with k = 800, m = -2 in SI)": the identifiers among [0, visible) that
+  // `text` names, with their values; "" when it names none.
+  std::string ValuesNamedIn(const std::string& text, int visible) const;
 
   std::vector<Item> items_;
   // lower-case name -> index into items_ (names are only ever appended)

@@ -169,6 +169,9 @@ TEST(IdentifierTableTest, BadExpressionsReportLuasMessage) {
   EXPECT_EQ(EvaluationError(lua, {{"a", "1, 2"}}), "d.xml:1: identifier 'a': '1, 2' gives 2 values; expected one number");
   EXPECT_EQ(EvaluationError(lua, {{"a", "1/0"}}), "d.xml:1: identifier 'a': '1/0' gives inf");
   EXPECT_THAT(EvaluationError(lua, {{"a", "0/0"}}), HasSubstr("'0/0' gives "));
+  // what it was given: the identifiers it names, once each (a number's digits name none)
+  EXPECT_THAT(EvaluationError(lua, {{"k", "800"}, {"m", "-2"}, {"wn", "math.sqrt(k/m) + 2e3 * m / M"}}),
+              ::testing::EndsWith("' gives -nan (with k = 800, m = -2 in SI)"));
   EXPECT_THAT(EvaluationError(lua, {{"a", "(function() while true do end end)()"}}),
               StartsWith("d.xml:1: identifier 'a': error evaluating '(function() while true do end end)()': "
                          "instruction limit exceeded"));
