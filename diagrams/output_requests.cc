@@ -177,6 +177,11 @@ void CollectReports(const DiagramDescription& d, const Evaluator& eval, LoadedDi
     if (const Attribute* unit = FindAttribute(r.attributes, "unit")) {
       request.unit = Trim(unit->value);
       request.signal.column_factor = 1.0 / ReportUnitToSi(request, SignalUnit(*out, request.signal), *unit);
+    } else {  // the figure in SI: its unit where the signal's is known
+      const std::string own = RawSignalUnit(*out, request.signal);
+      request.unit = crossings ? "s"
+                     : request.kind == blocks::ReportKind::kIntegral ? (own.empty() ? "" : own + " s")
+                                                                     : own;
     }
     out->reports.push_back(std::move(request));
   }

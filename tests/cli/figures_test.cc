@@ -42,6 +42,7 @@ const char* kSine =
     "<output interval='0.5'><log signal='x.y'/>\n"
     "<report peak='x.y' label='largest x' unit='m'/>\n"
     "<report min='v.y'/>\n"
+    "<report crossing='x.y' level='0.5'/>\n"
     "</output></diagram>\n";
 
 TEST(FiguresTest, RunPrintsTheFiguresAndWritesThemBesideTheResults) {
@@ -57,10 +58,11 @@ TEST(FiguresTest, RunPrintsTheFiguresAndWritesThemBesideTheResults) {
   EXPECT_THAT(out.str(), HasSubstr("min of v.y: -1 at t = 3.14159 s\n"));
   const std::string csv = ReadFile(dir / "results" / "sine.report.csv");
   std::istringstream lines(csv);
-  std::string header, first, second;
+  std::string header, first, second, third;
   std::getline(lines, header);
   std::getline(lines, first);
   std::getline(lines, second);
+  std::getline(lines, third);
   EXPECT_EQ(header, "label,kind,signal,value,unit,time");
   EXPECT_THAT(first, ::testing::StartsWith("largest x,peak,x.y,"));
   // full precision: the value and time parse back to the closed form
@@ -69,6 +71,9 @@ TEST(FiguresTest, RunPrintsTheFiguresAndWritesThemBesideTheResults) {
   EXPECT_NEAR(value, 1.0, 1e-9);
   EXPECT_NEAR(time, M_PI / 2, 1e-5);
   EXPECT_THAT(second, ::testing::StartsWith("min of v.y,min,v.y,"));
+  // no unit asked: a time's is s (an integrator's own output has none to give)
+  ASSERT_EQ(std::sscanf(third.c_str(), "crossing of x.y,crossing,x.y,%lf,s,%lf", &value, &time), 2) << third;
+  EXPECT_NEAR(value, M_PI / 6, 1e-5);  // sin t = 0.5
 }
 
 TEST(FiguresTest, AFailedRunMarksItsFigures) {
