@@ -137,7 +137,8 @@ void PrintFigures(const std::vector<blocks::ReportFigure>& figures, bool finishe
       continue;
     }
     if (f.kind == blocks::ReportKind::kCrossing) {
-      out << "reached at t = " << Formatted("%.9g", f.time) << " s" << upto << "\n";
+      out << "reached at t = " << Formatted("%.9g", f.value) << " " << (f.unit.empty() ? "s" : f.unit) << upto
+          << "\n";  // the time in the report's unit
       continue;
     }
     const bool over_run = !blocks::IsExtremum(f.kind) && f.kind != blocks::ReportKind::kPeriod;

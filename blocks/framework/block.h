@@ -211,6 +211,11 @@ class Block {
   virtual std::string CrossingName(int /*index*/, int /*direction*/) const { return {}; }
   // The unit of an output's values ("m", "N"), "" when the block cannot know.
   virtual std::string OutputUnit(int /*port*/) const { return {}; }
+  // The shortest time over which the block's outputs change by themselves,
+  // inputs and states held (a source's period); infinity for none. A report
+  // watches the solution between the integrator's steps, which need not
+  // follow a signal that no state depends on: it must look this closely.
+  virtual double OwnTimeScale() const { return INFINITY; }
 
  protected:
   // Declarations, for constructors only. Return the new port's index.

@@ -24,6 +24,7 @@
 // differenced, or a step -- cannot drive a joint; motion_filter is the way
 // to drive from such a signal.
 
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@ class MotionSineBlock final : public Block {
 
  private:
   void DoCalcOutput(int port, const BlockContext& ctx) const override;
+  double OwnTimeScale() const override { return 2.0 * std::numbers::pi / std::abs(omega_); }  // the period
   double amplitude_, omega_, phase_, bias_;
 };
 

@@ -6,6 +6,7 @@
 //            bias (0) [unit]
 // No states, no events.
 
+#include <numbers>
 #include <string>
 
 #include "blocks/framework/block.h"
@@ -18,6 +19,7 @@ class SineBlock : public Block {
 
  protected:
   void DoCalcOutput(int port, const BlockContext& ctx) const override;
+  double OwnTimeScale() const override { return 2.0 * std::numbers::pi / std::abs(omega_); }  // the period
 
  private:
   double amplitude_;

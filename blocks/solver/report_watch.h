@@ -3,6 +3,7 @@
 // while the run goes: each report sees the solution on every stretch the
 // integrator has passed, evaluated on the step's interpolant.
 
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -27,12 +28,23 @@ class ReportWatch {
   void Restart(double t) { watched_to_ = t; }
   // Lets the reports see the solution on (watched_to_, t], within the last
   // step; `evaluate_at(t)` brings every signal up to date at t inside it.
+  // A step longer than `longest` is watched in pieces no longer than it.
   template <class EvaluateAt>
   void WatchTo(double t, EvaluateAt&& evaluate_at) {
     if (reports_.empty() || !(t > watched_to_)) return;
-    WatchStep(watched_to_, t, std::function<void(double)>(evaluate_at));
+    const std::function<void(double)> at(evaluate_at);
+    const double pieces = std::ceil((t - watched_to_) / longest_piece_);
+    for (double k = 1; k < pieces; ++k) {  // none unless the step is longer
+      const double tk = watched_to_ + (t - watched_to_) / (pieces - k + 1);
+      WatchStep(watched_to_, tk, at);
+      watched_to_ = tk;
+    }
+    WatchStep(watched_to_, t, at);
     watched_to_ = t;
   }
+  // The longest stretch watched at once (a fraction of the fastest source's
+  // period, Block::OwnTimeScale); infinity: a step at a time.
+  void SetLongestPiece(double longest) { longest_piece_ = longest; }
 
   // The figures so far, in the reports' units.
   std::vector<ReportFigure> figures() const;
@@ -45,6 +57,7 @@ class ReportWatch {
   std::vector<ExtremumTracker> trackers_;       // one per report (its extremum kinds)
   std::vector<SignalAccumulator> accumulators_;  // one per report (the other kinds)
   double watched_to_ = 0.0;  // reports have watched the solution up to here
+  double longest_piece_ = INFINITY;
 };
 
 }  // namespace mechflow::blocks

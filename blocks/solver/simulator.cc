@@ -47,6 +47,10 @@ Simulator::Simulator(const Diagram& diagram, SolverOptions options, std::vector<
       at_root_(std::max(1, diagram.num_states()), 0.0) {
   ctx_.signals.assign(diagram_.num_signals(), 0.0);
   ctx_.discrete.assign(diagram_.num_discrete_states(), 0.0);
+  // sixteen looks a period, at least, whatever steps the integrator takes
+  double fastest = INFINITY;
+  for (int b = 0; b < diagram_.num_blocks(); ++b) fastest = std::min(fastest, diagram_.block(b).OwnTimeScale());
+  reports_.SetLongestPiece(fastest / 16.0);
 }
 
 Simulator::~Simulator() = default;

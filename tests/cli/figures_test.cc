@@ -43,6 +43,7 @@ const char* kSine =
     "<report peak='x.y' label='largest x' unit='m'/>\n"
     "<report min='v.y'/>\n"
     "<report crossing='x.y' level='0.5'/>\n"
+    "<report crossing='x.y' level='0.5' unit='ms' label='half way'/>\n"
     "</output></diagram>\n";
 
 TEST(FiguresTest, RunPrintsTheFiguresAndWritesThemBesideTheResults) {
@@ -56,6 +57,10 @@ TEST(FiguresTest, RunPrintsTheFiguresAndWritesThemBesideTheResults) {
   // sin t peaks at 1 at pi/2 = 1.5708; v = cos t is lowest, -1, at pi
   EXPECT_THAT(out.str(), HasSubstr("largest x: 1 m at t = 1.5708 s\n"));
   EXPECT_THAT(out.str(), HasSubstr("min of v.y: -1 at t = 3.14159 s\n"));
+  // a crossing's time in its unit: s unless the report names another
+  EXPECT_THAT(out.str(), HasSubstr("crossing of x.y: reached at t = 0.5235987"));
+  EXPECT_THAT(out.str(), HasSubstr("half way: reached at t = 523.59877"));
+  EXPECT_THAT(out.str(), HasSubstr(" ms\n"));
   const std::string csv = ReadFile(dir / "results" / "sine.report.csv");
   std::istringstream lines(csv);
   std::string header, first, second, third;

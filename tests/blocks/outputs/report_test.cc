@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "blocks/framework/diagram_builder.h"
+#include "blocks/library/sine.h"
 #include "blocks/solver/simulator.h"
 #include "tests/test_util.h"
 
@@ -182,6 +183,34 @@ TEST(ReportTest, PeriodOfADampedOscillationAndALevelNeverReached) {
   const auto& f = sim.results().figures();
   EXPECT_NEAR(f[0].value, 2 * M_PI / wd, 1e-9);
   EXPECT_FALSE(f[1].found);
+}
+
+// A sine that no state depends on: the integrator's steps do not follow it
+// (they are as long as the output interval allows), so the reports look at
+// least sixteen times a period (Block::OwnTimeScale); the figures are the
+// closed form's whatever the interval.
+TEST(ReportTest, ASourceNoStateFollowsIsWatchedOnItsOwnTimeScale) {
+  DiagramBuilder builder;
+  builder.AddBlock(std::make_unique<SineBlock>("s", 1.0, 1.0, 0.0, 0.0));  // sin(2 pi t)
+  auto diagram = builder.Build();
+  for (const double interval : {0.01, 0.5, 2.0}) {
+    SolverOptions options;
+    options.t_end = 10.0;
+    options.output_interval = interval;
+    Simulator sim(*diagram, options, {diagram->ResolveSignal("s.y")});
+    const SignalRef y = diagram->ResolveSignal("s.y");
+    ReportRequest crossing{"half", "", ReportKind::kCrossing, y};
+    crossing.level = 0.5;
+    sim.SetReports({{"period", "", ReportKind::kPeriod, y}, {"rms", "", ReportKind::kRms, y},
+                    {"mean", "", ReportKind::kMean, y}, {"peak", "", ReportKind::kPeak, y}, crossing});
+    ASSERT_TRUE(sim.Run().ok);
+    const auto& f = sim.results().figures();
+    EXPECT_NEAR(f[0].value, 1.0, 1e-9) << "interval " << interval;
+    EXPECT_NEAR(f[1].value, std::sqrt(0.5), 1e-9) << "interval " << interval;
+    EXPECT_NEAR(f[2].value, 0.0, 1e-9) << "interval " << interval;
+    EXPECT_NEAR(f[3].time, 0.25, 1e-6) << "interval " << interval;
+    EXPECT_NEAR(f[4].time, 1.0 / 12.0, 1e-9) << "interval " << interval;
+  }
 }
 
 }  // namespace
