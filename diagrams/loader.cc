@@ -45,6 +45,7 @@ blocks::BlockParams EvaluateParams(const BlockDesc& b, const blocks::BlockType& 
     if (!a && spec.default_value.empty()) continue;
     const std::string text = a ? a->value : spec.default_value;
     const std::string what = (a ? a->loc.str() : b.loc.str()) + ": block '" + b.name + "' parameter '" + spec.name + "'";
+    if (a && spec.kind == blocks::ParamKind::kNumber) eval.CheckUnit(text, false, spec.name, spec.unit, what);
     switch (spec.kind) {
       case blocks::ParamKind::kNumber:
         params.SetNumbers(spec.name, {eval.Number(text, what)});

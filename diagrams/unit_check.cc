@@ -1,7 +1,9 @@
 #include "diagrams/unit_check.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <iterator>
 
 #include "diagrams/evaluator.h"
 #include "diagrams/expression_dimension.h"
@@ -16,6 +18,9 @@ std::string AsWarning(const std::string& message) {
   return colon == std::string::npos ? "warning: " + message
                                     : message.substr(0, colon) + ": warning: " + message.substr(colon + 2);
 }
+
+// Unit names with an angle in them (a rate in them is angular).
+constexpr const char* kAngleUnits[] = {"rpm", "rad", "deg", "rev", "\u00b0", "arc"};
 
 std::string Shortest(double value) {
   char text[32];
@@ -40,9 +45,9 @@ void UnitCheck::CheckAttribute(const std::string& text, const std::string& attri
   const std::string t = Trim(text);
   const int id = ids_->Find(t);
   if (id >= 0 && scripting::IsLuaName(t)) {
-    if (id >= static_cast<int>(units_.size()) || !units_[id] || units_[id]->dimension.SameAs(expected->dimension))
-      return;
+    if (id >= static_cast<int>(units_.size()) || !units_[id]) return;
     const Unit& unit = *units_[id];
+    if (unit.dimension.SameAs(expected->dimension)) return WarnTurnsForCycles(t, id, attribute, si_unit, what);
     throw InputError(what + ": '" + t + "' is " + unit.dimension.Describe() + " in " + unit.text + " (" +
                      ids_->origin(id) + "), used as '" + attribute + "' (" + si_unit + "); give '" + t +
                      "' a unit of " + expected->dimension.Describe() + " or use another identifier");
@@ -53,6 +58,27 @@ void UnitCheck::CheckAttribute(const std::string& text, const std::string& attri
   else if (found.known && !found.plain_number && !found.dimension.SameAs(expected->dimension))
     Warn(AsWarning(what + ": '" + t + "' is " + found.dimension.Describe() + " (" + found.dimension.Text() +
                    ") by the units of its identifiers, used as '" + attribute + "' (" + si_unit + ")"));
+}
+
+// A radian counts as 1 in SI, so an angular rate (rpm, rad/s, deg/s) and a
+// frequency (Hz) share a dimension, and one given for the other is taken
+// as it is in SI: 60 rpm (6.28 rad/s) as a frequency is 6.28 Hz, not the
+// 1 Hz of one turn a cycle. Seldom meant: a warning.
+void UnitCheck::WarnTurnsForCycles(const std::string& name, int id, const std::string& attribute,
+                                   const std::string& si_unit, const std::string& what) const {
+  const std::string& text = units_[id]->text;
+  const bool angular = std::any_of(std::begin(kAngleUnits), std::end(kAngleUnits),
+                                   [&](const char* a) { return text.find(a) != std::string::npos; });
+  const double si = ids_->value(id);
+  const std::string given = "'" + name + "' is " + Shortest(si / ids_->to_si(id)) + " " + text;
+  if (si_unit == "Hz" && angular)
+    Warn(AsWarning(what + ": " + given + ", an angular rate (" + Shortest(si) + " rad/s), used as '" + attribute +
+                   "' (Hz): taken as " + Shortest(si) + " Hz, not the " + Shortest(si / (2 * M_PI)) +
+                   " Hz of one turn a cycle; give it in Hz, or divide by 2*pi"));
+  else if (si_unit == "rad/s" && text.find("Hz") != std::string::npos)
+    Warn(AsWarning(what + ": " + given + ", a frequency, used as '" + attribute + "' (rad/s): taken as " +
+                   Shortest(si) + " rad/s, not the " + Shortest(si * 2 * M_PI) +
+                   " rad/s of one turn a cycle; give it in rpm or rad/s, or multiply by 2*pi"));
 }
 
 void UnitCheck::CheckDefinitions() const {

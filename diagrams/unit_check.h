@@ -43,6 +43,8 @@ class UnitCheck {
 
  private:
   void Warn(const std::string& warning) const;
+  void WarnTurnsForCycles(const std::string& name, int id, const std::string& attribute, const std::string& si_unit,
+                          const std::string& what) const;
 
   const scripting::IdentifierTable* ids_;
   std::vector<std::optional<Unit>> units_;

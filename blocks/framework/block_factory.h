@@ -32,6 +32,9 @@ struct ParamSpec {
   bool required = false;
   std::string default_value;  // text as a user would write it; empty: none
   std::string doc;            // one line, with units
+  // The SI unit an identifier given as the value is checked against
+  // (diagrams/unit_check.h); "" where the unit depends on more.
+  std::string unit = {};
 };
 
 // Evaluated parameter values of one block.

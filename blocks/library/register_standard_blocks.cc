@@ -138,7 +138,7 @@ void RegisterSources(BlockRegistry* r) {
       });
   Add(r, "sine", "y = bias + amplitude sin(2 pi frequency t + phase)",
       {{"amplitude", K::kNumber, false, "1", "amplitude [unit of y]"},
-       {"frequency", K::kNumber, false, "1", "frequency [Hz]"},
+       {"frequency", K::kNumber, false, "1", "frequency [Hz]", "Hz"},
        {"phase", K::kNumber, false, "0", "phase [rad]"},
        {"bias", K::kNumber, false, "0", "offset added [unit of y]"}},
       [](const std::string& n, const BlockParams& p) {
@@ -203,7 +203,7 @@ void RegisterTables(BlockRegistry* r) {
 void RegisterMotions(BlockRegistry* r) {
   Add(r, "motion_sine", "y = (q, q', q'') of q = bias + amplitude sin(2 pi frequency t + phase): drives a joint",
       {{"amplitude", K::kNumber, false, "1", "amplitude [m or rad]"},
-       {"frequency", K::kNumber, false, "1", "frequency [Hz]"},
+       {"frequency", K::kNumber, false, "1", "frequency [Hz]", "Hz"},
        {"phase", K::kNumber, false, "0", "phase [rad]"},
        {"bias", K::kNumber, false, "0", "offset added [m or rad]"}},
       [](const std::string& n, const BlockParams& p) {
@@ -224,7 +224,7 @@ void RegisterMotions(BlockRegistry* r) {
                                                   std::move(q), Finite(p, "start"), Finite(p, "speed"));
       });
   Add(r, "motion_filter", "y = (q, q', q''), q'' = w^2 (u - q) - 2 zeta w q': any signal u made a motion",
-      {{"frequency", K::kNumber, true, "", "filter frequency w / (2 pi) [Hz], > 0"},
+      {{"frequency", K::kNumber, true, "", "filter frequency w / (2 pi) [Hz], > 0", "Hz"},
        {"damping", K::kNumber, false, "1", "damping ratio zeta [-], > 0 (1: critical, no overshoot)"}},
       [](const std::string& n, const BlockParams& p) {
         if (!(Finite(p, "frequency") > 0)) throw InputError("'frequency' must be > 0");

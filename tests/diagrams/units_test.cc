@@ -113,6 +113,28 @@ TEST(UnitsTest, AnIdentifierOfAnotherDimensionIsBadInputNamingBothLines) {
   EXPECT_THAT(ok.warnings, IsEmpty());
 }
 
+// A radian counts as 1, so rpm and Hz share a dimension; one given for the
+// other is taken as its SI value (60 rpm as a frequency is 6.28 Hz): a
+// warning says what it is taken as and what one turn a cycle would be.
+TEST(UnitsTest, AnAngularRateForAFrequencyOrTheOtherWayIsAWarning) {
+  const LoadedDiagram d = LoadXml(
+      "<diagram>\n<identifiers>\n<identifier name='fr' value='60' unit='rpm'/>\n"
+      "<identifier name='spin' value='1' unit='Hz'/>\n<identifier name='f' value='2' unit='Hz'/>\n"
+      "<identifier name='w' value='90' unit='rpm'/>\n</identifiers>\n"
+      "<mechanism name='m'>\n<body name='B' mass='1' inertia='1 1 1'/>\n"
+      "<joint name='j' type='rotational' body1='Base0' body2='B' v0='spin'/>\n"
+      "<body name='C' mass='1' inertia='1 1 1'/>\n"
+      "<joint name='k' type='rotational' body1='Base0' body2='C' v0='w'/>\n</mechanism>\n"
+      "<blocks>\n<block type='sine' name='s' frequency='fr'/>\n<block type='sine' name='t' frequency='f'/>\n"
+      "</blocks>\n<solver t_end='1'/></diagram>");
+  ASSERT_EQ(d.warnings.size(), 2u);  // w (rpm as rad/s) and f (Hz as Hz) are what they say
+  EXPECT_THAT(d.warnings[0], StartsWith("test.xml:10: warning: joint 'j' attribute 'v0': 'spin' is 1 Hz, a "
+                                        "frequency, used as 'v0' (rad/s): taken as 1 rad/s, not the 6.283185307"));
+  EXPECT_THAT(d.warnings[1], StartsWith("test.xml:15: warning: block 's' parameter 'frequency': 'fr' is 60 rpm, an "
+                                        "angular rate (6.283185307 rad/s), used as 'frequency' (Hz): taken as "
+                                        "6.283185307 Hz, not the 1 Hz of one turn a cycle"));
+}
+
 TEST(UnitsTest, ExpressionsPropagateDimensions) {
   std::string error;
   const auto of = [&](const std::string& name) -> std::optional<Dimension> {
