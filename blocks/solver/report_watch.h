@@ -28,14 +28,15 @@ class ReportWatch {
   void Restart(double t) { watched_to_ = t; }
   // Lets the reports see the solution on (watched_to_, t], within the last
   // step; `evaluate_at(t)` brings every signal up to date at t inside it.
-  // A step longer than `longest` is watched in pieces no longer than it.
+  // A step longer than the longest piece (SetLongestPiece) is watched in
+  // equal pieces no longer than that.
   template <class EvaluateAt>
   void WatchTo(double t, EvaluateAt&& evaluate_at) {
     if (reports_.empty() || !(t > watched_to_)) return;
     const std::function<void(double)> at(evaluate_at);
-    const double pieces = std::ceil((t - watched_to_) / longest_piece_);
-    for (double k = 1; k < pieces; ++k) {  // none unless the step is longer
-      const double tk = watched_to_ + (t - watched_to_) / (pieces - k + 1);
+    // equal pieces: each time the rest of the step over the pieces left
+    for (double left = std::ceil((t - watched_to_) / longest_piece_); left > 1; --left) {
+      const double tk = watched_to_ + (t - watched_to_) / left;
       WatchStep(watched_to_, tk, at);
       watched_to_ = tk;
     }
