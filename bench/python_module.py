@@ -12,8 +12,8 @@ frictional element, 3 s, its 1 ms output grid: 3001 rows):
    alternating rounds (and each round's own ratio), beside the same runs in
    two processes of one thread against one: what this machine gives two
    cores while the bench runs (the two cores of a virtual machine slow each
-   other by 0 to 40 % from one moment to the next, whatever runs on them,
-   a plain C loop over 16 KB of memory too);
+   other from one moment to the next, whatever runs on them: a plain C loop
+   over 16 KB of memory by up to 40 %);
 3. a loop of RUNS runs in Python against RUNS `mechflow run` processes
    (--no-plot, results to a file, as a script calling the command would).
 

@@ -22,9 +22,10 @@
 // bodies do not say how they share a load, and none is made up: directions
 // in which S is singular get no force (one of the redundant holds carries
 // it), and as S nears singular the force in that direction fades to none
-// continuously rather than at a cut-off the integrator could not step over. A hold whose motion no force changes and that the rest of the
-// mechanism still drives (a prescribed motion across a stuck contact) has
-// no holding force at all: SolveHoldingForces reports it.
+// continuously rather than at a cut-off the integrator could not step over.
+// A hold whose motion no force changes and that the rest of the mechanism
+// still drives (a prescribed motion across a stuck contact) has no holding
+// force at all: SolveHoldingForces reports it.
 
 #include <vector>
 

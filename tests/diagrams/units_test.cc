@@ -133,6 +133,13 @@ TEST(UnitsTest, AnAngularRateForAFrequencyOrTheOtherWayIsAWarning) {
   EXPECT_THAT(d.warnings[1], StartsWith("test.xml:15: warning: block 's' parameter 'frequency': 'fr' is 60 rpm, an "
                                         "angular rate (6.283185307 rad/s), used as 'frequency' (Hz): taken as "
                                         "6.283185307 Hz, not the 1 Hz of one turn a cycle"));
+  // a block parameter with a unit is checked as an element attribute is: a time is no frequency
+  EXPECT_THAT(InputErrorOf([] {
+                LoadXml("<diagram>\n<identifiers>\n<identifier name='period' value='2' unit='s'/>\n</identifiers>\n"
+                        "<blocks><block type='sine' name='s' frequency='period'/></blocks>\n<solver t_end='1'/></diagram>");
+              }),
+              StartsWith("test.xml:5: block 's' parameter 'frequency': 'period' is a time in s (test.xml:3), used as "
+                         "'frequency' (Hz)"));
 }
 
 TEST(UnitsTest, ExpressionsPropagateDimensions) {

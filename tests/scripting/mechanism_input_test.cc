@@ -3,8 +3,6 @@
 // mechanism or be refused): no silent no-op --
 // sim:get reads the value the mechanism receives, sim:set is refused with
 // what to do instead, and a tt/rt expression naming an input is refused.
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -19,10 +17,7 @@ using ::testing::HasSubstr;
 
 // LeafSpring (the friction force Ffr comes from a block) with a script.
 std::string LeafSpringWithScript(const std::string& script) {
-  std::ifstream in(std::string(MECHFLOW_SOURCE_DIR) + "/diagrams/examples/leaf_spring.xml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string xml = text.str();
+  std::string xml = testing::ReadExample("leaf_spring.xml");
   xml.insert(xml.find("<solver"), "<script>" + script + "</script>\n  ");
   return xml;
 }
